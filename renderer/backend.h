@@ -1,0 +1,40 @@
+#pragma once
+// The interface between the frame loop and the backends (kinetic, embree, osmesa). Virtual
+// dispatch is fine here: it happens once per frame, never per ray.
+#include <memory>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "renderer/frame.h"
+#include "scenes/camera_space.h"
+
+namespace kinray {
+
+/// Options every backend understands; the command line maps one flag to one field.
+struct BackendConfig {
+  int width = 512, height = 512;
+  int threads = 0;              ///< 0: all cores
+  std::string embree_mode = "refit";   ///< embree: rebuild | refit
+  int embree_packet = 1;        ///< embree: 1 (single rays), 4, 8 or 16
+  std::string sort = "list";    ///< kinetic: list | tournament | heap
+  bool audit = false;           ///< kinetic: audit every certificate between events
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  [[nodiscard]] virtual std::string name() const = 0;
+  /// Renders frame time t into `frame` (object, prim and depth; colour is filled by shade_frame).
+  /// Frame times must not decrease between calls for the kinetic backend.
+  virtual void render(double t, Frame& frame) = 0;
+  /// Adds this backend's counters and timings to a --stats JSON object.
+  virtual void write_stats(nlohmann::json& stats) const {}
+};
+
+/// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.
+/// Throws InputError for an unknown or unavailable backend.
+std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
+                                      const BackendConfig& config);
+
+}  // namespace kinray

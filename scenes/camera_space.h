@@ -1,0 +1,71 @@
+#pragma once
+// Camera space (DESIGN.md): every backend consumes the scene as camera-space flightplans. Keyframe
+// positions are transformed into camera space at each key (the union of the object's and the
+// camera's key times) and interpolated linearly there, so an animated camera keeps the relative
+// motion piecewise linear. The field of view is folded into the positions (x and y scaled by
+// 1 / tan(fov_y / 2)), so the pixel-centre rays d_ij = (x_i, y_j, 1) never change, even when the
+// fov is animated; the ray parameter of a hit is still the camera-space depth z.
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace kinray {
+
+/// Pixel-centre ray directions of a W x H image: d_ij = (pixel_x(i), pixel_y(j), 1), row 0 at top.
+struct ImageGeometry {
+  int width = 0, height = 0;
+  [[nodiscard]] double pixel_x(int i) const {
+    return ((2.0 * i + 1.0) / width - 1.0) * (double(width) / double(height));
+  }
+  [[nodiscard]] double pixel_y(int j) const { return 1.0 - (2.0 * j + 1.0) / height; }
+  [[nodiscard]] Vec3 direction(int i, int j) const { return {pixel_x(i), pixel_y(j), 1.0}; }
+  [[nodiscard]] size_t pixel_count() const { return size_t(width) * size_t(height); }
+};
+
+/// Where t falls on a key grid: segment k (between keys k and k+1) and the fraction alpha in
+/// [0, 1]. Outside the grid the motion stands still (k clamps, alpha is 0 or 1).
+struct KeySegment {
+  size_t k = 0;
+  double alpha = 0;
+};
+[[nodiscard]] KeySegment locate(std::span<const double> key_times, double t);
+
+/// One object's camera-space flightplans.
+struct CameraSpaceObject {
+  uint32_t object = 0;              ///< index into Scene::objects; the id in ID buffers
+  std::vector<double> key_times;    ///< strictly increasing, at least one
+  std::vector<Vec3> positions;      ///< [key * vertex_count + v], fov-normalized camera space
+  std::vector<Eigen::Vector3f> normals;  ///< [key * vertex_count + v], unit, true camera space
+  size_t vertex_count = 0;
+  bool is_static = false;           ///< camera-space positions equal at every key
+  double appear = -kInfinity, disappear = kInfinity;
+
+  [[nodiscard]] std::span<const Vec3> key(size_t k) const {
+    return {positions.data() + k * vertex_count, vertex_count};
+  }
+  [[nodiscard]] bool visible(double t) const { return t >= appear && t < disappear; }
+  [[nodiscard]] Vec3 position(uint32_t v, double t) const;
+  [[nodiscard]] Eigen::Vector3f normal(uint32_t v, double t) const;
+  /// All positions at t, into `out` (resized).
+  void positions_at(double t, std::vector<Vec3>& out) const;
+};
+
+/// The whole scene in camera space: what the kinetic, Embree and OSMesa backends all consume,
+/// so that the three agree bit for bit up to ties.
+struct CameraSpaceScene {
+  const Scene* scene = nullptr;
+  std::vector<CameraSpaceObject> objects;  ///< one per Scene::objects entry, same order
+
+  /// Builds camera-space flightplans from `scene`, which must outlive the result.
+  static CameraSpaceScene build(const Scene& scene);
+  /// tan(fov_y / 2) of the camera at t: undoes the fov folding for shading.
+  [[nodiscard]] double tan_half_fov(double t) const;
+  [[nodiscard]] size_t triangle_count() const;
+  [[nodiscard]] const std::vector<Triangle>& triangles(size_t object) const {
+    return scene->objects[object].triangles;
+  }
+};
+
+}  // namespace kinray

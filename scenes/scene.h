@@ -1,0 +1,100 @@
+#pragma once
+// The scene model: triangle meshes whose vertices move along piecewise-linear flightplans,
+// objects that appear and disappear, a pinhole camera that may be animated, and materials.
+// Everything here is in world space; camera_space.h turns it into what the backends consume.
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace kinray {
+
+using Vec3 = Eigen::Vector3d;
+using Vec2f = Eigen::Vector2f;
+using Color = Eigen::Vector3f;  // linear RGB in [0, 1]
+using Triangle = std::array<uint32_t, 3>;
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// An RGB texture read from an image file, sampled bilinearly with wrap-around.
+struct Texture {
+  std::string path;
+  int width = 0, height = 0;
+  std::vector<Color> texels;  // row-major, row 0 at the top (v = 1)
+  [[nodiscard]] Color sample(Vec2f uv) const;
+};
+
+struct Material {
+  std::string name;
+  Color base_color = Color(0.8f, 0.8f, 0.8f);
+  int texture = -1;  ///< index into Scene::textures, or -1
+};
+
+/// A triangle mesh whose vertices follow piecewise-linear flightplans that share key times:
+/// on [key_times[k], key_times[k+1]] vertex v moves linearly from key_positions[k][v] to
+/// key_positions[k+1][v]. Before the first key and after the last it stands still. One key
+/// means a static object.
+struct Object {
+  std::string name;
+  std::vector<Triangle> triangles;
+  std::vector<double> key_times;              ///< strictly increasing, at least one
+  std::vector<std::vector<Vec3>> key_positions;  ///< [key][vertex], world space
+  std::vector<Vec2f> uvs;                     ///< per vertex, or empty
+  uint32_t material = 0;
+  double appear = -kInfinity;    ///< visible on [appear, disappear)
+  double disappear = kInfinity;
+
+  [[nodiscard]] size_t vertex_count() const { return key_positions.empty() ? 0 : key_positions[0].size(); }
+  [[nodiscard]] size_t key_count() const { return key_times.size(); }
+  /// True when no vertex ever moves in world space.
+  [[nodiscard]] bool is_static() const;
+  /// Replaces the flightplans (a flightplan update); validates like Scene::validate.
+  void set_flightplans(std::vector<double> times, std::vector<std::vector<Vec3>> positions);
+  /// World-space position of vertex v at time t.
+  [[nodiscard]] Vec3 position(uint32_t v, double t) const;
+};
+
+/// One camera key. Camera frame: x right, y up, looking down +z (camera space of DESIGN.md).
+struct CameraKey {
+  double time = 0;
+  Vec3 position = Vec3::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< camera-to-world rotation
+  double fov_y_degrees = 45;
+};
+
+/// A pinhole camera, animated when it has more than one key (position and fov lerp, orientation slerp).
+struct Camera {
+  std::vector<CameraKey> keys = {CameraKey{}};
+  [[nodiscard]] CameraKey at(double t) const;
+  /// A key looking from `eye` at `target`, with `up` as the approximate up direction.
+  static CameraKey look_at(double time, const Vec3& eye, const Vec3& target, const Vec3& up,
+                           double fov_y_degrees);
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Object> objects;
+  std::vector<Material> materials = {Material{}};
+  std::vector<Texture> textures;
+  Camera camera;
+  double time_begin = 0;  ///< the shot, in seconds
+  double time_end = 1;
+
+  /// Throws InputError (with `source` as the place) on NaN/infinite positions, indices out of
+  /// range, unsorted or duplicate key times, mismatched key counts, bad materials or an empty shot.
+  void validate(const std::string& source) const;
+  /// Sorted union of every object's and the camera's key times inside [time_begin, time_end],
+  /// plus time_begin and time_end: the keyframe grid that --inbetweens subdivides.
+  [[nodiscard]] std::vector<double> key_times() const;
+  [[nodiscard]] size_t triangle_count() const;
+  [[nodiscard]] size_t vertex_count() const;
+  /// World-space bounds of every vertex over every key.
+  [[nodiscard]] Eigen::AlignedBox3d bounds() const;
+};
+
+}  // namespace kinray
