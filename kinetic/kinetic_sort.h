@@ -1,0 +1,199 @@
+#pragma once
+// Kinetic sorting: the shared concept, configuration and statistics of the kinetic sorted list,
+// tournament and heap, plus simple key models (LinearMotionKeys, PolynomialKeys).
+//
+// Conventions shared by the three structures (see docs/kinetic_core.md, "Kinetic core"):
+// - "a before b" holds while the certificate polynomial is > 0; at an instant where it is 0 the
+//   sign just after (sign_after) decides; if it is the zero polynomial (identical motions) the
+//   smaller id comes first. Exact ties are thus broken by id, deterministically.
+// - Events are pushed with EventKey{time, config.event_kind, owner, (left id << 32) | right id}
+//   and a payload private to the structure. Whoever pops the queue calls handle_event(payload,
+//   now) AFTER popping (the Simulator does so).
+// - Keys contract: while neither motion changes, order_certificate(a, b, t) returns the same
+//   origin at every t (e.g. the start of the current motion segments, not t itself), and
+//   order_certificate(b, a, t).f is exactly -order_certificate(a, b, t).f (e.g. computed as
+//   key_b - key_a coefficient-wise). Then an event is never re-fired at the instant it was
+//   processed. Keys that re-centre at t still work but may cost extra events at near-ties.
+
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "kinetic/check.h"
+#include "kinetic/event_queue.h"
+#include "kinetic/polynomial.h"
+#include "kinetic/root_finding.h"
+
+namespace kinray {
+
+/// "a sorts before b" holds while f(t - origin) > 0, valid for t in [origin, end]
+/// (end = when either motion changes next).
+struct OrderCertificate {
+  Polynomial f;
+  double origin = 0;
+  double end = std::numeric_limits<double>::infinity();
+};
+
+template <class K>
+concept KineticKeys = requires(const K& k, uint32_t a, uint32_t b, double t) {
+  { k.order_certificate(a, b, t) } -> std::same_as<OrderCertificate>;  // t = now; valid from now on
+  { k.value(a, t) } -> std::convertible_to<double>;  // the key at time t, for audit / brute force
+};
+
+struct KineticSortStats;
+
+struct KineticSortConfig {
+  uint32_t event_kind = 0;  ///< EventKey.kind of every event of the structure
+  bool audit = false;       ///< audit(now) after every handled event and every update
+  /// When non-null the structure adds its counters here instead of keeping its own (many small
+  /// instances, one total); stats() then returns this object.
+  KineticSortStats* shared_stats = nullptr;
+};
+
+/// Counters of one structure (or of many, when shared). certificates_live is a gauge.
+struct KineticSortStats {
+  uint64_t events_internal = 0;       ///< failures that did not change the front
+  uint64_t events_external = 0;       ///< failures that changed the front
+  uint64_t events_renewal = 0;        ///< events at a certificate's end / spurious: no change
+  uint64_t certificates_live = 0;     ///< certificates currently held (gauge)
+  uint64_t certificates_created = 0;  ///< certificates computed and (re)scheduled
+  uint64_t work = 0;                  ///< certificate computations (incl. comparisons)
+  uint64_t degenerate = 0;            ///< near-ties resolved by the same-instant guard
+
+  KineticSortStats& operator+=(const KineticSortStats& o);
+  [[nodiscard]] uint64_t events() const { return events_internal + events_external; }
+};
+
+/// The quality measures of DESIGN.md for a structure over n objects.
+struct KineticSortQuality {
+  double compactness = 0;     ///< live certificates per object
+  double responsiveness = 0;  ///< certificate computations per event
+  double locality = 0;        ///< certificates per object (each certificate involves 2 objects)
+  double efficiency = 0;      ///< internal / external events
+};
+[[nodiscard]] KineticSortQuality quality(const KineticSortStats& stats, size_t n);
+
+/// The common interface of KineticSortedList, KineticTournament and KineticHeap.
+template <class S>
+concept KineticSort =
+    requires(S& s, const S& cs, uint32_t id, double t, uint64_t payload) {
+      typename S::keys_type;
+      requires KineticKeys<typename S::keys_type>;
+      requires std::constructible_from<S, const typename S::keys_type&, EventQueue&, uint32_t,
+                                       const KineticSortConfig&>;
+      s.insert(id, t);
+      s.erase(id, t);
+      s.replace_motion(id, t);
+      s.handle_event(payload, t);
+      { cs.front() } -> std::same_as<std::optional<uint32_t>>;
+      { cs.size() } -> std::convertible_to<size_t>;
+      { cs.contains(id) } -> std::same_as<bool>;
+      cs.audit(t);
+      { cs.stats() } -> std::same_as<const KineticSortStats&>;
+    };
+
+namespace detail {
+
+/// Sign of "a before b" just after `now` for certificate c of (a, b): +1, -1, or by the id rule
+/// when f is the zero polynomial.
+[[nodiscard]] int order_sign(const OrderCertificate& c, double now, uint32_t a, uint32_t b);
+
+/// When to look at certificate c of (a, b) again, computed at `now`.
+struct Schedule {
+  double time = std::numeric_limits<double>::infinity();  ///< +inf: never
+  bool failure = false;     ///< true: c fails at `time`; false: renewal at c.end (or never)
+  bool degenerate = false;  ///< no representable absolute time with f < 0 after the root
+};
+/// The absolute event time of certificate c of (a, b) (already holding just after now, or
+/// broken: then time = now). The time t returned for a failure satisfies
+/// sign_after(f, t - origin) < 0 with the subtraction in double, as the structure will compute
+/// it when the event is handled, so processing the swap gives a successor that holds.
+[[nodiscard]] Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
+                                            uint32_t b);
+
+/// Same-instant guard: counts events per instant; beyond a budget, a certificate created broken
+/// at now is treated as a numerical near-tie and scheduled after its next - to + change.
+[[nodiscard]] Schedule schedule_degenerate(const OrderCertificate& c, double now, uint32_t a,
+                                           uint32_t b);
+
+/// Absolute key values audit tolerance: a before b requires value(a) <= value(b) + tol.
+[[nodiscard]] double value_tolerance(double va, double vb);
+
+inline uint64_t pair_code(uint32_t a, uint32_t b) { return (uint64_t{a} << 32) | b; }
+
+/// Storage for a structure's statistics: its own, or a shared accumulator.
+class StatsRef {
+ public:
+  explicit StatsRef(KineticSortStats* shared) : m_shared(shared) {}
+  KineticSortStats& operator*() { return m_shared ? *m_shared : m_own; }
+  const KineticSortStats& operator*() const { return m_shared ? *m_shared : m_own; }
+  KineticSortStats* operator->() { return &**this; }
+
+ private:
+  KineticSortStats* m_shared = nullptr;
+  KineticSortStats m_own;
+};
+
+}  // namespace detail
+
+/// Keys moving linearly: key_i(t) = x_i + v_i t (absolute time, certificate origin 0).
+/// Motion can be replaced (set_velocity / set_motion) keeping the same origin convention.
+class LinearMotionKeys {
+ public:
+  uint32_t add(double x0, double v) {
+    m_x.push_back(x0);
+    m_v.push_back(v);
+    return static_cast<uint32_t>(m_x.size() - 1);
+  }
+  /// From now on key(t) = x0 + v t (x0 is the value at time 0 of the new line).
+  void set_motion(uint32_t id, double x0, double v) { m_x[id] = x0, m_v[id] = v; }
+  [[nodiscard]] size_t size() const { return m_x.size(); }
+  [[nodiscard]] OrderCertificate order_certificate(uint32_t a, uint32_t b, double /*t*/) const {
+    OrderCertificate c;
+    c.f.c[0] = m_x[b] - m_x[a];
+    c.f.c[1] = m_v[b] - m_v[a];
+    c.f.degree = 1;
+    return c;
+  }
+  [[nodiscard]] double value(uint32_t a, double t) const { return m_x[a] + m_v[a] * t; }
+
+ private:
+  std::vector<double> m_x, m_v;
+};
+
+/// Keys that are piecewise polynomials of time: object id follows segment k from its start on,
+/// key(t) = p_k(t - start_k). Certificates use the origin max(start_a, start_b) and end at the
+/// next segment start of either object (so a structure renews them there by itself).
+class PolynomialKeys {
+ public:
+  uint32_t add(const Polynomial& p, double start = 0);
+  /// From `start` on, key(t) = p(t - start); later segments are dropped. If start <= the time
+  /// the structures are at, call their replace_motion(id, now) (a future start is picked up by
+  /// the certificate ends).
+  void set_motion(uint32_t id, const Polynomial& p, double start);
+  /// Append a segment beginning at start (> the last start).
+  void append_motion(uint32_t id, const Polynomial& p, double start);
+  [[nodiscard]] size_t size() const { return m_objects.size(); }
+  [[nodiscard]] OrderCertificate order_certificate(uint32_t a, uint32_t b, double t) const;
+  [[nodiscard]] double value(uint32_t a, double t) const;
+
+ private:
+  struct Segment {
+    double start = 0;
+    Polynomial p;
+  };
+  struct Active {
+    const Segment* seg;
+    double next_start;
+  };
+  [[nodiscard]] Active active(uint32_t id, double t) const;
+  std::vector<std::vector<Segment>> m_objects;
+};
+
+static_assert(KineticKeys<LinearMotionKeys>);
+static_assert(KineticKeys<PolynomialKeys>);
+
+}  // namespace kinray

@@ -1,0 +1,39 @@
+#pragma once
+// Certified failure times of certificates f > 0: Bernstein fast path, de Casteljau isolation,
+// Illinois / bisection refinement. See docs/kinetic_core.md, "Kinetic core".
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "kinetic/polynomial.h"
+
+namespace kinray {
+
+/// Sign (-1, 0, +1) of f just after s: the sign of the first non-vanishing derivative at s
+/// (0 only for the zero polynomial). The value f(s) is Horner's, exactly as f(s).
+[[nodiscard]] int sign_after(const Polynomial& f, double s);
+
+/// The certificate f > 0 fails at the first s in (s_now, s_end] where f changes sign from + to -.
+/// - If sign_after(f, s_now) < 0 the certificate is already broken: returns s_now.
+/// - The zero polynomial, or no + to - change in (s_now, s_end]: std::nullopt. A root of even
+///   multiplicity (a touch) is not a failure; a simple root at s_end is one.
+/// - s_end may be +infinity (a root bound makes the search finite).
+/// The result r > s_now satisfies sign_after(f, r) < 0 as evaluated in double, so a certificate
+/// -f rebuilt at r holds just after r (no re-firing at the same instant).
+[[nodiscard]] std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end);
+
+/// All sign changes (either direction) in (s0, s1], ascending; for tests and audits.
+/// Each reported point r is where the evaluated sign_after(f, r) takes the new sign.
+std::vector<double> sign_changes(const Polynomial& f, double s0, double s1);
+
+/// Counters of the fast path and subdivision work (thread-local, resettable), for --stats.
+struct RootStats {
+  uint64_t calls = 0;              ///< first_failure calls
+  uint64_t fast_path_no_root = 0;  ///< decided "no failure" from one Bernstein conversion
+  uint64_t subdivisions = 0;       ///< de Casteljau / reconversion steps in the slow path
+  uint64_t refinements = 0;        ///< Illinois / bisection iterations
+};
+RootStats& root_stats();
+
+}  // namespace kinray
