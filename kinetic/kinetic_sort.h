@@ -18,7 +18,10 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -105,7 +108,8 @@ namespace detail {
 struct Schedule {
   double time = std::numeric_limits<double>::infinity();  ///< +inf: never
   bool failure = false;     ///< true: c fails at `time`; false: renewal at c.end (or never)
-  bool degenerate = false;  ///< no representable absolute time with f < 0 after the root
+  bool degenerate = false;  ///< a near-tie was given up (see schedule_degenerate)
+  double broken_until = -std::numeric_limits<double>::infinity();  ///< degenerate: c < 0 until
 };
 /// The absolute event time of certificate c of (a, b) (already holding just after now, or
 /// broken: then time = now). The time t returned for a failure satisfies
@@ -124,17 +128,110 @@ struct Schedule {
 
 inline uint64_t pair_code(uint32_t a, uint32_t b) { return (uint64_t{a} << 32) | b; }
 
-/// Storage for a structure's statistics: its own, or a shared accumulator.
-class StatsRef {
+/// What every kinetic sort instance holds besides its own topology: the keys, the queue, the
+/// event identity, the statistics (own or shared), and the same-instant guard.
+template <class Keys>
+class SortCore {
  public:
-  explicit StatsRef(KineticSortStats* shared) : m_shared(shared) {}
-  KineticSortStats& operator*() { return m_shared ? *m_shared : m_own; }
-  const KineticSortStats& operator*() const { return m_shared ? *m_shared : m_own; }
-  KineticSortStats* operator->() { return &**this; }
+  SortCore(const Keys& keys, EventQueue& queue, uint32_t owner, const KineticSortConfig& config)
+      : m_keys(&keys), m_queue(&queue), m_owner(owner), m_kind(config.event_kind),
+        m_audit(config.audit) {
+    if (config.shared_stats) {
+      m_stats = config.shared_stats;
+    } else {
+      m_own = std::make_unique<KineticSortStats>();
+      m_stats = m_own.get();
+    }
+  }
+  const Keys& keys() const { return *m_keys; }
+  EventQueue& queue() const { return *m_queue; }
+  KineticSortStats& stats() const { return *m_stats; }
+  bool audit_on() const { return m_audit; }
+
+  /// Certificate of (a, b) at now, counted as work.
+  OrderCertificate certificate(uint32_t a, uint32_t b, double now) const {
+    ++m_stats->work;
+    return m_keys->order_certificate(a, b, now);
+  }
+  /// "a before b" just after now (the id rule for identical motions).
+  bool before(uint32_t a, uint32_t b, double now) const {
+    return order_sign(certificate(a, b, now), now, a, b) > 0;
+  }
+
+  /// Called at the start of handle_event: counts events at the same instant.
+  void begin_event(double now) {
+    if (now != m_instant_time) {
+      m_instant_time = now;
+      m_instant_events = 0;
+    }
+    ++m_instant_events;
+  }
+
+  /// (Re)schedules the event of certificate c of (a, b) whose handle is `handle`, or cancels it.
+  void schedule(EventHandle& handle, const OrderCertificate& c, uint32_t a, uint32_t b,
+                double now, size_t n, uint64_t payload) {
+    Schedule s = schedule_certificate(c, now, a, b);
+    if (s.failure && s.time == now && now == m_instant_time && m_instant_events > budget(n)) {
+      s = schedule_degenerate(c, now, a, b);
+      ++m_stats->degenerate;
+      m_tolerate_until = std::max(m_tolerate_until, s.broken_until);
+    }
+    ++m_stats->certificates_created;
+    if (s.time < std::numeric_limits<double>::infinity()) {
+      const EventKey key{s.time, m_kind, m_owner, pair_code(a, b)};
+      if (handle != kNoEvent) {
+        m_queue->update(handle, key);
+        m_queue->set_payload(handle, payload);
+      } else {
+        handle = m_queue->push(key, payload);
+      }
+    } else {
+      cancel(handle);
+    }
+  }
+  void cancel(EventHandle& handle) {
+    if (handle != kNoEvent) {
+      m_queue->erase(handle);
+      handle = kNoEvent;
+    }
+  }
+
+  /// Audit of one certificate of (a, b) whose event is `handle`, at time t (KINRAY_CHECK).
+  void audit_pair(uint32_t a, uint32_t b, EventHandle handle, double t) const {
+    const OrderCertificate c = m_keys->order_certificate(a, b, t);
+    const bool pending = handle != kNoEvent;
+    const double at = pending ? m_queue->key(handle).time : std::numeric_limits<double>::infinity();
+    KINRAY_CHECK_MSG(!pending || m_queue->key(handle).a == m_owner, "event of another owner");
+    KINRAY_CHECK_MSG(at >= t, "audit after a pending event time: events not processed");
+    if (order_sign(c, t, a, b) < 0) {
+      KINRAY_CHECK_MSG(at <= t || t <= m_tolerate_until,
+                       "certificate broken without a pending event");
+      return;
+    }
+    if (at <= t) return;  // pending now: may be a renewal or a simultaneous event
+    const double va = m_keys->value(a, t), vb = m_keys->value(b, t);
+    KINRAY_CHECK_MSG(va <= vb + value_tolerance(va, vb) || t <= m_tolerate_until,
+                     "key values out of order");
+    const Schedule s = schedule_certificate(c, t, a, b);
+    if (s.failure)
+      KINRAY_CHECK_MSG(at <= s.time + 1e-7 * (1 + std::abs(s.time)) || t <= m_tolerate_until,
+                       "certificate failure scheduled too late");
+  }
 
  private:
-  KineticSortStats* m_shared = nullptr;
-  KineticSortStats m_own;
+  static uint64_t budget(size_t n) {
+    return 64 + 4 * uint64_t{n} * std::min<uint64_t>(n, 64);
+  }
+  const Keys* m_keys;
+  EventQueue* m_queue;
+  KineticSortStats* m_stats = nullptr;
+  std::unique_ptr<KineticSortStats> m_own;
+  uint32_t m_owner;
+  uint32_t m_kind;
+  bool m_audit;
+  uint32_t m_instant_events = 0;
+  double m_instant_time = -std::numeric_limits<double>::infinity();
+  double m_tolerate_until = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace detail

@@ -1,0 +1,206 @@
+#pragma once
+// Kinetic tournament tree: the front (minimum) only; an event touches O(log n) certificates
+// (Basch, Guibas & Hershberger 1997; Agarwal et al., kinetic tournaments).
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "kinetic/kinetic_sort.h"
+
+namespace kinray {
+
+template <KineticKeys Keys>
+class KineticTournament {
+ public:
+  using keys_type = Keys;
+
+  KineticTournament(const Keys& keys, EventQueue& queue, uint32_t owner,
+                    const KineticSortConfig& config = {})
+      : m_core(keys, queue, owner, config) {}
+  KineticTournament(KineticTournament&&) noexcept = default;
+  KineticTournament& operator=(KineticTournament&&) noexcept = default;
+  KineticTournament(const KineticTournament&) = delete;
+  KineticTournament& operator=(const KineticTournament&) = delete;
+
+  /// O(log n) certificates (amortised: the tree doubles when full).
+  void insert(uint32_t id, double now) {
+    KINRAY_DCHECK(!contains(id));
+    if (m_size == m_capacity) rebuild(m_capacity == 0 ? 1 : 2 * m_capacity, now);
+    const uint32_t leaf = m_capacity + m_size;
+    ++m_size;
+    if (m_size > 1) ++m_core.stats().certificates_live;
+    set_leaf(leaf, id);
+    update_path(leaf, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
+  /// O(log n) certificates: the last leaf moves into the hole.
+  void erase(uint32_t id, double now) {
+    const uint32_t leaf = find_leaf(id);
+    const uint32_t last = m_capacity + m_size - 1;
+    if (m_index) m_index->erase(id);
+    if (leaf != last) {
+      set_leaf(leaf, m_nodes[last].winner);
+      m_nodes[last].winner = kNone;
+      --m_size;
+      update_path(last, now);
+      update_path(leaf, now);
+    } else {
+      m_nodes[last].winner = kNone;
+      --m_size;
+      update_path(last, now);
+    }
+    if (m_size > 0) --m_core.stats().certificates_live;
+    if (m_capacity > 1 && m_size <= m_capacity / 4) rebuild(m_capacity / 2, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
+  /// The motion of id changed from now on: recompute the matches on its path.
+  void replace_motion(uint32_t id, double now) {
+    const uint32_t leaf = find_leaf(id);
+    for (uint32_t k = leaf / 2; k >= 1; k /= 2) recompute(k, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
+  void handle_event(uint64_t payload, double now) {
+    const auto k = static_cast<uint32_t>(payload);
+    KINRAY_CHECK(k >= 1 && k < m_capacity);
+    m_nodes[k].event = kNoEvent;  // popped
+    m_core.begin_event(now);
+    const std::optional<uint32_t> old_front = front();
+    KineticSortStats& st = m_core.stats();
+    if (!recompute(k, now)) {
+      ++st.events_renewal;
+    } else {
+      for (uint32_t p = k / 2; p >= 1; p /= 2)
+        if (!recompute(p, now)) break;
+      ++(front() != old_front ? st.events_external : st.events_internal);
+    }
+    if (m_core.audit_on()) audit(now);
+  }
+
+  [[nodiscard]] std::optional<uint32_t> front() const {
+    if (m_size == 0) return std::nullopt;
+    return m_nodes[1].winner;
+  }
+  [[nodiscard]] size_t size() const { return m_size; }
+  [[nodiscard]] bool empty() const { return m_size == 0; }
+  [[nodiscard]] bool contains(uint32_t id) const {
+    if (m_index) return m_index->count(id) > 0;
+    for (uint32_t i = 0; i < m_size; ++i)
+      if (m_nodes[m_capacity + i].winner == id) return true;
+    return false;
+  }
+
+  /// Every match recomputed at t: the winner is one of the two children's winners and beats the
+  /// other just after t, or the match's event is pending at t.
+  void audit(double t) const {
+    if (m_capacity == 0) return;
+    for (uint32_t leaf = m_capacity; leaf < 2 * m_capacity; ++leaf)
+      KINRAY_CHECK((leaf < m_capacity + m_size) == (m_nodes[leaf].winner != kNone));
+    for (uint32_t k = m_capacity - 1; k >= 1; --k) {
+      const uint32_t l = m_nodes[2 * k].winner, r = m_nodes[2 * k + 1].winner;
+      const Node& node = m_nodes[k];
+      if (l == kNone || r == kNone) {
+        KINRAY_CHECK(node.winner == (l == kNone ? r : l) && node.event == kNoEvent);
+        continue;
+      }
+      KINRAY_CHECK(node.winner == l || node.winner == r);
+      if (node.event != kNoEvent) KINRAY_CHECK(m_core.queue().payload(node.event) == k);
+      const uint32_t loser = node.winner == l ? r : l;
+      m_core.audit_pair(node.winner, loser, node.event, t);
+    }
+  }
+
+  void clear() {
+    for (Node& node : m_nodes) m_core.cancel(node.event);
+    if (m_size > 0) m_core.stats().certificates_live -= m_size - 1;
+    m_nodes.clear();
+    m_index.reset();
+    m_capacity = m_size = 0;
+  }
+
+  [[nodiscard]] const KineticSortStats& stats() const { return m_core.stats(); }
+  [[nodiscard]] size_t memory_bytes() const {
+    size_t bytes = sizeof(*this) + m_nodes.capacity() * sizeof(Node);
+    if (m_index) bytes += m_index->size() * (sizeof(std::pair<uint32_t, uint32_t>) + 16);
+    return bytes;
+  }
+
+ private:
+  static constexpr uint32_t kNone = ~0u;
+  static constexpr uint32_t kIndexThreshold = 64;  // leaves scanned below, hashed above
+  struct Node {
+    uint32_t winner = kNone;  ///< front-most id of the subtree (the id itself at a leaf)
+    EventHandle event = kNoEvent;  ///< certificate "winner before the other child's winner"
+  };
+
+  uint32_t find_leaf(uint32_t id) const {
+    if (m_index) {
+      const auto it = m_index->find(id);
+      KINRAY_CHECK_MSG(it != m_index->end(), "id not in the kinetic tournament");
+      return it->second;
+    }
+    for (uint32_t i = 0; i < m_size; ++i)
+      if (m_nodes[m_capacity + i].winner == id) return m_capacity + i;
+    KINRAY_CHECK_MSG(false, "id not in the kinetic tournament");
+    return 0;
+  }
+  void set_leaf(uint32_t leaf, uint32_t id) {
+    m_nodes[leaf].winner = id;
+    if (m_index) (*m_index)[id] = leaf;
+  }
+  void update_path(uint32_t leaf, double now) {
+    for (uint32_t k = leaf / 2; k >= 1; k /= 2) recompute(k, now);
+  }
+
+  /// Replays the match at internal node k; returns whether its winner changed.
+  bool recompute(uint32_t k, double now) {
+    Node& node = m_nodes[k];
+    const uint32_t l = m_nodes[2 * k].winner, r = m_nodes[2 * k + 1].winner;
+    const uint32_t old = node.winner;
+    if (l == kNone || r == kNone) {
+      node.winner = l == kNone ? r : l;
+      m_core.cancel(node.event);
+    } else {
+      OrderCertificate c = m_core.certificate(l, r, now);
+      if (detail::order_sign(c, now, l, r) > 0) {
+        node.winner = l;
+        m_core.schedule(node.event, c, l, r, now, m_size, k);
+      } else {
+        node.winner = r;
+        c.f = -c.f;
+        m_core.schedule(node.event, c, r, l, now, m_size, k);
+      }
+    }
+    return node.winner != old;
+  }
+
+  void rebuild(uint32_t capacity, double now) {
+    std::vector<uint32_t> ids;
+    ids.reserve(m_size);
+    for (uint32_t i = 0; i < m_size; ++i) ids.push_back(m_nodes[m_capacity + i].winner);
+    for (Node& node : m_nodes) m_core.cancel(node.event);
+    m_capacity = capacity;
+    m_nodes.assign(2 * size_t{capacity}, Node{});
+    m_nodes.shrink_to_fit();
+    if (capacity > kIndexThreshold) {
+      if (!m_index) m_index = std::make_unique<std::unordered_map<uint32_t, uint32_t>>();
+      m_index->clear();
+    } else {
+      m_index.reset();
+    }
+    for (uint32_t i = 0; i < ids.size(); ++i) set_leaf(capacity + i, ids[i]);
+    for (uint32_t k = capacity - 1; k >= 1; --k) recompute(k, now);
+  }
+
+  detail::SortCore<Keys> m_core;
+  std::vector<Node> m_nodes;  ///< 1-based heap layout, leaves at [m_capacity, 2 m_capacity)
+  std::unique_ptr<std::unordered_map<uint32_t, uint32_t>> m_index;  ///< id -> leaf, large only
+  uint32_t m_capacity = 0, m_size = 0;
+};
+
+}  // namespace kinray
