@@ -1,0 +1,33 @@
+#include "renderer/backend.h"
+
+#include "renderer/embree_backend.h"
+#include "scenes/error.h"
+
+namespace kinray {
+namespace {
+
+using BackendFactory = std::unique_ptr<Backend> (*)(const CameraSpaceScene&, const BackendConfig&);
+
+struct BackendEntry {
+  const char* name;
+  BackendFactory make;
+};
+
+// One line per backend; each factory validates its own part of the config.
+const BackendEntry kBackends[] = {
+    {"embree", &make_embree_backend},
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
+                                      const BackendConfig& config) {
+  std::string names;
+  for (const BackendEntry& entry : kBackends) {
+    if (name == entry.name) return entry.make(scene, config);
+    names += (names.empty() ? "" : ", ") + std::string(entry.name);
+  }
+  throw InputError("--backend", "unknown backend '" + name + "' (available: " + names + ")");
+}
+
+}  // namespace kinray

@@ -1,0 +1,60 @@
+#include "renderer/progress.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace kinray {
+namespace {
+
+std::string format_seconds(double s) {
+  char text[32];
+  if (!std::isfinite(s)) return "?";
+  if (s < 60)
+    std::snprintf(text, sizeof text, "%.1f s", s);
+  else if (s < 3600)
+    std::snprintf(text, sizeof text, "%dm%02ds", int(s) / 60, int(s) % 60);
+  else
+    std::snprintf(text, sizeof text, "%dh%02dm", int(s) / 3600, int(s) / 60 % 60);
+  return text;
+}
+
+}  // namespace
+
+Progress::Progress(size_t total, bool enabled)
+    : m_total(total), m_enabled(enabled), m_start(Clock::now()), m_last_draw(m_start) {}
+
+Progress::~Progress() { finish(); }
+
+bool Progress::stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
+
+std::string Progress::format(size_t done, size_t total, double elapsed_s, int width) {
+  const double fraction = total == 0 ? 1.0 : double(done) / double(total);
+  const int filled = int(std::lround(fraction * width));
+  std::string bar = "[" + std::string(size_t(filled), '#') + std::string(size_t(width - filled), '.') + "]";
+  const double left = done == 0 ? NAN : elapsed_s * double(total - done) / double(done);
+  char counts[64];
+  std::snprintf(counts, sizeof counts, " %zu/%zu frames", done, total);
+  return bar + counts + "  " + format_seconds(elapsed_s) + " elapsed  " + format_seconds(left) + " left";
+}
+
+void Progress::update(size_t done) {
+  if (!m_enabled) return;
+  const Clock::time_point now = Clock::now();
+  if (done < m_total && m_drawn && now - m_last_draw < std::chrono::milliseconds(100)) return;
+  m_last_draw = now;
+  m_drawn = true;
+  const double elapsed = std::chrono::duration<double>(now - m_start).count();
+  std::fprintf(stderr, "\r%s\033[K", format(done, m_total, elapsed).c_str());
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (!m_enabled || !m_drawn) return;
+  std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+  m_drawn = false;
+}
+
+}  // namespace kinray
