@@ -1,0 +1,54 @@
+#pragma once
+// Small scenes whose pictures are known exactly, written directly in camera space: the camera
+// stands at the origin with the identity orientation (looking down world -z) and a 90 degree fov,
+// so the camera-space point (x, y, z) is the world point (x, y, -z) (fov scale 1 / tan 45 = 1 up
+// to an ulp). With a square image, pixel (i, j) has the centre ray ((2i+1)/W - 1, 1 - (2j+1)/H, 1).
+#include <string>
+#include <vector>
+
+#include "scenes/camera_space.h"
+#include "scenes/scene.h"
+
+namespace kinray::test {
+
+/// The camera-space point on the ray through image position (u, v) (in pixels, (0, 0) is the
+/// top-left corner of a width x height image) at depth z.
+inline Vec3 on_ray(double u, double v, double z, int width, int height) {
+  const double x = (2.0 * u / width - 1.0) * (double(width) / double(height));
+  const double y = 1.0 - 2.0 * v / height;
+  return {x * z, y * z, z};
+}
+
+/// An object from camera-space key positions ([key][vertex]) at `times` (one key: static).
+inline Object camera_space_object(const std::string& name, std::vector<Triangle> triangles,
+                                  std::vector<std::vector<Vec3>> camera_positions,
+                                  std::vector<double> times = {0.0}) {
+  Object object;
+  object.name = name;
+  object.triangles = std::move(triangles);
+  object.key_times = std::move(times);
+  for (auto& key : camera_positions) {
+    for (Vec3& p : key) p.z() = -p.z();
+    object.key_positions.push_back(std::move(key));
+  }
+  return object;
+}
+
+/// A scene of `objects` seen by the 90 degree camera at the origin, shot [0, 1].
+inline Scene analytic_scene(std::vector<Object> objects) {
+  Scene scene;
+  scene.name = "analytic";
+  scene.objects = std::move(objects);
+  scene.camera.keys = {CameraKey{}};
+  scene.camera.keys[0].fov_y_degrees = 90;
+  scene.validate("analytic scene");
+  return scene;
+}
+
+/// Exact depth z = O / (E01 + E12 + E20) of the ray d on the plane of (p0, p1, p2) (DESIGN.md).
+inline double plane_depth(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& d) {
+  const double o = p0.dot(p1.cross(p2));
+  return o / (p0.cross(p1).dot(d) + p1.cross(p2).dot(d) + p2.cross(p0).dot(d));
+}
+
+}  // namespace kinray::test
