@@ -1,6 +1,9 @@
 #include "renderer/backend.h"
 
 #include "renderer/embree_backend.h"
+#ifdef KINRAY_WITH_OSMESA
+#include "renderer/osmesa_backend.h"
+#endif
 #include "scenes/error.h"
 
 namespace kinray {
@@ -16,6 +19,9 @@ struct BackendEntry {
 // One line per backend; each factory validates its own part of the config.
 const BackendEntry kBackends[] = {
     {"embree", &make_embree_backend},
+#ifdef KINRAY_WITH_OSMESA
+    {"osmesa", &make_osmesa_backend},
+#endif
 };
 
 }  // namespace
