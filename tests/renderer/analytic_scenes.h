@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/frame.h"
 #include "scenes/camera_space.h"
 #include "scenes/scene.h"
 
@@ -49,6 +50,41 @@ inline Scene analytic_scene(std::vector<Object> objects) {
 inline double plane_depth(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& d) {
   const double o = p0.dot(p1.cross(p2));
   return o / (p0.cross(p1).dot(d) + p1.cross(p2).dot(d) + p2.cross(p0).dot(d));
+}
+
+/// The ID and depth buffers by brute force: every pixel's front-most triangle by DESIGN.md's sign
+/// rule (the ray pierces a triangle iff its three edge functions have the sign of det(v0, v1, v2)).
+inline Frame exact_frame(const CameraSpaceScene& scene, int width, int height, double t) {
+  Frame frame;
+  frame.resize(width, height);
+  frame.time = t;
+  const ImageGeometry image{width, height};
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const Vec3 d = image.direction(i, j);
+      const size_t px = frame.index(i, j);
+      double nearest = kInfinity;
+      for (size_t o = 0; o < scene.objects.size(); ++o) {
+        if (!scene.objects[o].visible(t)) continue;
+        const std::vector<Triangle>& triangles = scene.triangles(o);
+        for (size_t prim = 0; prim < triangles.size(); ++prim) {
+          Vec3 v[3];
+          for (int k = 0; k < 3; ++k) v[k] = scene.objects[o].position(triangles[prim][size_t(k)], t);
+          const double det = v[0].dot(v[1].cross(v[2]));
+          const double e01 = v[0].cross(v[1]).dot(d), e12 = v[1].cross(v[2]).dot(d), e20 = v[2].cross(v[0]).dot(d);
+          const bool pierced = det > 0 ? (e01 > 0 && e12 > 0 && e20 > 0) : det < 0 && (e01 < 0 && e12 < 0 && e20 < 0);
+          if (!pierced) continue;
+          const double z = det / (e01 + e12 + e20);
+          if (z < nearest) {
+            nearest = z;
+            frame.object[px] = uint32_t(o);
+            frame.prim[px] = uint32_t(prim);
+            frame.depth[px] = float(z);
+          }
+        }
+      }
+    }
+  return frame;
 }
 
 }  // namespace kinray::test
