@@ -1,0 +1,79 @@
+#include "scenes/model_guard.h"
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace kinray {
+
+std::optional<std::string> run_in_child(const std::function<std::string()>& work, double timeout_seconds) {
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return std::nullopt;
+  const pid_t child = fork();
+  if (child < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    return std::nullopt;
+  }
+  if (child == 0) {
+    close(fds[0]);
+    std::string message;
+    try {
+      message = work();
+    } catch (const std::exception& error) {
+      message = error.what();
+      if (message.empty()) message = "failed";
+    } catch (...) {
+      message = "failed with an unknown exception";
+    }
+    for (size_t done = 0; done < message.size();) {
+      const ssize_t n = write(fds[1], message.data() + done, message.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      done += size_t(n);
+    }
+    _exit(message.empty() ? 0 : 1);  // no atexit handlers or stdio flushes of the parent's state
+  }
+  close(fds[1]);
+  std::string message;
+  bool timed_out = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd request{fds[0], POLLIN, 0};
+    const int ready = poll(&request, 1, int(std::min<long long>(left.count(), 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // end of file: the child has exited (or crashed)
+    message.append(buffer, size_t(n));
+  }
+  close(fds[0]);
+  if (timed_out) kill(child, SIGKILL);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out) return "did not finish within " + std::to_string(int(timeout_seconds)) + " s (a hang on malformed input?)";
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    const char* name = strsignal(signal);
+    return "crashed the reader with signal " + std::to_string(signal) + " (" + (name ? name : "unknown") +
+           "): malformed input";
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return std::nullopt;
+  return message.empty() ? std::string("failed") : message;
+}
+
+}  // namespace kinray

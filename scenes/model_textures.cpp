@@ -1,0 +1,115 @@
+#include "scenes/model_textures.h"
+
+#include <array>
+#include <cmath>
+#include <system_error>
+
+#include <assimp/scene.h>
+#include <assimp/texture.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "scenes/model_assimp.h"
+
+namespace kinray {
+
+namespace {
+
+// 8192 x 8192: past this a texture costs more memory than the whole model is worth.
+constexpr size_t kMaxTexels = size_t(8192) * 8192;
+
+std::optional<Texture> from_bgr(const cv::Mat& image, const std::string& name, const std::string& where) {
+  if (image.empty() || image.type() != CV_8UC3) {
+    warn_repair(where, "texture '" + name + "' could not be decoded; using the base colour alone");
+    return std::nullopt;
+  }
+  if (size_t(image.cols) * size_t(image.rows) > kMaxTexels) {
+    warn_repair(where, "texture '" + name + "' is larger than 8192 x 8192 texels; using the base colour alone");
+    return std::nullopt;
+  }
+  Texture texture;
+  texture.path = name;
+  texture.width = image.cols;
+  texture.height = image.rows;
+  texture.texels.resize(size_t(image.cols) * size_t(image.rows));
+  for (int y = 0; y < image.rows; ++y) {
+    const cv::Vec3b* row = image.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < image.cols; ++x)
+      texture.texels[size_t(y) * size_t(image.cols) + size_t(x)] =
+          Color(srgb_to_linear(row[x][2]), srgb_to_linear(row[x][1]), srgb_to_linear(row[x][0]));
+  }
+  return texture;
+}
+
+std::optional<Texture> from_embedded(const aiTexture& embedded, const std::string& name, const std::string& where) {
+  if (embedded.pcData == nullptr || embedded.mWidth == 0) {
+    warn_repair(where, "embedded texture '" + name + "' is empty; using the base colour alone");
+    return std::nullopt;
+  }
+  if (embedded.mHeight == 0) {  // a compressed file (png, jpg, ...) of mWidth bytes
+    const cv::Mat bytes(1, int(embedded.mWidth), CV_8UC1, const_cast<aiTexel*>(embedded.pcData));
+    return from_bgr(cv::imdecode(bytes, cv::IMREAD_COLOR), name, where);
+  }
+  if (size_t(embedded.mWidth) * size_t(embedded.mHeight) > kMaxTexels) return from_bgr(cv::Mat(), name, where);
+  cv::Mat image(int(embedded.mHeight), int(embedded.mWidth), CV_8UC3);
+  for (unsigned y = 0; y < embedded.mHeight; ++y)
+    for (unsigned x = 0; x < embedded.mWidth; ++x) {
+      const aiTexel& texel = embedded.pcData[size_t(y) * embedded.mWidth + x];
+      image.at<cv::Vec3b>(int(y), int(x)) = cv::Vec3b(texel.b, texel.g, texel.r);
+    }
+  return from_bgr(image, name, where);
+}
+
+bool is_file(const std::filesystem::path& path) {
+  std::error_code error;
+  return std::filesystem::is_regular_file(path, error);
+}
+
+}  // namespace
+
+float srgb_to_linear(uint8_t value) {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) {
+      const double c = i / 255.0;
+      t[size_t(i)] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    }
+    return t;
+  }();
+  return table[value];
+}
+
+std::optional<Texture> read_texture(const aiScene& scene, const std::string& reference,
+                                    const std::filesystem::path& model_directory, const std::string& where) {
+  if (reference.empty()) return std::nullopt;
+  if (reference[0] == '*' || scene.GetEmbeddedTexture(reference.c_str()) != nullptr) {
+    const aiTexture* embedded = scene.GetEmbeddedTexture(reference.c_str());
+    if (embedded == nullptr) {
+      warn_repair(where, "names embedded texture '" + reference + "', which the file does not hold; using the base colour alone");
+      return std::nullopt;
+    }
+    return from_embedded(*embedded, reference, where);
+  }
+  std::string written = reference;
+  for (char& c : written)
+    if (c == '\\') c = '/';
+  std::filesystem::path path = model_directory / std::filesystem::path(written);
+  if (!is_file(path)) {
+    const std::filesystem::path beside = model_directory / std::filesystem::path(written).filename();
+    if (!is_file(beside)) {
+      warn_repair(where, "texture file '" + reference + "' not found (looked for " + path.string() + " and " +
+                             beside.string() + "); using the base colour alone");
+      return std::nullopt;
+    }
+    path = beside;
+  }
+  cv::Mat image;
+  try {
+    image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  } catch (const cv::Exception&) {
+    image = cv::Mat();
+  }
+  return from_bgr(image, path.string(), where);
+}
+
+}  // namespace kinray
