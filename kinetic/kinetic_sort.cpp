@@ -148,6 +148,11 @@ uint32_t PolynomialKeys::add(const Polynomial& p, double start) {
   return static_cast<uint32_t>(m_objects.size() - 1);
 }
 
+uint32_t PolynomialKeys::add_copy(uint32_t other) {
+  m_objects.push_back(m_objects.at(other));
+  return static_cast<uint32_t>(m_objects.size() - 1);
+}
+
 void PolynomialKeys::set_motion(uint32_t id, const Polynomial& p, double start) {
   auto& segs = m_objects.at(id);
   while (!segs.empty() && segs.back().start >= start) segs.pop_back();

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -201,21 +202,32 @@ class SortCore {
     const OrderCertificate c = m_keys->order_certificate(a, b, t);
     const bool pending = handle != kNoEvent;
     const double at = pending ? m_queue->key(handle).time : std::numeric_limits<double>::infinity();
-    KINRAY_CHECK_MSG(!pending || m_queue->key(handle).a == m_owner, "event of another owner");
-    KINRAY_CHECK_MSG(at >= t, "audit after a pending event time: events not processed");
-    if (order_sign(c, t, a, b) < 0) {
-      KINRAY_CHECK_MSG(at <= t || t <= m_tolerate_until,
-                       "certificate broken without a pending event");
-      return;
+    const char* problem = nullptr;
+    Schedule s;
+    if (pending && m_queue->key(handle).a != m_owner) {
+      problem = "event of another owner";
+    } else if (at < t) {
+      problem = "audit after a pending event time: events not processed";
+    } else if (order_sign(c, t, a, b) < 0) {
+      if (!(at <= t || t <= m_tolerate_until)) problem = "certificate broken, no pending event";
+    } else if (at > t && t > m_tolerate_until) {
+      // Holds and nothing pending now: values in order, failure not scheduled too late.
+      const double va = m_keys->value(a, t), vb = m_keys->value(b, t);
+      s = schedule_certificate(c, t, a, b);
+      if (!(va <= vb + value_tolerance(va, vb)))
+        problem = "key values out of order";
+      else if (s.failure && !(at <= s.time + 1e-7 * (1 + std::abs(s.time))))
+        problem = "certificate failure scheduled too late";
     }
-    if (at <= t) return;  // pending now: may be a renewal or a simultaneous event
-    const double va = m_keys->value(a, t), vb = m_keys->value(b, t);
-    KINRAY_CHECK_MSG(va <= vb + value_tolerance(va, vb) || t <= m_tolerate_until,
-                     "key values out of order");
-    const Schedule s = schedule_certificate(c, t, a, b);
-    if (s.failure)
-      KINRAY_CHECK_MSG(at <= s.time + 1e-7 * (1 + std::abs(s.time)) || t <= m_tolerate_until,
-                       "certificate failure scheduled too late");
+    if (problem) {
+      std::fprintf(stderr,
+                   "kinetic sort audit (owner %u) at t = %.17g: pair (%u, %u): %s; scheduled %.17g, "
+                   "recomputed %.17g, origin %.17g, end %.17g, f degree %d:",
+                   m_owner, t, a, b, problem, at, s.time, c.origin, c.end, c.f.degree);
+      for (int k = 0; k <= c.f.degree; ++k) std::fprintf(stderr, " %.17g", c.f.c[k]);
+      std::fprintf(stderr, "\n");
+      KINRAY_CHECK_MSG(false, problem);
+    }
   }
 
  private:
@@ -267,11 +279,13 @@ class LinearMotionKeys {
 class PolynomialKeys {
  public:
   uint32_t add(const Polynomial& p, double start = 0);
-  /// From `start` on, key(t) = p(t - start); later segments are dropped. If start <= the time
-  /// the structures are at, call their replace_motion(id, now) (a future start is picked up by
-  /// the certificate ends).
+  /// A new object with exactly the motion (all segments) of `other`: equal keys.
+  uint32_t add_copy(uint32_t other);
+  /// From `start` on, key(t) = p(t - start); later segments are dropped. Then call
+  /// replace_motion(id, now) on the structures holding id.
   void set_motion(uint32_t id, const Polynomial& p, double start);
-  /// Append a segment beginning at start (> the last start).
+  /// Append a segment beginning at start (> the last start). Certificates computed before do not
+  /// know their new end: call replace_motion(id, now) on the structures holding id.
   void append_motion(uint32_t id, const Polynomial& p, double start);
   [[nodiscard]] size_t size() const { return m_objects.size(); }
   [[nodiscard]] OrderCertificate order_certificate(uint32_t a, uint32_t b, double t) const;

@@ -1,0 +1,148 @@
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <random>
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "kinetic/event_queue.h"
+#include "kinetic/simulator.h"
+
+namespace kinray {
+namespace {
+
+auto as_tuple(const EventKey& k) { return std::make_tuple(k.time, k.kind, k.a, k.b); }
+
+TEST(EventQueue, OrderIsLexicographic) {
+  EXPECT_LT((EventKey{1, 5, 5, 5}), (EventKey{2, 0, 0, 0}));
+  EXPECT_LT((EventKey{1, 0, 5, 5}), (EventKey{1, 1, 0, 0}));
+  EXPECT_LT((EventKey{1, 1, 0, 5}), (EventKey{1, 1, 1, 0}));
+  EXPECT_LT((EventKey{1, 1, 1, 0}), (EventKey{1, 1, 1, 1}));
+  EXPECT_FALSE((EventKey{1, 1, 1, 1}) < (EventKey{1, 1, 1, 1}));
+}
+
+TEST(EventQueue, DeterministicTieOrder) {
+  // Equal times pushed in several random orders always pop in (time, kind, a, b) order.
+  std::vector<EventKey> keys;
+  for (uint32_t kind = 0; kind < 3; ++kind)
+    for (uint32_t a = 0; a < 3; ++a)
+      for (uint64_t b = 0; b < 3; ++b) keys.push_back({1.0, kind, a, b});
+  keys.push_back({0.5, 9, 9, 9});
+  keys.push_back({2.0, 0, 0, 0});
+  std::mt19937_64 rng(3);
+  for (int round = 0; round < 20; ++round) {
+    std::shuffle(keys.begin(), keys.end(), rng);
+    EventQueue q;
+    for (size_t i = 0; i < keys.size(); ++i) q.push(keys[i], i);
+    EventKey previous{-1, 0, 0, 0};
+    size_t popped = 0;
+    while (!q.empty()) {
+      const EventKey k = q.top_key();
+      EXPECT_EQ(as_tuple(keys[q.top_payload()]), as_tuple(k));
+      EXPECT_LT(previous, k);
+      previous = k;
+      q.pop();
+      ++popped;
+    }
+    EXPECT_EQ(popped, keys.size());
+  }
+}
+
+TEST(EventQueue, RandomOperationsAgainstMultiset) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> u(0, 100);
+  EventQueue q;
+  // Model: (time, kind, a, b, handle) so that ties are resolved as the queue does; payload = a
+  // function of the handle's generation to catch stale slots.
+  std::set<std::tuple<double, uint32_t, uint32_t, uint64_t, EventHandle>> model;
+  std::vector<EventHandle> live;
+  std::vector<uint64_t> payload_of(1, 0);
+  uint64_t next_payload = 1;
+  auto random_key = [&] {
+    // Coarse times: many exact ties.
+    return EventKey{std::floor(u(rng)) * 0.5, static_cast<uint32_t>(rng() % 3),
+                    static_cast<uint32_t>(rng() % 4), rng() % 5};
+  };
+  for (int step = 0; step < 200000; ++step) {
+    const int op = static_cast<int>(rng() % 10);
+    if (op < 4 || live.empty()) {
+      const EventKey k = random_key();
+      const uint64_t p = next_payload++;
+      const EventHandle h = q.push(k, p);
+      ASSERT_FALSE(std::find(live.begin(), live.end(), h) != live.end());
+      if (h >= payload_of.size()) payload_of.resize(h + 1);
+      payload_of[h] = p;
+      live.push_back(h);
+      model.insert({k.time, k.kind, k.a, k.b, h});
+    } else if (op < 6) {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      const EventKey k = random_key();
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      q.update(h, k);
+      model.insert({k.time, k.kind, k.a, k.b, h});
+    } else if (op < 8) {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      ASSERT_EQ(q.payload(h), payload_of[h]);
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      q.erase(h);
+      EXPECT_FALSE(q.contains(h));
+      live[i] = live.back();
+      live.pop_back();
+    } else {
+      ASSERT_FALSE(q.empty());
+      const auto& [time, kind, a, b, h_model] = *model.begin();
+      const EventKey top = q.top_key();
+      ASSERT_EQ(as_tuple(top), std::make_tuple(time, kind, a, b));
+      // Equal full keys may come out in any handle order; compare keys, then drop that handle.
+      const EventHandle h = q.top();
+      ASSERT_EQ(q.top_payload(), payload_of[h]);
+      model.erase({time, kind, a, b, h});
+      q.pop();
+      live.erase(std::find(live.begin(), live.end(), h));
+      (void)h_model;
+    }
+    ASSERT_EQ(q.size(), model.size());
+    if (step % 5000 == 0) q.audit();
+  }
+  q.audit();
+  EXPECT_GT(q.memory_bytes(), 0u);
+  q.clear();
+  EXPECT_TRUE(q.empty());
+}
+
+TEST(EventQueue, SimulatorAdvanceTo) {
+  Simulator sim(1.0);
+  EXPECT_EQ(sim.now(), 1.0);
+  std::vector<std::pair<double, uint64_t>> seen;
+  sim.queue().push({3.0, 0, 0, 0}, 30);
+  sim.queue().push({2.0, 0, 0, 0}, 20);
+  sim.queue().push({5.0, 0, 0, 0}, 50);
+  sim.advance_to(4.0, [&](const EventKey& k, uint64_t payload) {
+    EXPECT_EQ(sim.now(), k.time);
+    seen.push_back({k.time, payload});
+    if (payload == 20) {
+      // Scheduled during handling, at a time <= t: processed in the same call, in order.
+      sim.queue().push({2.0, 1, 0, 0}, 21);
+      sim.queue().push({3.5, 0, 0, 0}, 35);
+      sim.queue().push({4.5, 0, 0, 0}, 45);
+    }
+  });
+  EXPECT_EQ(sim.now(), 4.0);
+  const std::vector<std::pair<double, uint64_t>> expected{{2.0, 20}, {2.0, 21}, {3.0, 30},
+                                                          {3.5, 35}};
+  EXPECT_EQ(seen, expected);
+  EXPECT_EQ(sim.next_event_time(), 4.5);
+  EXPECT_EQ(sim.events_processed(), 4u);
+  sim.advance_to(4.0, [&](const EventKey&, uint64_t) { FAIL(); });  // nothing at <= 4
+  EXPECT_DEATH(sim.advance_to(3.0, [](const EventKey&, uint64_t) {}), "t >= m_now");
+  sim.queue().push({3.9, 0, 0, 0}, 39);  // in the past
+  EXPECT_DEATH(sim.advance_to(5.0, [](const EventKey&, uint64_t) {}), "past");
+}
+
+}  // namespace
+}  // namespace kinray
