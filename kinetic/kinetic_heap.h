@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -36,6 +37,26 @@ class KineticHeap {
     Touched touched;
     sift_up(static_cast<uint32_t>(m_nodes.size() - 1), now, touched);
     reschedule(touched, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
+  /// Inserts many objects at once: bottom-up heap construction (Floyd), O(n) comparisons, then
+  /// every parent-child certificate.
+  void insert_all(std::span<const uint32_t> ids, double now) {
+    for (Node& node : m_nodes) m_core.cancel(node.event);
+    if (!m_nodes.empty()) m_core.stats().certificates_live -= m_nodes.size() - 1;
+    for (uint32_t id : ids) m_nodes.push_back(Node{id, kNoEvent});
+    if (m_nodes.size() > kIndexThreshold)
+      build_index();
+    else
+      m_index.reset();
+    Touched ignored;
+    for (auto i = static_cast<uint32_t>(m_nodes.size() / 2); i-- > 0;) {
+      ignored.clear();
+      sift_down(i, now, ignored);
+    }
+    if (!m_nodes.empty()) m_core.stats().certificates_live += m_nodes.size() - 1;
+    for (uint32_t i = 1; i < m_nodes.size(); ++i) schedule_edge(i, now);
     if (m_core.audit_on()) audit(now);
   }
 

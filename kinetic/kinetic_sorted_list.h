@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "kinetic/kinetic_sort.h"
@@ -41,6 +43,25 @@ class KineticSortedList {
     if (n > 0) ++m_core.stats().certificates_live;
     if (lo > 0) schedule(lo - 1, now);
     if (lo < n) schedule(lo, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
+  /// Inserts many objects at once: sorted by key value at now (ties by id), then every adjacent
+  /// certificate is computed; any pair the certificates order differently (a near-tie) gets an
+  /// event at now. O(n log n) value reads and O(n) certificates.
+  void insert_all(std::span<const uint32_t> ids, double now) {
+    for (Entry& e : m_entries) m_core.cancel(e.event);
+    if (!m_entries.empty()) m_core.stats().certificates_live -= m_entries.size() - 1;
+    std::vector<std::pair<double, uint32_t>> order;
+    order.reserve(m_entries.size() + ids.size());
+    for (const Entry& e : m_entries) order.push_back({m_core.keys().value(e.id, now), e.id});
+    for (uint32_t id : ids) order.push_back({m_core.keys().value(id, now), id});
+    std::sort(order.begin(), order.end());
+    m_entries.clear();
+    m_entries.reserve(order.size());
+    for (const auto& [value, id] : order) m_entries.push_back(Entry{id, kNoEvent});
+    if (!m_entries.empty()) m_core.stats().certificates_live += m_entries.size() - 1;
+    for (size_t i = 0; i + 1 < m_entries.size(); ++i) schedule(i, now);
     if (m_core.audit_on()) audit(now);
   }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -28,12 +29,24 @@ class KineticTournament {
   /// O(log n) certificates (amortised: the tree doubles when full).
   void insert(uint32_t id, double now) {
     KINRAY_DCHECK(!contains(id));
-    if (m_size == m_capacity) rebuild(m_capacity == 0 ? 1 : 2 * m_capacity, now);
+    if (m_size == m_capacity) rebuild(m_capacity == 0 ? 1 : 2 * m_capacity, leaf_ids(), now);
     const uint32_t leaf = m_capacity + m_size;
     ++m_size;
     if (m_size > 1) ++m_core.stats().certificates_live;
     set_leaf(leaf, id);
     update_path(leaf, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
+  /// Inserts many objects at once: the tree is rebuilt bottom-up, O(n) certificates.
+  void insert_all(std::span<const uint32_t> ids, double now) {
+    std::vector<uint32_t> all = leaf_ids();
+    all.insert(all.end(), ids.begin(), ids.end());
+    if (m_size > 1) m_core.stats().certificates_live -= m_size - 1;
+    if (all.size() > 1) m_core.stats().certificates_live += all.size() - 1;
+    uint32_t capacity = 1;
+    while (capacity < all.size()) capacity *= 2;
+    rebuild(capacity, all, now);
     if (m_core.audit_on()) audit(now);
   }
 
@@ -54,7 +67,7 @@ class KineticTournament {
       update_path(last, now);
     }
     if (m_size > 0) --m_core.stats().certificates_live;
-    if (m_capacity > 1 && m_size <= m_capacity / 4) rebuild(m_capacity / 2, now);
+    if (m_capacity > 1 && m_size <= m_capacity / 4) rebuild(m_capacity / 2, leaf_ids(), now);
     if (m_core.audit_on()) audit(now);
   }
 
@@ -179,10 +192,14 @@ class KineticTournament {
     return node.winner != old;
   }
 
-  void rebuild(uint32_t capacity, double now) {
+  std::vector<uint32_t> leaf_ids() const {
     std::vector<uint32_t> ids;
     ids.reserve(m_size);
     for (uint32_t i = 0; i < m_size; ++i) ids.push_back(m_nodes[m_capacity + i].winner);
+    return ids;
+  }
+  void rebuild(uint32_t capacity, const std::vector<uint32_t>& ids, double now) {
+    KINRAY_CHECK(ids.size() <= capacity);
     for (Node& node : m_nodes) m_core.cancel(node.event);
     m_capacity = capacity;
     m_nodes.assign(2 * size_t{capacity}, Node{});
@@ -193,7 +210,8 @@ class KineticTournament {
     } else {
       m_index.reset();
     }
-    for (uint32_t i = 0; i < ids.size(); ++i) set_leaf(capacity + i, ids[i]);
+    m_size = static_cast<uint32_t>(ids.size());
+    for (uint32_t i = 0; i < m_size; ++i) set_leaf(capacity + i, ids[i]);
     for (uint32_t k = capacity - 1; k >= 1; --k) recompute(k, now);
   }
 
