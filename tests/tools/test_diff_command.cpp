@@ -19,13 +19,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
+struct CommandRun {
   int status = -1;
   std::string out, err;
 };
 
 /// Runs `kinray diff ARGS` with its output captured.
-Run kinray_diff(const std::string& args) {
+CommandRun kinray_diff(const std::string& args) {
   const fs::path folder = fs::path(::testing::TempDir()) / "kinray_diff_command";
   fs::create_directories(folder);
   const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
@@ -69,7 +69,7 @@ std::string fill_rule_scene(const fs::path& folder) {
 
 TEST(DiffCommand, OsmesaAgainstEmbreeWithinBudgetWritesTableAndJson) {
   const fs::path folder = scratch("within");
-  const Run run = kinray_diff("static-moving:triangles=2000 --backend osmesa --against embree --size 96x64 "
+  const CommandRun run = kinray_diff("static-moving:triangles=2000 --backend osmesa --against embree --size 96x64 "
                               "--frames 3 -q --json " + (folder / "summary.json").string() + " --report " +
                               (folder / "report").string());
   ASSERT_EQ(run.status, 0) << run.err;
@@ -82,12 +82,15 @@ TEST(DiffCommand, OsmesaAgainstEmbreeWithinBudgetWritesTableAndJson) {
   ASSERT_EQ(json["per_frame"].size(), 3u);
   EXPECT_EQ(read_json(folder / "report" / "summary.json"), json);
   // Frames with ties have their heat map in the report.
-  for (const auto& line : json["per_frame"])
-    if (line["mismatch_tie"].get<int>() > 0) EXPECT_TRUE(fs::exists(line["heat_map"].get<std::string>()));
+  for (const auto& line : json["per_frame"]) {
+    if (line["mismatch_tie"].get<int>() > 0) {
+      EXPECT_TRUE(fs::exists(line["heat_map"].get<std::string>()));
+    }
+  }
 }
 
 TEST(DiffCommand, PrintsTheTable) {
-  const Run run = kinray_diff("static-moving:triangles=2000 --backend embree --against embree --size 48x32 --frames 2");
+  const CommandRun run = kinray_diff("static-moving:triangles=2000 --backend embree --against embree --size 48x32 --frames 2");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("embree against embree"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("total: 2 frames, 3072 pixels, 0 real mismatches"), std::string::npos) << run.out;
@@ -98,7 +101,7 @@ TEST(DiffCommand, ExceededBudgetFailsAndLeavesTheEvidence) {
   const fs::path folder = scratch("exceeded");
   const std::string scene = fill_rule_scene(folder);
   const std::string common = scene + " --backend embree --against osmesa --size 64x64 --frames 2 -q";
-  const Run run = kinray_diff(common + " --json " + (folder / "summary.json").string() + " --report " +
+  const CommandRun run = kinray_diff(common + " --json " + (folder / "summary.json").string() + " --report " +
                               (folder / "report").string());
   EXPECT_EQ(run.status, 1) << run.err;
   EXPECT_NE(run.err.find("exceed the budget"), std::string::npos) << run.err;
@@ -123,7 +126,7 @@ TEST(DiffCommand, BadFlagsFailWithOneLineAndWriteNothing) {
         "static-moving --backend embree --against kinetic", "static-moving --backend nonsense",
         "no-such-scene --backend embree", "static-moving --backend embree --size 0x5",
         "static-moving --backend embree --frames 3 --fps 2"}) {
-    const Run run = kinray_diff(args + outputs);
+    const CommandRun run = kinray_diff(args + outputs);
     EXPECT_EQ(run.status, 2) << args << ": " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
     EXPECT_EQ(run.err.rfind("kinray: error: ", 0), 0u) << args << ": " << run.err;
