@@ -120,13 +120,13 @@ TEST(DiffCommand, BadFlagsFailWithOneLineAndWriteNothing) {
   const fs::path folder = scratch("bad");
   const std::string outputs =
       " --json " + (folder / "summary.json").string() + " --report " + (folder / "report").string();
-  for (const std::string& args :
+  for (const char* args :
        {"static-moving --backend embree --against osmesa --budget -1", "static-moving --backend embree --budget 1.5",
         "static-moving --backend embree --budget 101%", "static-moving --backend embree --budget lots",
         "static-moving --backend embree --against kinetic", "static-moving --backend nonsense",
         "no-such-scene --backend embree", "static-moving --backend embree --size 0x5",
         "static-moving --backend embree --frames 3 --fps 2"}) {
-    const CommandRun run = kinray_diff(args + outputs);
+    const CommandRun run = kinray_diff(std::string(args) + outputs);
     EXPECT_EQ(run.status, 2) << args << ": " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
     EXPECT_EQ(run.err.rfind("kinray: error: ", 0), 0u) << args << ": " << run.err;
