@@ -1,0 +1,795 @@
+#include "scenes/scene_file.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "scenes/camera_space.h"
+#include "scenes/error.h"
+#include "scenes/mesh_builders.h"
+#include "scenes/model_import.h"
+#include "scenes/procedural.h"
+
+namespace kinray {
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// Guards against files that would exhaust memory rather than describe a scene.
+constexpr double kMaxPrimitiveTriangles = 5e7;
+constexpr double kMaxResampledKeys = 1e5;
+
+std::string escape_pointer_token(const std::string& key) {
+  std::string token;
+  for (char c : key) {
+    if (c == '~') token += "~0";
+    else if (c == '/') token += "~1";
+    else token += c;
+  }
+  return token;
+}
+
+std::string type_name(const json& value) {
+  return value.is_null() ? "null (which is how JSON writers store NaN and infinity)" : std::string(value.type_name());
+}
+
+/// A JSON value together with where it came from: the file and its JSON pointer. Every accessor
+/// checks the type and throws InputError naming both.
+class Node {
+ public:
+  Node(const json& value, const std::string& file, std::string pointer)
+      : m_value(&value), m_file(&file), m_pointer(std::move(pointer)) {}
+
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw InputError(*m_file + ": " + (m_pointer.empty() ? "/" : m_pointer), problem);
+  }
+  [[nodiscard]] const std::string& pointer() const { return m_pointer; }
+  [[nodiscard]] const json& value() const { return *m_value; }
+
+  /// Requires an object whose keys are all in `allowed`.
+  void expect_object(std::initializer_list<const char*> allowed) const {
+    if (!m_value->is_object()) fail("expected an object, got " + type_name(*m_value));
+    for (const auto& item : m_value->items()) {
+      if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return item.key() == a; }) != allowed.end())
+        continue;
+      std::string valid;
+      for (const char* a : allowed) valid += (valid.empty() ? "" : ", ") + std::string(a);
+      child(item.key()).fail("unknown key '" + item.key() + "'; the keys allowed here are " + valid);
+    }
+  }
+  [[nodiscard]] bool has(const char* key) const { return m_value->is_object() && m_value->contains(key); }
+  [[nodiscard]] Node at(const char* key) const {
+    if (!m_value->is_object()) fail("expected an object, got " + type_name(*m_value));
+    if (!m_value->contains(key)) fail(std::string("missing key '") + key + "'");
+    return child(key);
+  }
+  [[nodiscard]] std::optional<Node> find(const char* key) const {
+    if (!has(key)) return std::nullopt;
+    return child(key);
+  }
+  [[nodiscard]] size_t size() const {
+    if (!m_value->is_array()) fail("expected an array, got " + type_name(*m_value));
+    return m_value->size();
+  }
+  /// Requires an array of `n` elements.
+  void expect_size(size_t n) const {
+    if (size() != n) fail("expected an array of " + std::to_string(n) + " elements, got " + std::to_string(size()));
+  }
+  [[nodiscard]] Node operator[](size_t i) const {
+    return Node((*m_value)[i], *m_file, m_pointer + "/" + std::to_string(i));
+  }
+
+  [[nodiscard]] double number() const {
+    if (!m_value->is_number()) fail("expected a number, got " + type_name(*m_value));
+    const double x = m_value->get<double>();
+    if (!std::isfinite(x)) fail("expected a finite number");
+    return x;
+  }
+  [[nodiscard]] double positive() const {
+    const double x = number();
+    if (!(x > 0)) fail("expected a number > 0, got " + std::to_string(x));
+    return x;
+  }
+  [[nodiscard]] uint64_t unsigned_integer() const {
+    if (!m_value->is_number_integer()) fail("expected an integer, got " + type_name(*m_value));
+    if (m_value->is_number_integer() && !m_value->is_number_unsigned()) fail("expected an integer >= 0");
+    return m_value->get<uint64_t>();
+  }
+  /// An integer in [lo, hi].
+  [[nodiscard]] int integer(int lo, int hi) const {
+    if (!m_value->is_number_integer()) fail("expected an integer, got " + type_name(*m_value));
+    const int64_t x = m_value->get<int64_t>();
+    if (x < lo || x > hi)
+      fail("expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
+    return int(x);
+  }
+  [[nodiscard]] std::string string() const {
+    if (!m_value->is_string()) fail("expected a string, got " + type_name(*m_value));
+    return m_value->get<std::string>();
+  }
+  [[nodiscard]] Vec3 vec3() const {
+    expect_size(3);
+    return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
+  }
+
+ private:
+  [[nodiscard]] Node child(const std::string& key) const {
+    return Node((*m_value)[key], *m_file, m_pointer + "/" + escape_pointer_token(key));
+  }
+  const json* m_value;
+  const std::string* m_file;
+  std::string m_pointer;
+};
+
+/// Translation, rotation and scale: vertices are scaled, then rotated, then translated.
+struct Trs {
+  Vec3 translation = Vec3::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Vec3 scale = Vec3::Ones();
+
+  [[nodiscard]] Eigen::Affine3d matrix() const {
+    return Eigen::Translation3d(translation) * rotation * Eigen::Scaling(scale);
+  }
+  [[nodiscard]] static Trs blend(const Trs& a, const Trs& b, double alpha) {
+    return {a.translation + alpha * (b.translation - a.translation), a.rotation.slerp(alpha, b.rotation),
+            a.scale + alpha * (b.scale - a.scale)};
+  }
+};
+
+/// Where an object stands over time: an optional static transform (applied first, so that TRS
+/// keys can, say, rotate an object placed off-centre about the origin: an orbit), then TRS keys.
+struct Placement {
+  std::optional<Eigen::Affine3d> rest;
+  std::vector<double> times;
+  std::vector<Trs> keys;  ///< one per time
+
+  [[nodiscard]] Trs at(double t) const {
+    if (keys.size() == 1) return keys[0];
+    const auto segment = locate(times, t);
+    return Trs::blend(keys[segment.k], keys[segment.k + 1], segment.alpha);
+  }
+};
+
+Eigen::Quaterniond parse_quaternion(const Node& node) {
+  node.expect_size(4);
+  const Eigen::Quaterniond q(node[0].number(), node[1].number(), node[2].number(), node[3].number());
+  const double norm = q.norm();
+  if (!(norm > 1e-12)) node.fail("a rotation quaternion [w, x, y, z] must not be zero");
+  // Keep an already unit quaternion bit for bit, so that files written by save_scene_file round-trip.
+  return std::abs(norm - 1) < 1e-12 ? q : q.normalized();
+}
+
+Eigen::Quaterniond parse_rotation(const Node& node) {
+  if (node.value().is_array()) return parse_quaternion(node);
+  node.expect_object({"axis", "degrees"});
+  const Vec3 axis = node.at("axis").vec3();
+  if (!(axis.norm() > 1e-12)) node.at("axis").fail("the rotation axis must not be zero");
+  return Eigen::Quaterniond(Eigen::AngleAxisd(node.at("degrees").number() * M_PI / 180, axis.normalized()));
+}
+
+Trs parse_trs(const Node& node) {
+  Trs trs;
+  if (auto translation = node.find("translation")) trs.translation = translation->vec3();
+  if (auto rotation = node.find("rotation")) trs.rotation = parse_rotation(*rotation);
+  if (auto scale = node.find("scale")) {
+    trs.scale = scale->value().is_array() ? scale->vec3() : Vec3::Constant(scale->number());
+    if (!(trs.scale.array() != 0).all()) scale->fail("a scale must not be zero");
+  }
+  return trs;
+}
+
+/// Checks that a key's time is finite and later than the previous key's.
+double parse_key_time(const Node& key, std::optional<double> previous) {
+  const Node time = key.at("time");
+  const double t = time.number();
+  if (previous && !(t > *previous)) {
+    std::ostringstream message;
+    message << "key times must be strictly increasing, but t=" << t << " follows t=" << *previous
+            << (t == *previous ? " (duplicate)" : " (unsorted)");
+    time.fail(message.str());
+  }
+  return t;
+}
+
+/// `times` refined to at least `keyrate` keys per second between the first and last, keeping the
+/// originals: the flightplans are linear between keys, so rotations need fine keys to stay round.
+std::vector<double> resample(const std::vector<double>& times, double keyrate, const Node& where) {
+  if (keyrate <= 0 || times.size() < 2) return times;
+  const double span = times.back() - times.front();
+  if (span * keyrate > kMaxResampledKeys)
+    where.fail("resampling at this keyrate would make more than " + std::to_string(int(kMaxResampledKeys)) + " keys");
+  std::vector<double> result = times;
+  const size_t intervals = size_t(std::ceil(span * keyrate - 1e-9));
+  for (size_t k = 1; k < intervals; ++k) result.push_back(times.front() + span * double(k) / double(intervals));
+  std::sort(result.begin(), result.end());
+  // Merge near-coincident times (a grid time a hair from an original key) into the original.
+  std::vector<double> merged;
+  for (double t : result)
+    if (merged.empty() || t - merged.back() > 1e-9 * std::max(1.0, span)) merged.push_back(t);
+    else if (std::find(times.begin(), times.end(), t) != times.end()) merged.back() = t;
+  return merged;
+}
+
+/// Reads an object's "transform" and, when `keys_are_transforms`, its TRS "keys" and "keyrate".
+Placement parse_placement(const Node& object, bool keys_are_transforms) {
+  Placement placement;
+  if (auto transform = object.find("transform")) {
+    transform->expect_object({"translation", "rotation", "scale"});
+    placement.rest = parse_trs(*transform).matrix();
+  }
+  const auto keys = keys_are_transforms ? object.find("keys") : std::nullopt;
+  if (!keys) return placement;
+  if (keys->size() == 0) keys->fail("expected at least one key");
+  std::optional<double> previous;
+  for (size_t k = 0; k < keys->size(); ++k) {
+    const Node key = (*keys)[k];
+    key.expect_object({"time", "translation", "rotation", "scale"});
+    previous = parse_key_time(key, previous);
+    placement.times.push_back(*previous);
+    placement.keys.push_back(parse_trs(key));
+  }
+  if (auto keyrate = object.find("keyrate")) {
+    const double rate = keyrate->positive();
+    const Placement coarse = placement;
+    placement.times = resample(coarse.times, rate, *keyrate);
+    placement.keys.clear();
+    for (double t : placement.times) placement.keys.push_back(coarse.at(t));
+  }
+  return placement;
+}
+
+/// Moves `object` by `placement`: the static transform applies to every key; TRS keys combine with
+/// the object's own keys on the union of both key grids.
+void apply_placement(Object& object, const Placement& placement) {
+  if (placement.rest)
+    for (auto& key : object.key_positions)
+      for (Vec3& p : key) p = *placement.rest * p;
+  if (placement.keys.empty()) return;
+  std::vector<double> times = placement.times;
+  if (object.key_count() > 1) times.insert(times.end(), object.key_times.begin(), object.key_times.end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  std::vector<std::vector<Vec3>> positions(times.size(), std::vector<Vec3>(object.vertex_count()));
+  for (size_t k = 0; k < times.size(); ++k) {
+    const Eigen::Affine3d matrix = placement.at(times[k]).matrix();
+    for (uint32_t v = 0; v < object.vertex_count(); ++v) positions[k][v] = matrix * object.position(v, times[k]);
+  }
+  object.key_times = std::move(times);
+  object.key_positions = std::move(positions);
+}
+
+std::vector<Vec3> parse_vertices(const Node& node) {
+  std::vector<Vec3> vertices(node.size());
+  for (size_t v = 0; v < vertices.size(); ++v) vertices[v] = node[v].vec3();
+  return vertices;
+}
+
+float to_float_channel(const Node& node) {
+  const double x = node.number();
+  if (x < 0) node.fail("colour channels must be >= 0");
+  return float(x);
+}
+
+/// An 8-bit sRGB value to linear intensity (IEC 61966-2-1): image files hold sRGB, kinray shades
+/// in linear RGB.
+float decode_srgb(uint8_t value) {
+  const double c = value / 255.0;
+  return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
+Texture read_texture_file(const Node& where, const fs::path& path) {
+  cv::Mat image;
+  try {
+    if (fs::is_regular_file(path)) image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  } catch (const cv::Exception& error) {
+    where.fail("cannot decode texture " + path.string() + ": " + error.what());
+  }
+  if (image.empty()) where.fail("cannot read texture " + path.string() + (fs::exists(path) ? " (not an image OpenCV can decode)" : " (no such file)"));
+  if (image.depth() != CV_8U) image.convertTo(image, CV_8U, 1.0 / 256);
+  Texture texture;
+  texture.path = path.string();
+  texture.width = image.cols;
+  texture.height = image.rows;
+  texture.texels.resize(size_t(image.cols) * size_t(image.rows));
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) {
+      const cv::Vec3b bgr = image.at<cv::Vec3b>(y, x);
+      texture.texels[size_t(y) * size_t(image.cols) + size_t(x)] =
+          Color(decode_srgb(bgr[2]), decode_srgb(bgr[1]), decode_srgb(bgr[0]));
+    }
+  return texture;
+}
+
+/// Everything being assembled while a file is read.
+struct Reader {
+  std::string file;
+  fs::path directory;
+  Scene scene;
+  std::map<std::string, uint32_t> material_by_name;
+  bool has_materials = false;                 ///< the file lists materials: the first is the default
+  std::optional<uint32_t> default_material;  ///< else one is made when an object needs it
+  std::optional<Scene> first_provided;  ///< camera and shot of the first builtin or model object
+
+  [[nodiscard]] fs::path resolve(const std::string& relative) const {
+    const fs::path p(relative);
+    return p.is_absolute() ? p : directory / p;
+  }
+
+  void read_materials(const Node& root) {
+    const auto materials = root.find("materials");
+    scene.materials.clear();
+    if (!materials) return;
+    has_materials = true;
+    std::map<std::string, int> texture_by_path;
+    for (size_t m = 0; m < materials->size(); ++m) {
+      const Node node = (*materials)[m];
+      node.expect_object({"name", "base_color", "texture"});
+      Material material;
+      if (auto name = node.find("name")) {
+        material.name = name->string();
+        if (!material_by_name.emplace(material.name, uint32_t(m)).second)
+          name->fail("material name '" + material.name + "' is used twice");
+      }
+      if (auto color = node.find("base_color")) {
+        color->expect_size(3);
+        material.base_color = Color(to_float_channel((*color)[0]), to_float_channel((*color)[1]),
+                                    to_float_channel((*color)[2]));
+      }
+      if (auto texture = node.find("texture")) {
+        const fs::path path = resolve(texture->string());
+        const auto [it, inserted] = texture_by_path.emplace(path.string(), int(scene.textures.size()));
+        if (inserted) scene.textures.push_back(read_texture_file(*texture, path));
+        material.texture = it->second;
+      }
+      scene.materials.push_back(material);
+    }
+    if (scene.materials.empty()) materials->fail("expected at least one material");
+  }
+
+  [[nodiscard]] uint32_t material_of(const Node& object) {
+    const auto material = object.find("material");
+    if (!material) {
+      if (has_materials) return 0;
+      // Made on demand, so that a file of builtin objects reproduces the built-in's materials exactly.
+      if (!default_material) {
+        default_material = uint32_t(scene.materials.size());
+        scene.materials.push_back(Material{"default"});
+      }
+      return *default_material;
+    }
+    if (material->value().is_string()) {
+      const std::string name = material->string();
+      const auto it = material_by_name.find(name);
+      if (it != material_by_name.end()) return it->second;
+      std::string valid;
+      for (const auto& [n, index] : material_by_name) valid += (valid.empty() ? "" : ", ") + n;
+      material->fail("no material called '" + name + "'" + (valid.empty() ? "" : "; the materials are " + valid));
+    }
+    return uint32_t(material->integer(0, int(scene.materials.size()) - 1));
+  }
+
+  /// Appends a whole scene brought in by a builtin or model object, remapping its materials.
+  void merge(Scene&& other, const Node& object, const std::string& prefix) {
+    const std::optional<uint32_t> material = object.has("material") ? std::optional(material_of(object)) : std::nullopt;
+    const uint32_t material_offset = uint32_t(scene.materials.size());
+    const int texture_offset = int(scene.textures.size());
+    for (Material m : other.materials) {
+      if (m.texture >= 0) m.texture += texture_offset;
+      scene.materials.push_back(std::move(m));
+    }
+    for (Texture& t : other.textures) scene.textures.push_back(std::move(t));
+    const Placement placement = parse_placement(object, true);
+    for (Object& o : other.objects) {
+      o.material = material ? *material : o.material + material_offset;
+      if (!prefix.empty()) o.name = prefix + "/" + o.name;
+      read_visibility(object, o);
+      apply_placement(o, placement);
+      scene.objects.push_back(std::move(o));
+    }
+    other.objects.clear();
+    if (!first_provided) first_provided = std::move(other);
+  }
+
+  static void read_visibility(const Node& node, Object& object) {
+    if (auto appear = node.find("appear")) object.appear = appear->number();
+    if (auto disappear = node.find("disappear")) {
+      object.disappear = disappear->number();
+      if (!(object.disappear > object.appear))
+        disappear->fail("an object must disappear after it appears (appear = " + std::to_string(object.appear) + ")");
+    }
+  }
+
+  void read_mesh(const Node& node, Object& object) {
+    const Node triangles = node.at("triangles");
+    object.triangles.resize(triangles.size());
+    for (size_t f = 0; f < object.triangles.size(); ++f) {
+      const Node tri = triangles[f];
+      tri.expect_size(3);
+      for (int c = 0; c < 3; ++c) {
+        const uint64_t index = tri[c].unsigned_integer();
+        if (index > UINT32_MAX) tri[c].fail("vertex index too large");
+        object.triangles[f][size_t(c)] = uint32_t(index);
+      }
+    }
+    const auto keys = node.find("keys");
+    const bool vertex_keys = keys && keys->size() > 0 && (*keys)[0].has("vertices");
+    if (vertex_keys) {
+      if (auto rest = node.find("vertices"))
+        rest->fail("give either 'vertices' (moved by transform keys) or a 'vertices' array in every key, not both");
+      if (auto keyrate = node.find("keyrate")) keyrate->fail("'keyrate' resamples transform keys; these keys are vertex arrays");
+      std::optional<double> previous;
+      for (size_t k = 0; k < keys->size(); ++k) {
+        const Node key = (*keys)[k];
+        if (!key.has("vertices")) key.fail("missing key 'vertices': every key of this mesh is a vertex array, since key 0 is");
+        key.expect_object({"time", "vertices"});
+        previous = parse_key_time(key, previous);
+        object.key_times.push_back(*previous);
+        object.key_positions.push_back(parse_vertices(key.at("vertices")));
+        if (object.key_positions.back().size() != object.key_positions[0].size())
+          key.at("vertices").fail("has " + std::to_string(object.key_positions.back().size()) +
+                                  " vertices, key 0 has " + std::to_string(object.key_positions[0].size()));
+      }
+      apply_placement(object, parse_placement(node, false));
+    } else {
+      if (keys)
+        for (size_t k = 0; k < keys->size(); ++k)
+          if ((*keys)[k].has("vertices"))
+            (*keys)[k].at("vertices").fail("key 0 is a transform key, so every key must be one");
+      object.key_times = {0.0};
+      object.key_positions = {parse_vertices(node.at("vertices"))};
+      apply_placement(object, parse_placement(node, true));
+    }
+    const size_t nv = object.vertex_count();
+    for (size_t f = 0; f < object.triangles.size(); ++f)
+      for (int c = 0; c < 3; ++c)
+        if (object.triangles[f][size_t(c)] >= nv)
+          triangles[f][size_t(c)].fail("vertex index " + std::to_string(object.triangles[f][size_t(c)]) +
+                                       " out of range (" + std::to_string(nv) + " vertices)");
+    if (auto uvs = node.find("uvs")) {
+      if (uvs->size() != nv)
+        uvs->fail("has " + std::to_string(uvs->size()) + " uvs for " + std::to_string(nv) + " vertices");
+      for (size_t v = 0; v < nv; ++v) {
+        const Node uv = (*uvs)[v];
+        uv.expect_size(2);
+        object.uvs.emplace_back(float(uv[0].number()), float(uv[1].number()));
+      }
+    }
+  }
+
+  Mesh read_primitive(const Node& node, const std::string& kind) {
+    if (kind == "sphere") {
+      const double radius = node.has("radius") ? node.at("radius").positive() : 1.0;
+      if (node.has("triangles") && node.has("subdivisions"))
+        node.at("subdivisions").fail("give either 'triangles' or 'subdivisions', not both");
+      int n = 9;  // 972 triangles
+      if (auto triangles = node.find("triangles")) {
+        const double count = triangles->positive();
+        if (count > kMaxPrimitiveTriangles) triangles->fail("at most 5e7 triangles");
+        n = cube_subdivisions_for(count);
+      }
+      if (auto subdivisions = node.find("subdivisions")) n = subdivisions->integer(1, 2000);
+      return make_sphere(radius, n);
+    }
+    if (kind == "box") {
+      Vec3 size = Vec3::Ones();
+      if (auto s = node.find("size")) {
+        size = s->value().is_array() ? s->vec3() : Vec3::Constant(s->number());
+        if (!(size.array() > 0).all()) s->fail("box edge lengths must be > 0");
+      }
+      const int n = node.has("subdivisions") ? node.at("subdivisions").integer(1, 2000) : 1;
+      return make_box(size, n);
+    }
+    // grid
+    double sx = 1, sz = 1;
+    if (auto s = node.find("size")) {
+      if (s->value().is_array()) {
+        s->expect_size(2);
+        sx = (*s)[0].positive();
+        sz = (*s)[1].positive();
+      } else {
+        sx = sz = s->positive();
+      }
+    }
+    int nx = 1, nz = 1;
+    if (auto s = node.find("subdivisions")) {
+      if (s->value().is_array()) {
+        s->expect_size(2);
+        nx = (*s)[0].integer(1, 100000);
+        nz = (*s)[1].integer(1, 100000);
+      } else {
+        nx = nz = s->integer(1, 100000);
+      }
+      if (2.0 * nx * nz > kMaxPrimitiveTriangles) s->fail("at most 5e7 triangles");
+    }
+    return make_grid(sx, sz, nx, nz);
+  }
+
+  void read_object(const Node& node, size_t index) {
+    const std::string kind = node.at("kind").string();
+    const std::string name = node.has("name") ? node.at("name").string() : kind + " " + std::to_string(index);
+    if (kind == "mesh") {
+      node.expect_object({"kind", "name", "material", "appear", "disappear", "vertices", "triangles", "uvs",
+                          "keys", "transform", "keyrate"});
+      Object object;
+      object.name = name;
+      object.material = material_of(node);
+      read_visibility(node, object);
+      read_mesh(node, object);
+      scene.objects.push_back(std::move(object));
+    } else if (kind == "sphere" || kind == "box" || kind == "grid") {
+      if (kind == "sphere")
+        node.expect_object({"kind", "name", "material", "appear", "disappear", "radius", "triangles",
+                            "subdivisions", "keys", "transform", "keyrate"});
+      else
+        node.expect_object({"kind", "name", "material", "appear", "disappear", "size", "subdivisions", "keys",
+                            "transform", "keyrate"});
+      Object object = make_static_object(name, read_primitive(node, kind), material_of(node));
+      read_visibility(node, object);
+      apply_placement(object, parse_placement(node, true));
+      scene.objects.push_back(std::move(object));
+    } else if (kind == "model") {
+      node.expect_object({"kind", "name", "material", "appear", "disappear", "path", "animation", "keyrate",
+                          "keys", "transform"});
+      const Node path_node = node.at("path");
+      const fs::path path = resolve(path_node.string());
+      if (!fs::exists(path)) path_node.fail("no such file: " + path.string());
+      ModelOptions options;
+      if (auto animation = node.find("animation"))
+        options.animation = animation->value().is_number_integer() ? std::to_string(animation->integer(0, 1 << 30))
+                                                                   : animation->string();
+      // The keyrate resamples the model's own animation; transform keys are resampled too.
+      if (auto keyrate = node.find("keyrate")) options.keyrate = keyrate->positive();
+      Scene model;
+      try {
+        model = load_model(path.string(), options);
+      } catch (const InputError& error) {
+        path_node.fail(error.what());
+      }
+      merge(std::move(model), node, node.has("name") ? name : "");
+    } else if (kind == "builtin") {
+      node.expect_object({"kind", "name", "material", "appear", "disappear", "scene", "params"});
+      const Node scene_node = node.at("scene");
+      std::map<std::string, double> params;
+      if (auto p = node.find("params")) {
+        if (!p->value().is_object()) p->fail("expected an object of numbers, like {\"triangles\": 2000}");
+        for (const auto& item : p->value().items())
+          params[item.key()] = Node(item.value(), file, p->pointer() + "/" + escape_pointer_token(item.key())).number();
+      }
+      Scene builtin;
+      try {
+        builtin = make_builtin_scene(scene_node.string(), params);
+      } catch (const InputError& error) {
+        (node.has("params") && is_builtin_scene(scene_node.string()) ? node.at("params") : scene_node).fail(error.what());
+      }
+      merge(std::move(builtin), node, node.has("name") ? name : "");
+    } else {
+      node.at("kind").fail("unknown object kind '" + kind + "'; the kinds are mesh, sphere, box, grid, model, builtin");
+    }
+  }
+
+  void read_camera(const Node& root) {
+    const auto camera = root.find("camera");
+    if (!camera) {
+      if (!first_provided)
+        root.fail("missing key 'camera' (only a file with a builtin or model object may leave it out, and take theirs)");
+      scene.camera = first_provided->camera;
+      return;
+    }
+    camera->expect_object({"keys", "keyrate"});
+    const Node keys = camera->at("keys");
+    if (keys.size() == 0) keys.fail("expected at least one camera key");
+    Camera result;
+    result.keys.clear();
+    std::optional<double> previous;
+    for (size_t k = 0; k < keys.size(); ++k) {
+      const Node key = keys[k];
+      key.expect_object({"time", "position", "look_at", "up", "orientation", "fov_y"});
+      double time = 0;
+      if (keys.size() > 1 || key.has("time")) time = *(previous = parse_key_time(key, previous));
+      const Vec3 position = key.at("position").vec3();
+      double fov = 45;
+      if (auto fov_node = key.find("fov_y")) {
+        fov = fov_node->number();
+        if (!(fov > 0.5 && fov < 179.5)) fov_node->fail("fov_y must lie in (0.5, 179.5) degrees");
+      }
+      if (key.has("look_at") == key.has("orientation"))
+        key.fail("give either 'look_at' (with an optional 'up') or 'orientation' (a quaternion [w, x, y, z])");
+      if (auto target_node = key.find("look_at")) {
+        const Vec3 target = target_node->vec3();
+        if (!((target - position).norm() > 1e-12)) target_node->fail("the camera looks at its own position");
+        const Vec3 up = key.has("up") ? key.at("up").vec3() : Vec3::UnitY();
+        if (!(up.norm() > 1e-12)) key.at("up").fail("the up vector must not be zero");
+        result.keys.push_back(Camera::look_at(time, position, target, up, fov));
+      } else {
+        if (auto up = key.find("up")) up->fail("'up' goes with 'look_at'; an orientation says where up is");
+        result.keys.push_back(CameraKey{time, position, parse_quaternion(key.at("orientation")), fov});
+      }
+    }
+    if (auto keyrate = camera->find("keyrate")) {
+      const double rate = keyrate->positive();
+      std::vector<double> times;
+      for (const CameraKey& key : result.keys) times.push_back(key.time);
+      Camera fine;
+      fine.keys.clear();
+      for (double t : resample(times, rate, *keyrate)) fine.keys.push_back(result.at(t));
+      // Camera::at returns the original keys exactly at their times; keep their own time stamps.
+      result = std::move(fine);
+    }
+    scene.camera = std::move(result);
+  }
+
+  void read_shot(const Node& root) {
+    const auto shot = root.find("shot");
+    if (!shot) {
+      if (!first_provided)
+        root.fail("missing key 'shot' (only a file with a builtin or model object may leave it out, and take theirs)");
+      scene.time_begin = first_provided->time_begin;
+      scene.time_end = first_provided->time_end;
+      return;
+    }
+    shot->expect_object({"begin", "end"});
+    scene.time_begin = shot->at("begin").number();
+    scene.time_end = shot->at("end").number();
+    if (!(scene.time_end > scene.time_begin))
+      shot->at("end").fail("the shot must end after it begins (begin = " + std::to_string(scene.time_begin) +
+                           ", end = " + std::to_string(scene.time_end) + ")");
+  }
+
+  void read(const json& document) {
+    const Node root(document, file, "");
+    root.expect_object({"name", "description", "shot", "materials", "camera", "objects"});
+    scene.name = root.has("name") ? root.at("name").string() : fs::path(file).stem().string();
+    if (auto description = root.find("description")) (void)description->string();
+    read_materials(root);
+    const Node objects = root.at("objects");
+    for (size_t o = 0; o < objects.size(); ++o) read_object(objects[o], o);
+    read_camera(root);
+    read_shot(root);
+    if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+  }
+};
+
+/// Line and column (both from 1) of byte `offset` in `text`.
+std::pair<size_t, size_t> line_and_column(const std::string& text, size_t offset) {
+  offset = std::min(offset, text.size());
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < offset; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+json shortest(float x) {
+  // The shortest decimal that reads back as the same float, not the 17 digits of its double.
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return json(std::stod(std::string(buffer, result.ptr)));
+}
+
+json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+}  // namespace
+
+Scene parse_scene_file(const std::string& text, const std::string& path) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& error) {
+    // nlohmann's byte is one past the character it stopped at.
+    const auto [line, column] = line_and_column(text, error.byte > 0 ? error.byte - 1 : 0);
+    std::string message = error.what();
+    const size_t colon = message.find(": ");
+    if (message.find("parse error") != std::string::npos && colon != std::string::npos) message = message.substr(colon + 2);
+    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column), "JSON syntax error: " + message);
+  } catch (const json::exception& error) {
+    // A number too large for a double ("number overflow parsing '1e999'") carries no position:
+    // find the token in the text.
+    std::string where = path;
+    const std::string message = error.what();
+    const size_t open = message.find('\''), close = message.rfind('\'');
+    if (open != std::string::npos && close > open + 1) {
+      const size_t at = text.find(message.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) {
+        const auto [line, column] = line_and_column(text, at);
+        where += ":" + std::to_string(line) + ":" + std::to_string(column);
+      }
+    }
+    throw InputError(where, std::string("JSON error: ") + message.substr(message.find(']') + 2));
+  }
+  Reader reader;
+  reader.file = path;
+  reader.directory = fs::path(path).parent_path();
+  reader.read(document);
+  reader.scene.validate(path);
+  return std::move(reader.scene);
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error))
+    throw InputError(path, fs::exists(path, error) ? "not a regular file" : "no such scene file");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InputError(path, "cannot read the file");
+  return parse_scene_file(text.str(), path);
+}
+
+void save_scene_file(const Scene& scene, const std::string& path) {
+  json document;
+  document["name"] = scene.name;
+  document["shot"] = {{"begin", scene.time_begin}, {"end", scene.time_end}};
+  json materials = json::array();
+  for (const Material& material : scene.materials) {
+    json m = {{"name", material.name},
+              {"base_color",
+               json::array({shortest(material.base_color.x()), shortest(material.base_color.y()),
+                            shortest(material.base_color.z())})}};
+    if (material.texture >= 0) m["texture"] = fs::absolute(scene.textures[size_t(material.texture)].path).string();
+    materials.push_back(std::move(m));
+  }
+  // Material names must be unique in a file; fall back to indices when they are not.
+  std::map<std::string, int> name_count;
+  for (const Material& material : scene.materials) ++name_count[material.name];
+  bool unique_names = true;
+  for (const auto& [name, count] : name_count) unique_names &= count == 1;
+  if (!unique_names)
+    for (json& m : materials) m.erase("name");
+  document["materials"] = std::move(materials);
+
+  json camera_keys = json::array();
+  for (const CameraKey& key : scene.camera.keys) {
+    const Eigen::Quaterniond& q = key.orientation;
+    camera_keys.push_back({{"time", key.time},
+                           {"position", vec3_json(key.position)},
+                           {"orientation", json::array({q.w(), q.x(), q.y(), q.z()})},
+                           {"fov_y", key.fov_y_degrees}});
+  }
+  document["camera"] = {{"keys", std::move(camera_keys)}};
+
+  json objects = json::array();
+  for (const Object& object : scene.objects) {
+    json o = {{"kind", "mesh"}, {"name", object.name}, {"material", object.material}};
+    if (std::isfinite(object.appear)) o["appear"] = object.appear;
+    if (std::isfinite(object.disappear)) o["disappear"] = object.disappear;
+    json triangles = json::array();
+    for (const Triangle& t : object.triangles) triangles.push_back(json::array({t[0], t[1], t[2]}));
+    o["triangles"] = std::move(triangles);
+    if (!object.uvs.empty()) {
+      json uvs = json::array();
+      for (const Vec2f& uv : object.uvs) uvs.push_back(json::array({shortest(uv.x()), shortest(uv.y())}));
+      o["uvs"] = std::move(uvs);
+    }
+    json keys = json::array();
+    for (size_t k = 0; k < object.key_count(); ++k) {
+      json vertices = json::array();
+      for (const Vec3& p : object.key_positions[k]) vertices.push_back(vec3_json(p));
+      keys.push_back({{"time", object.key_times[k]}, {"vertices", std::move(vertices)}});
+    }
+    o["keys"] = std::move(keys);
+    objects.push_back(std::move(o));
+  }
+  document["objects"] = std::move(objects);
+
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path, "cannot write the scene file");
+  out << document.dump(1) << '\n';
+  if (!out) throw InputError(path, "cannot write the scene file");
+}
+
+}  // namespace kinray

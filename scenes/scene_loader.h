@@ -1,0 +1,19 @@
+#pragma once
+// One way to name a scene on the command line: a built-in with optional parameters
+// ("wavy-sphere", "cloth:triangles=2000,duration=1.5"), a JSON scene file, or a model file.
+#include <string>
+
+#include "scenes/model_import.h"
+#include "scenes/scene.h"
+
+namespace kinray {
+
+/// Loads the scene named by `spec`: a built-in name (optionally followed by
+/// ":key=value,key=value"), a path ending in .json (a scene file), or a path to a file assimp can
+/// import (loaded with `model_options`). Throws InputError naming the spec or file and the problem.
+[[nodiscard]] Scene load_scene(const std::string& spec, const ModelOptions& model_options = {});
+
+/// A few lines describing the spec syntax and the built-in scenes with their defaults, for --help.
+[[nodiscard]] std::string describe_scene_spec_syntax();
+
+}  // namespace kinray
