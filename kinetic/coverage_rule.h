@@ -1,0 +1,52 @@
+#pragma once
+// The sign rule for coverage (DESIGN.md, "Coverage"): the ray d (not the line) pierces the
+// triangle iff E_01(d), E_12(d), E_20(d) all have the sign of O and O != 0. It holds for
+// triangles in front of, straddling and behind the eye, so nothing is ever clipped.
+//
+// Signs are always taken "just after now" (sign_after), in initialisation, events and audit
+// alike, so that the structure and its certificates agree exactly and an event never re-fires at
+// the instant it was processed. An edge function that vanishes identically on a segment (a ray
+// lying exactly in the plane of the eye and an edge for a whole segment) reads as positive: a
+// symbolic perturbation shared by the boundary slots and the sign rule, which keeps both
+// consistent; O must be strictly non-zero, so an edge-on or degenerate triangle covers nothing.
+#include <array>
+
+#include "kinetic/polynomial.h"
+#include "kinetic/root_finding.h"
+#include "kinetic/triangle_motion.h"
+
+namespace kinray {
+
+/// sign_after(f, s) with 0 (the zero polynomial) read as +1: the perturbed sign of an edge
+/// function or of a vertex's side of a row plane.
+[[nodiscard]] inline int sign_plus(const Polynomial& f, double s) {
+  return sign_after(f, s) >= 0 ? 1 : -1;
+}
+
+/// The sign rule at one instant for many rays of one triangle: the orientation's sign is taken
+/// once, the edge functions per ray.
+class CoverageRule {
+ public:
+  /// The triangle `m` (in its segment's local time) just after local time s.
+  CoverageRule(const TriangleMotion& m, double s) : m_s(s) {
+    for (int e = 0; e < 3; ++e) m_edges[e] = m.edge(e);
+    m_orientation = sign_after(m.orientation(), s);
+  }
+  /// Sign of O just after s (0 when O vanishes identically).
+  [[nodiscard]] int orientation_sign() const { return m_orientation; }
+  [[nodiscard]] const EdgeNormal& edge(int e) const { return m_edges[e]; }
+  /// Does the ray (x, y, 1) pierce the triangle just after s?
+  [[nodiscard]] bool covers(double x, double y) const {
+    if (m_orientation == 0) return false;
+    for (int e = 0; e < 3; ++e)
+      if (sign_plus(m_edges[e].along(x, y), m_s) != m_orientation) return false;
+    return true;
+  }
+
+ private:
+  std::array<EdgeNormal, 3> m_edges;
+  int m_orientation = 0;
+  double m_s = 0;
+};
+
+}  // namespace kinray

@@ -1,0 +1,920 @@
+#include "kinetic/frustum_band.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "kinetic/check.h"
+#include "kinetic/kinetic_heap.h"
+#include "kinetic/kinetic_sorted_list.h"
+#include "kinetic/kinetic_tournament.h"
+
+namespace kinray {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+uint64_t boundary_code(uint32_t tri, int edge) { return (uint64_t{tri} << 2) | uint64_t(edge); }
+
+// The edges whose end points lie on different sides: none or two of them.
+int crossing_edges(const std::array<int, 3>& sides, int out[2]) {
+  int n = 0;
+  for (int e = 0; e < 3; ++e)
+    if (sides[kEdgeStart[e]] != sides[kEdgeEnd[e]]) {
+      if (n < 2) out[n] = e;
+      ++n;
+    }
+  return n;
+}
+
+}  // namespace
+
+template <class Sort>
+FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_end,
+                               const Config& config)
+    : m_scene(scene),
+      m_config(config),
+      m_row_begin(row_begin),
+      m_row_end(row_end),
+      m_width(scene.width()),
+      m_columns{scene.width()},
+      m_rows{row_end - row_begin} {
+  KINRAY_CHECK(row_begin >= 0 && row_begin < row_end && row_end <= scene.height());
+  m_segments.resize(scene.mesh_count());
+  m_depth_source = DepthSource{&m_scene, &m_segments};
+  m_meshes.resize(scene.mesh_count());
+  m_triangles.resize(scene.triangle_count());
+  m_vertices.resize(scene.vertex_count());
+  KineticSortConfig sort_config;
+  sort_config.event_kind = kGridSwap;
+  sort_config.audit = false;  // the band audits at consistent points (not mid flightplan batch)
+  sort_config.shared_stats = &m_sort_stats;
+  const size_t pixels = size_t(row_end - row_begin) * size_t(m_width);
+  m_pixels.reserve(pixels);
+  for (int j = row_begin; j < row_end; ++j)
+    for (int i = 0; i < m_width; ++i)
+      m_pixels.emplace_back(&m_depth_source, i, j, m_queue,
+                            uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geometry just after now.
+
+template <class Sort>
+typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t tri) const {
+  TriangleNow tn;
+  const uint32_t m = m_scene.mesh_of_triangle(tri);
+  tn.segment = m_segments[m];
+  tn.motion = m_scene.triangle_motion(tri, tn.segment);
+  tn.s = m_now - tn.segment.origin;
+  tn.moving = !m_scene.mesh(m).is_static;
+  return tn;
+}
+
+template <class Sort>
+PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const {
+  const uint32_t m = m_scene.mesh_of_vertex(v);
+  const MeshSegment& seg = m_segments[m];
+  s = m_now - seg.origin;
+  return m_scene.vertex_motion(m, v - m_scene.vertex_begin(m), seg);
+}
+
+template <class Sort>
+typename FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const PointMotion& p,
+                                                                        double s) const {
+  auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
+  RowPattern pattern;
+  pattern.slot = m_rows.locate(sign_at);
+  const auto [lo, hi] = m_rows.watched(pattern.slot);
+  pattern.sign_lo = sign_at(lo);
+  pattern.sign_hi = lo == hi ? pattern.sign_lo : sign_at(hi);
+  if (!SlotCircle::consistent(pattern.slot, pattern.sign_lo, pattern.sign_hi))
+    pattern.sign_hi = pattern.slot == 0 ? pattern.sign_lo : -pattern.sign_lo;
+  return pattern;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::locate_boundary(SlotTracker& b, const EdgeNormal& edge, int row,
+                                        double s) const {
+  const double y = m_scene.row_y(row);
+  auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), s); };
+  b.slot = m_columns.locate(sign_at);
+  const auto [lo, hi] = m_columns.watched(b.slot);
+  b.sign_lo = int8_t(sign_at(lo));
+  b.sign_hi = int8_t(lo == hi ? b.sign_lo : sign_at(hi));
+  // A sign pattern that is not monotone (rounding of a nearly constant edge function) still
+  // gets a consistent slot; the audit reports such rows if they ever matter.
+  if (!SlotCircle::consistent(b.slot, b.sign_lo, b.sign_hi))
+    b.sign_hi = int8_t(b.slot == 0 ? b.sign_lo : -b.sign_lo);
+}
+
+template <class Sort>
+std::array<int, 3> FrustumBand<Sort>::row_sides(const TriangleNow& tn, int row) const {
+  const double y = m_scene.row_y(row);
+  return {sign_plus(row_side(tn.motion.v[0], y), tn.s), sign_plus(row_side(tn.motion.v[1], y), tn.s),
+          sign_plus(row_side(tn.motion.v[2], y), tn.s)};
+}
+
+template <class Sort>
+std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const CoverageRule& rule,
+                                                     bool full) {
+  if (rule.orientation_sign() == 0) return {0, -1};
+  const double y = m_scene.row_y(r.row);
+  int lo = m_width, hi = -1, count = 0;
+  if (!full) {
+    // Coverage is constant between consecutive cuts: the boundary slots and the image borders
+    // (the covered columns end only where the ray passes a boundary point in front of the eye).
+    int cuts[4] = {0, r.boundary[0].slot, r.boundary[1].slot, m_width};
+    std::sort(cuts, cuts + 4);
+    for (int k = 0; k + 1 < 4; ++k) {
+      const int a = cuts[k], b = cuts[k + 1];
+      if (a >= b) continue;
+      if (rule.covers(m_scene.column_x(a), y)) {
+        lo = std::min(lo, a);
+        hi = std::max(hi, b - 1);
+        count += b - a;
+      }
+    }
+    if (count == hi - lo + 1 || count == 0) return count == 0 ? std::pair{0, -1} : std::pair{lo, hi};
+    // Covered runs that are not contiguous: numerically degenerate; fall back to every column.
+  }
+  lo = m_width, hi = -1, count = 0;
+  for (int c = 0; c < m_width; ++c)
+    if (rule.covers(m_scene.column_x(c), y)) {
+      lo = std::min(lo, c);
+      hi = c;
+      ++count;
+    }
+  if (count == 0) return {0, -1};
+  return {lo, hi};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scheduling.
+
+template <class Sort>
+double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const {
+  if (sign == 0) return f.is_zero() ? kInf : m_now;
+  if (f.is_zero()) return sign > 0 ? kInf : m_now;  // a zero edge function reads as positive
+  OrderCertificate c;
+  c.f = sign > 0 ? f : -f;
+  c.origin = seg.origin;
+  c.end = seg.end;
+  const detail::Schedule s = detail::schedule_certificate(c, m_now, 0, 0);
+  return s.failure ? s.time : kInf;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::set_event(EventHandle& handle, double time, const EventKey& key,
+                                  uint64_t payload) {
+  if (time == kInf) {
+    if (handle != kNoEvent) m_queue.erase(handle);
+    handle = kNoEvent;
+    return;
+  }
+  EventKey k = key;
+  k.time = time;
+  if (handle == kNoEvent) {
+    handle = m_queue.push(k, payload);
+  } else {
+    m_queue.update(handle, k);
+    m_queue.set_payload(handle, payload);
+  }
+}
+
+template <class Sort>
+void FrustumBand<Sort>::schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn) {
+  RowRecord& r = m_records[rec];
+  SlotTracker& b = r.boundary[size_t(bi)];
+  if (!tn.moving) return;
+  const EdgeNormal edge = tn.motion.edge(b.edge);
+  const double y = m_scene.row_y(r.row);
+  const auto [lo, hi] = m_columns.watched(b.slot);
+  double t = failure_time(b.sign_lo, edge.along(m_scene.column_x(lo), y), tn.segment);
+  if (hi != lo) t = std::min(t, failure_time(b.sign_hi, edge.along(m_scene.column_x(hi), y), tn.segment));
+  m_stats.certificates_computed += 2;
+  set_event(b.event, t, EventKey{0, kGridBoundary, uint32_t(r.row), boundary_code(r.triangle, b.edge)},
+            (uint64_t{rec} << 1) | uint64_t(bi));
+}
+
+template <class Sort>
+void FrustumBand<Sort>::schedule_vertex(uint32_t v) {
+  SlotTracker& st = m_vertices[v];
+  double s = 0;
+  const PointMotion p = vertex_now(v, s);
+  const MeshSegment& seg = m_segments[m_scene.mesh_of_vertex(v)];
+  const auto [lo, hi] = m_rows.watched(st.slot);
+  double t = failure_time(st.sign_lo, row_side(p, m_scene.row_y(m_row_begin + lo)), seg);
+  if (hi != lo) t = std::min(t, failure_time(st.sign_hi, row_side(p, m_scene.row_y(m_row_begin + hi)), seg));
+  m_stats.certificates_computed += 2;
+  set_event(st.event, t, EventKey{0, kGridVertexRow, v, 0}, v);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn) {
+  if (!tn.moving) return;
+  TriangleState& ts = m_triangles[tri];
+  const double t = failure_time(ts.orientation, tn.motion.orientation(), tn.segment);
+  ++m_stats.certificates_computed;
+  set_event(ts.event, t, EventKey{0, kGridOrientation, tri, 0}, tri);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::schedule_flightplan(uint32_t m) {
+  const GridMesh& mesh = m_scene.mesh(m);
+  MeshState& ms = m_meshes[m];
+  double t = kInf;
+  uint32_t key = 0;
+  if (!mesh.is_static) {
+    const MeshSegment seg = m_scene.segment_at(m, m_now);
+    if (seg.index < mesh.key_count()) {
+      key = seg.index;
+      t = mesh.key_times[key];
+    }
+  }
+  set_event(ms.flightplan, t, EventKey{0, kGridFlightplan, m, key}, m);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pixels.
+
+template <class Sort>
+void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
+  PixelCell& p = cell(column, row);
+  const std::optional<uint32_t> before = p.order.front();
+  p.order.insert(tri, m_now);
+  ++m_stats.coverage_changes;
+  if (p.order.front() != before) m_front_changed = true;
+  if (m_config.audit) p.order.audit(m_now);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
+  PixelCell& p = cell(column, row);
+  const std::optional<uint32_t> before = p.order.front();
+  p.order.erase(tri, m_now);
+  ++m_stats.coverage_changes;
+  if (p.order.front() != before) m_front_changed = true;
+  if (m_config.audit) p.order.audit(m_now);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Records.
+
+template <class Sort>
+uint32_t FrustumBand<Sort>::find_record(uint32_t tri, int row) const {
+  for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next)
+    if (m_records[rec].row == row) return rec;
+  return kNoRecord;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::set_coverage(uint32_t rec, int lo, int hi) {
+  // Apply the difference between the old and the new interval to the pixel orders.
+  const RowRecord old = m_records[rec];
+  const bool empty = lo > hi;
+  for (int c = old.lo; c <= old.hi; ++c)
+    if (empty || c < lo || c > hi) pixel_erase(old.triangle, c, old.row);
+  for (int c = lo; c <= hi; ++c)
+    if (!old.covers(c)) pixel_insert(old.triangle, c, old.row);
+  RowRecord& r = m_records[rec];
+  r.lo = empty ? 0 : lo;
+  r.hi = empty ? -1 : hi;
+}
+
+template <class Sort>
+uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int edge_b,
+                                          const TriangleNow& tn) {
+  uint32_t rec;
+  if (!m_free_records.empty()) {
+    rec = m_free_records.back();
+    m_free_records.pop_back();
+    m_records[rec] = RowRecord{};
+  } else {
+    rec = uint32_t(m_records.size());
+    m_records.emplace_back();
+  }
+  TriangleState& ts = m_triangles[tri];
+  const bool first = ts.head == kNoRecord;
+  RowRecord& r = m_records[rec];
+  r.triangle = tri;
+  r.row = row;
+  r.next = ts.head;
+  ts.head = rec;
+  r.boundary[0].edge = uint8_t(edge_a);
+  r.boundary[1].edge = uint8_t(edge_b);
+  for (SlotTracker& b : r.boundary) locate_boundary(b, tn.motion.edge(b.edge), row, tn.s);
+  ++m_stats.records_born;
+  if (tn.moving) m_live_boundaries += 2;
+  const CoverageRule rule(tn.motion, tn.s);
+  if (first) {
+    ts.orientation = int8_t(rule.orientation_sign());
+    if (tn.moving) ++m_live_orientations;
+    schedule_orientation(tri, tn);
+  }
+  const auto [lo, hi] = scan_coverage(m_records[rec], rule, false);
+  set_coverage(rec, lo, hi);
+  schedule_boundary(rec, 0, tn);
+  schedule_boundary(rec, 1, tn);
+  return rec;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::kill_record(uint32_t rec) {
+  set_coverage(rec, 0, -1);
+  RowRecord& r = m_records[rec];
+  const uint32_t tri = r.triangle;
+  const bool moving = !m_scene.mesh(m_scene.mesh_of_triangle(tri)).is_static;
+  for (SlotTracker& b : r.boundary)
+    if (b.event != kNoEvent) {
+      m_queue.erase(b.event);
+      b.event = kNoEvent;
+    }
+  if (moving) m_live_boundaries -= 2;
+  TriangleState& ts = m_triangles[tri];
+  if (ts.head == rec) {
+    ts.head = r.next;
+  } else {
+    uint32_t prev = ts.head;
+    while (m_records[prev].next != rec) prev = m_records[prev].next;
+    m_records[prev].next = r.next;
+  }
+  if (ts.head == kNoRecord) {
+    if (ts.event != kNoEvent) m_queue.erase(ts.event);
+    ts.event = kNoEvent;
+    ts.orientation = 0;
+    if (moving) --m_live_orientations;
+  }
+  r.next = kNoRecord;
+  r.triangle = ~0u;
+  m_free_records.push_back(rec);
+  ++m_stats.records_died;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full) {
+  ++m_stats.row_rebuilds;
+  {
+    RowRecord& r = m_records[rec];
+    int crossing[2];
+    if (crossing_edges(row_sides(tn, r.row), crossing) == 2) {
+      // Keep a boundary whose edge still crosses; give the other the remaining crossing edge.
+      const int e0 = r.boundary[0].edge, e1 = r.boundary[1].edge;
+      auto crosses = [&](int e) { return e == crossing[0] || e == crossing[1]; };
+      auto remaining = [&](int e) { return e == crossing[0] ? crossing[1] : crossing[0]; };
+      if (!(crosses(e0) && crosses(e1) && e0 != e1)) {
+        if (crosses(e0)) {
+          r.boundary[1].edge = uint8_t(remaining(e0));
+        } else if (crosses(e1)) {
+          r.boundary[0].edge = uint8_t(remaining(e1));
+        } else {
+          r.boundary[0].edge = uint8_t(crossing[0]);
+          r.boundary[1].edge = uint8_t(crossing[1]);
+        }
+      }
+    }
+    for (SlotTracker& b : r.boundary) locate_boundary(b, tn.motion.edge(b.edge), r.row, tn.s);
+  }
+  const CoverageRule rule(tn.motion, tn.s);
+  const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
+  set_coverage(rec, lo, hi);
+  schedule_boundary(rec, 0, tn);
+  schedule_boundary(rec, 1, tn);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
+  RowRecord& r = m_records[rec];
+  const CoverageRule rule(tn.motion, tn.s);
+  const bool covered = rule.covers(m_scene.column_x(column), m_scene.row_y(r.row));
+  if (covered == r.covers(column)) return;
+  int lo = r.lo, hi = r.hi;
+  if (covered) {
+    if (r.empty())
+      lo = hi = column;
+    else if (column == r.lo - 1)
+      lo = column;
+    else if (column == r.hi + 1)
+      hi = column;
+    else
+      lo = hi = -2;
+  } else {
+    if (r.lo == r.hi)
+      lo = 0, hi = -1;
+    else if (column == r.lo)
+      ++lo;
+    else if (column == r.hi)
+      --hi;
+    else
+      lo = hi = -2;
+  }
+  if (lo == -2) {
+    // Not at an end of the interval: several columns changed at one instant (degenerate).
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, tn, true);
+    return;
+  }
+  set_coverage(rec, lo, hi);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
+  const TriangleNow tn = triangle_now(tri);
+  int crossing[2];
+  const int n = crossing_edges(row_sides(tn, row), crossing);
+  const uint32_t rec = find_record(tri, row);
+  if (n == 0) {
+    if (rec != kNoRecord) kill_record(rec);
+    return;
+  }
+  if (rec == kNoRecord) {
+    create_record(tri, row, crossing[0], crossing[1], tn);
+    return;
+  }
+  RowRecord& r = m_records[rec];
+  const int e0 = r.boundary[0].edge, e1 = r.boundary[1].edge;
+  const bool has0 = e0 == crossing[0] || e0 == crossing[1];
+  const bool has1 = e1 == crossing[0] || e1 == crossing[1];
+  if (has0 && has1 && e0 != e1) return;  // this vertex was not an end of a crossing edge here
+  ++m_stats.reties;
+  if (has0 == has1) {  // both edges changed at once (degenerate)
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, tn, true);
+    return;
+  }
+  // The boundary on the edge that stopped crossing moves on to the new edge through the vertex:
+  // the point is continuous, so its slot stays; only its certificates change.
+  const int bi = has0 ? 1 : 0;
+  const int other = r.boundary[size_t(1 - bi)].edge;
+  SlotTracker& b = r.boundary[size_t(bi)];
+  b.edge = uint8_t(crossing[0] == other ? crossing[1] : crossing[0]);
+  const EdgeNormal edge = tn.motion.edge(b.edge);
+  const double y = m_scene.row_y(row);
+  const auto [lo, hi] = m_columns.watched(b.slot);
+  const int sl = sign_plus(edge.along(m_scene.column_x(lo), y), tn.s);
+  const int sh = lo == hi ? sl : sign_plus(edge.along(m_scene.column_x(hi), y), tn.s);
+  if (!SlotCircle::consistent(b.slot, sl, sh)) {
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, tn, true);
+    return;
+  }
+  b.sign_lo = int8_t(sl);
+  b.sign_hi = int8_t(sh);
+  schedule_boundary(rec, bi, tn);
+  // At the instant of the re-tie the boundary is the vertex itself; a vertex exactly on a
+  // pixel-centre ray may change that pixel, so the two watched columns are re-evaluated.
+  update_pixel(rec, lo, tn);
+  if (hi != lo) update_pixel(rec, hi, tn);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns) {
+  const auto vs = m_scene.triangle_vertices(tri);
+  if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return;  // never covers anything
+  const uint32_t base = m_scene.vertex_begin(m_scene.mesh_of_triangle(tri));
+  const RowPattern* p[3] = {&patterns[vs[0] - base], &patterns[vs[1] - base], &patterns[vs[2] - base]};
+  int cuts[5] = {0, p[0]->slot, p[1]->slot, p[2]->slot, m_rows.count};
+  std::sort(cuts, cuts + 5);
+  std::optional<TriangleNow> tn;
+  for (int k = 0; k + 1 < 5; ++k) {
+    const int a = cuts[k], b = cuts[k + 1];
+    if (a >= b) continue;
+    const std::array<int, 3> sides = {p[0]->sign(a), p[1]->sign(a), p[2]->sign(a)};
+    int crossing[2];
+    if (crossing_edges(sides, crossing) != 2) continue;
+    if (!tn) tn = triangle_now(tri);
+    for (int q = a; q < b; ++q) create_record(tri, m_row_begin + q, crossing[0], crossing[1], *tn);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes.
+
+template <class Sort>
+void FrustumBand<Sort>::insert_mesh(uint32_t m) {
+  const GridMesh& mesh = m_scene.mesh(m);
+  MeshState& ms = m_meshes[m];
+  if (ms.present) return;
+  ms.present = true;
+  m_segments[m] = m_scene.segment_at(m, m_now);
+  const uint32_t vb = m_scene.vertex_begin(m), ve = m_scene.vertex_end(m);
+  std::vector<RowPattern> patterns(ve - vb);
+  for (uint32_t v = vb; v < ve; ++v) {
+    if (m_scene.triangles_of_vertex(v).empty()) continue;
+    double s = 0;
+    const PointMotion p = vertex_now(v, s);
+    const RowPattern pattern = locate_vertex(p, s);
+    patterns[v - vb] = pattern;
+    if (!mesh.is_static) {
+      SlotTracker& st = m_vertices[v];
+      st.slot = pattern.slot;
+      st.sign_lo = int8_t(pattern.sign_lo);
+      st.sign_hi = int8_t(pattern.sign_hi);
+      ++m_live_vertices;
+      schedule_vertex(v);
+    }
+  }
+  for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+    scan_triangle(tri, patterns);
+  schedule_flightplan(m);
+  double remove_at = kInf;
+  if (mesh.disappear < kInf && mesh.disappear > m_now) remove_at = mesh.disappear;
+  set_event(ms.remove, remove_at, EventKey{0, kGridRemove, m, 0}, m);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::remove_mesh(uint32_t m) {
+  const GridMesh& mesh = m_scene.mesh(m);
+  MeshState& ms = m_meshes[m];
+  if (!ms.present) return;
+  for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+    while (m_triangles[tri].head != kNoRecord) kill_record(m_triangles[tri].head);
+  if (!mesh.is_static)
+    for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v) {
+      SlotTracker& st = m_vertices[v];
+      if (m_scene.triangles_of_vertex(v).empty()) continue;
+      if (st.event != kNoEvent) m_queue.erase(st.event);
+      st = SlotTracker{};
+      --m_live_vertices;
+    }
+  for (EventHandle* h : {&ms.flightplan, &ms.remove})
+    if (*h != kNoEvent) {
+      m_queue.erase(*h);
+      *h = kNoEvent;
+    }
+  ms.present = false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Events.
+
+template <class Sort>
+void FrustumBand<Sort>::start(double t0) {
+  m_now = t0;
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
+    const GridMesh& mesh = m_scene.mesh(m);
+    m_segments[m] = m_scene.segment_at(m, t0);
+    if (mesh.present(t0)) {
+      insert_mesh(m);
+    } else if (mesh.appear > t0 && mesh.disappear > mesh.appear) {
+      set_event(m_meshes[m].insert, mesh.appear, EventKey{0, kGridInsert, m, 0}, m);
+    }
+  }
+  m_stats.certificates_live_max =
+      std::max(m_stats.certificates_live_max,
+               2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
+                   m_sort_stats.certificates_live);
+}
+
+template <class Sort>
+double FrustumBand<Sort>::next_event_time() const {
+  return m_queue.empty() ? kInf : m_queue.top_key().time;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::advance_to(double t) {
+  KINRAY_CHECK_MSG(t >= m_now, "the kinetic grid cannot go back in time");
+  while (!m_queue.empty() && m_queue.top_key().time <= t) {
+    const EventKey key = m_queue.top_key();
+    const uint64_t payload = m_queue.top_payload();
+    KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
+    m_queue.pop();
+    m_now = key.time;
+    m_front_changed = false;
+    handle(key, payload);
+    const uint64_t live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
+                          m_sort_stats.certificates_live;
+    m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, live);
+  }
+}
+
+template <class Sort>
+void FrustumBand<Sort>::handle(const EventKey& key, uint64_t payload) {
+  switch (key.kind) {
+    case kGridFlightplan:
+      handle_flightplans(uint32_t(payload));
+      return;  // not an event of the picture
+    case kGridRemove:
+      m_meshes[payload].remove = kNoEvent;
+      remove_mesh(uint32_t(payload));
+      if (m_config.counts_meshes) ++m_stats.events.remove;
+      break;
+    case kGridInsert:
+      m_meshes[payload].insert = kNoEvent;
+      insert_mesh(uint32_t(payload));
+      if (m_config.counts_meshes) ++m_stats.events.insert;
+      break;
+    case kGridOrientation:
+      handle_orientation(uint32_t(payload));
+      break;
+    case kGridVertexRow:
+      handle_vertex(uint32_t(payload));
+      break;
+    case kGridBoundary:
+      handle_boundary(payload);
+      break;
+    case kGridSwap:
+      handle_swap(key, payload);
+      return;
+    default:
+      KINRAY_CHECK_MSG(false, "unknown grid event kind");
+  }
+  ++(m_front_changed ? m_stats.events_external : m_stats.events_internal);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
+  // Every mesh reaching a key at this instant switches segment first, then their certificates
+  // are recomputed together (one camera key moves every mesh at once).
+  std::vector<uint32_t> meshes = {first_mesh};
+  while (!m_queue.empty() && m_queue.top_key().time == m_now &&
+         m_queue.top_key().kind == kGridFlightplan) {
+    meshes.push_back(uint32_t(m_queue.top_payload()));
+    m_queue.pop();
+  }
+  for (uint32_t m : meshes) {
+    m_meshes[m].flightplan = kNoEvent;
+    m_segments[m] = m_scene.segment_at(m, m_now);
+    schedule_flightplan(m);
+    if (m_config.counts_meshes) ++m_stats.events.flightplan;
+  }
+  for (uint32_t m : meshes) {
+    if (!m_meshes[m].present) continue;
+    const bool moving = !m_scene.mesh(m).is_static;
+    if (moving)
+      for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v)
+        if (!m_scene.triangles_of_vertex(v).empty()) schedule_vertex(v);
+    for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
+      if (m_triangles[tri].head == kNoRecord) continue;
+      const TriangleNow tn = triangle_now(tri);
+      schedule_orientation(tri, tn);
+      for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
+        schedule_boundary(rec, 0, tn);
+        schedule_boundary(rec, 1, tn);
+        const RowRecord& r = m_records[rec];
+        for (int c = r.lo; c <= r.hi; ++c) cell(c, r.row).order.replace_motion(tri, m_now);
+      }
+    }
+  }
+}
+
+template <class Sort>
+void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
+  const auto rec = uint32_t(payload >> 1);
+  const int bi = int(payload & 1);
+  RowRecord& r = m_records[rec];
+  SlotTracker& b = r.boundary[size_t(bi)];
+  b.event = kNoEvent;
+  const TriangleNow tn = triangle_now(r.triangle);
+  const EdgeNormal edge = tn.motion.edge(b.edge);
+  const double y = m_scene.row_y(r.row);
+  auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), tn.s); };
+  const auto [lo, hi] = m_columns.watched(b.slot);
+  const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
+  const bool changed_lo = gl != b.sign_lo, changed_hi = gh != b.sign_hi;
+  if (!changed_lo && !changed_hi) {
+    ++m_stats.spurious;
+    schedule_boundary(rec, bi, tn);
+    return;
+  }
+  ++m_stats.events.boundary;
+  if (lo == hi) {  // a one-column image: the only slot is off
+    b.sign_lo = b.sign_hi = int8_t(gl);
+    schedule_boundary(rec, bi, tn);
+    update_pixel(rec, lo, tn);
+    return;
+  }
+  if (changed_lo && changed_hi) {
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, tn, true);
+    return;
+  }
+  const int column = changed_lo ? lo : hi;
+  const int slot = m_columns.across(b.slot, column);
+  const auto [nlo, nhi] = m_columns.watched(slot);
+  auto known = [&](int c) { return c == lo ? gl : (c == hi ? gh : sign_at(c)); };
+  const int sl = known(nlo), sh = known(nhi);
+  if (!SlotCircle::consistent(slot, sl, sh)) {
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, tn, true);
+    return;
+  }
+  b.slot = slot;
+  b.sign_lo = int8_t(sl);
+  b.sign_hi = int8_t(sh);
+  schedule_boundary(rec, bi, tn);
+  update_pixel(rec, column, tn);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::handle_vertex(uint32_t v) {
+  SlotTracker& st = m_vertices[v];
+  st.event = kNoEvent;
+  double s = 0;
+  const PointMotion p = vertex_now(v, s);
+  auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
+  const auto [lo, hi] = m_rows.watched(st.slot);
+  const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
+  const bool changed_lo = gl != st.sign_lo, changed_hi = gh != st.sign_hi;
+  if (!changed_lo && !changed_hi) {
+    ++m_stats.spurious;
+    schedule_vertex(v);
+    return;
+  }
+  const RowPattern before{st.slot, st.sign_lo, st.sign_hi};
+  RowPattern after;
+  bool simple = false;
+  if (lo == hi) {
+    after = RowPattern{0, gl, gl};
+    simple = true;
+  } else if (changed_lo != changed_hi) {
+    const int row = changed_lo ? lo : hi;
+    const int slot = m_rows.across(st.slot, row);
+    const auto [nlo, nhi] = m_rows.watched(slot);
+    auto known = [&](int q) { return q == lo ? gl : (q == hi ? gh : sign_at(q)); };
+    after = RowPattern{slot, known(nlo), known(nhi)};
+    simple = SlotCircle::consistent(slot, after.sign_lo, after.sign_hi);
+  }
+  if (!simple) after = locate_vertex(p, s);  // several row planes at one instant (degenerate)
+  st.slot = after.slot;
+  st.sign_lo = int8_t(after.sign_lo);
+  st.sign_hi = int8_t(after.sign_hi);
+  schedule_vertex(v);
+  for (int q = 0; q < m_rows.count; ++q) {
+    if (simple && q != lo && q != hi) continue;
+    if (before.sign(q) == after.sign(q)) continue;
+    ++m_stats.events.vertex_row;
+    for (uint32_t tri : m_scene.triangles_of_vertex(v)) update_triangle_row(tri, m_row_begin + q);
+  }
+}
+
+template <class Sort>
+void FrustumBand<Sort>::handle_orientation(uint32_t tri) {
+  TriangleState& ts = m_triangles[tri];
+  ts.event = kNoEvent;
+  const TriangleNow tn = triangle_now(tri);
+  const int o = sign_after(tn.motion.orientation(), tn.s);
+  if (o == ts.orientation) {
+    ++m_stats.spurious;
+    schedule_orientation(tri, tn);
+    return;
+  }
+  ts.orientation = int8_t(o);
+  for (uint32_t rec = ts.head; rec != kNoRecord; rec = m_records[rec].next) {
+    ++m_stats.events.orientation;
+    rebuild_record(rec, tn, false);
+  }
+  schedule_orientation(tri, tn);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
+  const int row = int(key.a / uint32_t(m_width)), column = int(key.a % uint32_t(m_width));
+  PixelCell& p = cell(column, row);
+  const std::optional<uint32_t> before = p.order.front();
+  const uint64_t events_before = m_sort_stats.events();
+  p.order.handle_event(payload, m_now);
+  if (m_sort_stats.events() == events_before) {
+    ++m_stats.renewals;
+    return;
+  }
+  ++m_stats.events.swap;
+  ++(p.order.front() != before ? m_stats.events_external : m_stats.events_internal);
+  if (m_config.audit) p.order.audit(m_now);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Audit and statistics.
+
+template <class Sort>
+std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const {
+  std::vector<std::string> problems;
+  auto report = [&](const std::string& what) {
+    if (problems.size() < limit) problems.push_back(what);
+  };
+  auto where = [&](uint32_t tri, int row) {
+    std::ostringstream out;
+    out << "band rows [" << m_row_begin << ", " << m_row_end << ") t=" << t << " triangle " << tri
+        << " row " << row << ": ";
+    return out.str();
+  };
+  if (!m_queue.empty() && m_queue.top_key().time <= t)
+    report("an event at or before the audit time is still pending");
+
+  std::vector<uint32_t> expected(m_pixels.size(), 0);
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
+    const GridMesh& mesh = m_scene.mesh(m);
+    if (m_meshes[m].present != mesh.present(t)) report("mesh presence differs from its interval");
+    if (!m_meshes[m].present) continue;
+    const MeshSegment seg = m_scene.segment_at(m, t);
+    if (seg.index != m_segments[m].index) report("mesh on the wrong flightplan segment");
+    const uint32_t vb = m_scene.vertex_begin(m), ve = m_scene.vertex_end(m);
+    std::vector<RowPattern> patterns(ve - vb);
+    for (uint32_t v = vb; v < ve; ++v) {
+      if (m_scene.triangles_of_vertex(v).empty()) continue;
+      const PointMotion p = m_scene.vertex_motion(m, v - vb, m_segments[m]);
+      const double s = t - m_segments[m].origin;
+      patterns[v - vb] = locate_vertex(p, s);
+      if (mesh.is_static) continue;
+      const SlotTracker& st = m_vertices[v];
+      const auto [lo, hi] = m_rows.watched(st.slot);
+      const int gl = sign_plus(row_side(p, m_scene.row_y(m_row_begin + lo)), s);
+      const int gh = sign_plus(row_side(p, m_scene.row_y(m_row_begin + hi)), s);
+      if (gl != st.sign_lo || gh != st.sign_hi || !SlotCircle::consistent(st.slot, gl, gh))
+        report("vertex " + std::to_string(v) + " has a wrong row slot");
+    }
+    for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
+      const MeshSegment& ts_seg = m_segments[m];
+      const TriangleMotion motion = m_scene.triangle_motion(tri, ts_seg);
+      const double s = t - ts_seg.origin;
+      const CoverageRule rule(motion, s);
+      // The rows the triangle meets, from the vertex patterns.
+      std::vector<int> rows;
+      const auto vs = m_scene.triangle_vertices(tri);
+      if (!(vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]))
+        for (int q = 0; q < m_rows.count; ++q) {
+          const int a = patterns[vs[0] - vb].sign(q), b = patterns[vs[1] - vb].sign(q),
+                    c = patterns[vs[2] - vb].sign(q);
+          if (!(a == b && b == c)) rows.push_back(m_row_begin + q);
+        }
+      std::vector<int> held;
+      for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
+        const RowRecord& r = m_records[rec];
+        held.push_back(r.row);
+        if (r.triangle != tri) report(where(tri, r.row) + "record of another triangle in the list");
+        const double y = m_scene.row_y(r.row);
+        std::array<int, 3> sides;
+        for (int k = 0; k < 3; ++k) sides[size_t(k)] = sign_plus(row_side(motion.v[size_t(k)], y), s);
+        int crossing[2];
+        if (crossing_edges(sides, crossing) == 2) {
+          const bool ok = (r.boundary[0].edge == crossing[0] && r.boundary[1].edge == crossing[1]) ||
+                          (r.boundary[0].edge == crossing[1] && r.boundary[1].edge == crossing[0]);
+          if (!ok) report(where(tri, r.row) + "boundaries tied to the wrong edges");
+        }
+        for (const SlotTracker& b : r.boundary) {
+          const EdgeNormal edge = motion.edge(b.edge);
+          const auto [lo, hi] = m_columns.watched(b.slot);
+          const int gl = sign_plus(edge.along(m_scene.column_x(lo), y), s);
+          const int gh = sign_plus(edge.along(m_scene.column_x(hi), y), s);
+          if (gl != b.sign_lo || gh != b.sign_hi || !SlotCircle::consistent(b.slot, gl, gh))
+            report(where(tri, r.row) + "boundary on edge " + std::to_string(b.edge) + " in a wrong slot " +
+                   std::to_string(b.slot));
+        }
+        for (int c = 0; c < m_width; ++c) {
+          const bool truth = rule.covers(m_scene.column_x(c), y);
+          if (truth != r.covers(c))
+            report(where(tri, r.row) + "column " + std::to_string(c) + (truth ? " covered but not held" : " held but not covered"));
+          if (r.covers(c)) {
+            ++expected[size_t(r.row - m_row_begin) * size_t(m_width) + size_t(c)];
+            if (!cell(c, r.row).order.contains(tri))
+              report(where(tri, r.row) + "column " + std::to_string(c) + " missing from the pixel order");
+          }
+        }
+      }
+      std::sort(held.begin(), held.end());
+      if (held != rows) report(where(tri, -1) + "records do not match the rows the triangle meets");
+      if (!held.empty() && m_triangles[tri].orientation != rule.orientation_sign())
+        report(where(tri, -1) + "wrong orientation sign");
+    }
+  }
+  for (int j = m_row_begin; j < m_row_end; ++j)
+    for (int i = 0; i < m_width; ++i) {
+      const PixelCell& p = cell(i, j);
+      if (p.order.size() != expected[size_t(j - m_row_begin) * size_t(m_width) + size_t(i)])
+        report("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
+               ") holds triangles that do not cover it");
+      p.order.audit(t);
+    }
+  return problems;
+}
+
+template <class Sort>
+GridStats FrustumBand<Sort>::stats() const {
+  GridStats s = m_stats;
+  s.certificates_computed += m_sort_stats.work;
+  s.certificates_live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
+                        m_sort_stats.certificates_live;
+  s.records = m_records.size() - m_free_records.size();
+  size_t pixel_bytes = 0;
+  uint64_t entries = 0;
+  for (const PixelCell& p : m_pixels) {
+    pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
+    entries += p.order.size();
+  }
+  s.pixel_entries = entries;
+  s.pixel_memory_bytes = pixel_bytes;
+  s.memory_bytes = pixel_bytes + m_queue.memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
+                   m_free_records.capacity() * sizeof(uint32_t) +
+                   m_triangles.capacity() * sizeof(TriangleState) +
+                   m_vertices.capacity() * sizeof(SlotTracker) + m_meshes.capacity() * sizeof(MeshState) +
+                   m_segments.capacity() * sizeof(MeshSegment);
+  return s;
+}
+
+template class FrustumBand<KineticSortedList<PixelDepthKeys>>;
+template class FrustumBand<KineticTournament<PixelDepthKeys>>;
+template class FrustumBand<KineticHeap<PixelDepthKeys>>;
+
+}  // namespace kinray

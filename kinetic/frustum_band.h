@@ -1,0 +1,183 @@
+#pragma once
+// One band of rows of the kinetic grid of frusta, simulated on its own event queue (DESIGN.md,
+// "Coverage: event-based polygon tracking", "Depth order", "Frame loop"). A band owns
+//   - the (triangle, row) records of its rows, each with two boundaries on slots of the column
+//     circle (boundary events) and the interval of columns it covers,
+//   - a row slot per vertex among its own row planes (vertex-row events; a vertex outside the
+//     band sits in the band's off slot),
+//   - one orientation certificate per triangle that has records in the band,
+//   - one kinetic depth order per pixel of its rows (swap events),
+//   - the flightplan segment each mesh is on, switched by flightplan update events, and the
+//     insert / delete events of meshes that appear and disappear.
+// Rows depend on nothing outside their band, so bands run in parallel and the frames do not
+// depend on how the rows are split. See docs/kinetic_grid.md.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kinetic/coverage_rule.h"
+#include "kinetic/event_queue.h"
+#include "kinetic/grid_scene.h"
+#include "kinetic/grid_stats.h"
+#include "kinetic/kinetic_sort.h"
+#include "kinetic/pixel_depth_order.h"
+#include "kinetic/row_record.h"
+
+namespace kinray {
+
+/// EventKey::kind of the grid's events; at equal times they are processed in this order, so a
+/// flightplan update (which recomputes certificates) precedes the failures computed on the old
+/// segment that end there.
+enum GridEventKind : uint32_t {
+  kGridFlightplan = 0,
+  kGridRemove = 1,
+  kGridInsert = 2,
+  kGridOrientation = 3,
+  kGridVertexRow = 4,
+  kGridBoundary = 5,
+  kGridSwap = 6,
+};
+
+/// Sort is KineticSortedList, KineticTournament or KineticHeap over PixelDepthKeys.
+template <class Sort>
+class FrustumBand {
+ public:
+  struct Config {
+    bool audit = false;          ///< audit each touched pixel order after every change
+    bool counts_meshes = false;  ///< counts the per-mesh events (exactly one band does)
+  };
+
+  /// Rows [row_begin, row_end) of `scene`, which must outlive the band. Nothing is built yet.
+  FrustumBand(const GridScene& scene, int row_begin, int row_end, const Config& config);
+  FrustumBand(const FrustumBand&) = delete;
+  FrustumBand& operator=(const FrustumBand&) = delete;
+
+  /// Initialisation at t0 by scan conversion: every mesh present at t0 is inserted, later
+  /// appearances and disappearances and flightplan updates are scheduled.
+  void start(double t0);
+  /// Processes every event with time <= t in (time, kind, ids) order.
+  void advance_to(double t);
+  /// Time of the last event processed (or the start).
+  [[nodiscard]] double event_time() const { return m_now; }
+  /// Time of the next pending event (+infinity when none).
+  [[nodiscard]] double next_event_time() const;
+
+  /// The front triangle (global id) of pixel (column, row) of this band.
+  [[nodiscard]] std::optional<uint32_t> front(int column, int row) const {
+    return cell(column, row).order.front();
+  }
+  /// The number of triangles in pixel (column, row)'s depth order.
+  [[nodiscard]] size_t depth_complexity(int column, int row) const {
+    return cell(column, row).order.size();
+  }
+  /// Brute-force check of every invariant just after t (t >= the last event, before the next):
+  /// records and their ties, slots and covered intervals against the sign rule, the rows each
+  /// triangle meets, vertex slots, orientation signs, each pixel's set of triangles, and every
+  /// pixel order's own audit. Returns the problems found (at most `limit`).
+  [[nodiscard]] std::vector<std::string> audit(double t, size_t limit = 20) const;
+  [[nodiscard]] GridStats stats() const;
+
+ private:
+  struct PixelCell {
+    PixelCell(const DepthSource* source, int column, int row, EventQueue& queue, uint32_t owner,
+              const KineticSortConfig& config)
+        : keys(source, column, row), order(keys, queue, owner, config) {}
+    PixelDepthKeys keys;
+    Sort order;
+  };
+  struct TriangleState {
+    uint32_t head = kNoRecord;  ///< first record of the triangle in this band
+    int8_t orientation = 0;     ///< sign of O just after the last update
+    EventHandle event = kNoEvent;
+  };
+  struct MeshState {
+    bool present = false;
+    EventHandle flightplan = kNoEvent, insert = kNoEvent, remove = kNoEvent;
+  };
+  /// A triangle's motion on its mesh's current segment and the local time of now.
+  struct TriangleNow {
+    TriangleMotion motion;
+    MeshSegment segment;
+    double s = 0;
+    bool moving = true;
+  };
+  /// A vertex's slot among the band's row planes, as a step pattern of row sides.
+  struct RowPattern {
+    int slot = 0;
+    int sign_lo = 1, sign_hi = 1;
+    [[nodiscard]] int sign(int q) const { return q < slot ? sign_lo : sign_hi; }
+  };
+
+  // Geometry just after now.
+  [[nodiscard]] TriangleNow triangle_now(uint32_t tri) const;
+  [[nodiscard]] PointMotion vertex_now(uint32_t v, double& s) const;
+  [[nodiscard]] RowPattern locate_vertex(const PointMotion& p, double s) const;
+  void locate_boundary(SlotTracker& b, const EdgeNormal& edge, int row, double s) const;
+  [[nodiscard]] std::array<int, 3> row_sides(const TriangleNow& tn, int row) const;
+  /// Scans a record's covered interval: from its boundary slots (`full` = every column).
+  [[nodiscard]] std::pair<int, int> scan_coverage(const RowRecord& r, const CoverageRule& rule,
+                                                  bool full);
+
+  // Scheduling.
+  [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;
+  void set_event(EventHandle& handle, double time, const EventKey& key, uint64_t payload);
+  void schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn);
+  void schedule_vertex(uint32_t v);
+  void schedule_orientation(uint32_t tri, const TriangleNow& tn);
+  void schedule_flightplan(uint32_t m);
+
+  // Records.
+  uint32_t create_record(uint32_t tri, int row, int edge_a, int edge_b, const TriangleNow& tn);
+  void kill_record(uint32_t rec);
+  void rebuild_record(uint32_t rec, const TriangleNow& tn, bool full);
+  void update_pixel(uint32_t rec, int column, const TriangleNow& tn);
+  void set_coverage(uint32_t rec, int lo, int hi);
+  void update_triangle_row(uint32_t tri, int row);
+  [[nodiscard]] uint32_t find_record(uint32_t tri, int row) const;
+  void scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns);
+
+  // Pixels.
+  [[nodiscard]] PixelCell& cell(int column, int row) {
+    return m_pixels[size_t(row - m_row_begin) * size_t(m_width) + size_t(column)];
+  }
+  [[nodiscard]] const PixelCell& cell(int column, int row) const {
+    return m_pixels[size_t(row - m_row_begin) * size_t(m_width) + size_t(column)];
+  }
+  void pixel_insert(uint32_t tri, int column, int row);
+  void pixel_erase(uint32_t tri, int column, int row);
+
+  // Meshes.
+  void insert_mesh(uint32_t m);
+  void remove_mesh(uint32_t m);
+
+  // Events.
+  void handle(const EventKey& key, uint64_t payload);
+  void handle_flightplans(uint32_t first_mesh);
+  void handle_boundary(uint64_t payload);
+  void handle_vertex(uint32_t v);
+  void handle_orientation(uint32_t tri);
+  void handle_swap(const EventKey& key, uint64_t payload);
+
+  const GridScene& m_scene;
+  Config m_config;
+  int m_row_begin, m_row_end, m_width;
+  SlotCircle m_columns, m_rows;
+  EventQueue m_queue;
+  double m_now = 0;
+  std::vector<MeshSegment> m_segments;
+  DepthSource m_depth_source;
+  std::vector<MeshState> m_meshes;
+  std::vector<TriangleState> m_triangles;
+  std::vector<SlotTracker> m_vertices;  ///< by global vertex id; used for moving meshes
+  std::vector<RowRecord> m_records;
+  std::vector<uint32_t> m_free_records;
+  KineticSortStats m_sort_stats;
+  std::vector<PixelCell> m_pixels;  ///< reserved once: the orders point at their keys
+
+  GridStats m_stats;
+  bool m_front_changed = false;  ///< set by pixel changes during one event
+  uint64_t m_live_boundaries = 0, m_live_vertices = 0, m_live_orientations = 0;
+};
+
+}  // namespace kinray

@@ -1,0 +1,250 @@
+#include "kinetic/frustum_grid.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "kinetic/frustum_band.h"
+#include "kinetic/kinetic_heap.h"
+#include "kinetic/kinetic_sorted_list.h"
+#include "kinetic/kinetic_tournament.h"
+#include "kinetic/parallel.h"
+
+namespace kinray {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+DepthSortKind parse_depth_sort(const std::string& name) {
+  if (name == "list") return DepthSortKind::kList;
+  if (name == "tournament") return DepthSortKind::kTournament;
+  if (name == "heap") return DepthSortKind::kHeap;
+  throw std::invalid_argument("unknown depth sort '" + name + "' (list, tournament or heap)");
+}
+
+const char* depth_sort_name(DepthSortKind kind) {
+  switch (kind) {
+    case DepthSortKind::kList: return "list";
+    case DepthSortKind::kTournament: return "tournament";
+    case DepthSortKind::kHeap: return "heap";
+  }
+  return "?";
+}
+
+// The virtual calls are per advance or per read-out, never per event.
+class FrustumGrid::Bands {
+ public:
+  virtual ~Bands() = default;
+  virtual void start(double t0, int threads) = 0;
+  virtual void advance_to(double t, int threads) = 0;
+  /// Front triangle (global id or kNoGridHit) of every pixel of rows [row_begin, row_end).
+  virtual void fronts(int row_begin, int row_end, std::span<uint32_t> out) const = 0;
+  virtual size_t depth_complexity(int i, int j) const = 0;
+  virtual uint32_t front(int i, int j) const = 0;
+  virtual std::vector<std::string> audit(double t, int threads) const = 0;
+  virtual GridStats stats() const = 0;
+  virtual int count() const = 0;
+};
+
+namespace {
+
+template <class Sort>
+class BandsOf final : public FrustumGrid::Bands {
+ public:
+  BandsOf(const GridScene& scene, int bands, bool audit) : m_width(scene.width()) {
+    const int h = scene.height();
+    for (int b = 0; b < bands; ++b) {
+      const int r0 = int(int64_t(h) * b / bands), r1 = int(int64_t(h) * (b + 1) / bands);
+      typename FrustumBand<Sort>::Config config;
+      config.audit = audit;
+      config.counts_meshes = b == 0;
+      m_bands.push_back(std::make_unique<FrustumBand<Sort>>(scene, r0, r1, config));
+      m_row_begin.push_back(r0);
+    }
+    m_row_begin.push_back(h);
+  }
+  void start(double t0, int threads) override {
+    parallel_for(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
+  }
+  void advance_to(double t, int threads) override {
+    parallel_for(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
+  }
+  void fronts(int row_begin, int row_end, std::span<uint32_t> out) const override {
+    for (int j = row_begin; j < row_end; ++j) {
+      const FrustumBand<Sort>& band = *m_bands[band_of(j)];
+      uint32_t* row = out.data() + size_t(j - row_begin) * size_t(m_width);
+      for (int i = 0; i < m_width; ++i) row[i] = band.front(i, j).value_or(kNoGridHit);
+    }
+  }
+  uint32_t front(int i, int j) const override {
+    return m_bands[band_of(j)]->front(i, j).value_or(kNoGridHit);
+  }
+  size_t depth_complexity(int i, int j) const override {
+    return m_bands[band_of(j)]->depth_complexity(i, j);
+  }
+  std::vector<std::string> audit(double t, int threads) const override {
+    std::vector<std::vector<std::string>> found(m_bands.size());
+    parallel_for(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
+    std::vector<std::string> all;
+    for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
+    return all;
+  }
+  GridStats stats() const override {
+    GridStats s;
+    for (const auto& band : m_bands) s += band->stats();
+    return s;
+  }
+  int count() const override { return int(m_bands.size()); }
+
+ private:
+  size_t band_of(int row) const {
+    return size_t(std::upper_bound(m_row_begin.begin(), m_row_begin.end(), row) - m_row_begin.begin()) - 1;
+  }
+  int m_width;
+  std::vector<std::unique_ptr<FrustumBand<Sort>>> m_bands;
+  std::vector<int> m_row_begin;
+};
+
+}  // namespace
+
+FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridConfig& config)
+    : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input)), m_config(config),
+      m_now(start_time) {
+  m_threads = resolve_threads(config.threads);
+  const int bands = std::clamp(config.bands > 0 ? config.bands : m_threads, 1, m_scene.height());
+  switch (config.sort) {
+    case DepthSortKind::kList:
+      m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit);
+      break;
+    case DepthSortKind::kTournament:
+      m_bands = std::make_unique<BandsOf<KineticTournament<PixelDepthKeys>>>(m_scene, bands, config.audit);
+      break;
+    case DepthSortKind::kHeap:
+      m_bands = std::make_unique<BandsOf<KineticHeap<PixelDepthKeys>>>(m_scene, bands, config.audit);
+      break;
+  }
+  m_bands->start(start_time, m_threads);
+  m_timings.init = seconds_since(m_created);
+  m_memory_peak = stats().memory_bytes;
+  if (config.audit) {
+    const auto problems = audit();
+    if (!problems.empty()) throw std::logic_error("kinetic grid audit at start: " + problems.front());
+  }
+}
+
+FrustumGrid::~FrustumGrid() = default;
+
+int FrustumGrid::band_count() const { return m_bands->count(); }
+
+void FrustumGrid::advance_to(double t) {
+  if (!(t >= m_now)) throw std::invalid_argument("kinetic grid: frame times must not decrease");
+  const auto started = std::chrono::steady_clock::now();
+  m_bands->advance_to(t, m_threads);
+  m_now = t;
+  m_timings.events += seconds_since(started);
+  m_memory_peak = std::max(m_memory_peak, stats().memory_bytes);
+  if (m_config.audit) {
+    const auto problems = audit();
+    if (!problems.empty()) {
+      std::string text = "kinetic grid audit failed (" + std::to_string(problems.size()) + "):";
+      for (size_t k = 0; k < std::min<size_t>(problems.size(), 5); ++k) text += "\n  " + problems[k];
+      throw std::logic_error(text);
+    }
+  }
+}
+
+std::optional<GridHit> FrustumGrid::front(int i, int j) const {
+  const uint32_t tri = m_bands->front(i, j);
+  if (tri == kNoGridHit) return std::nullopt;
+  const uint32_t m = m_scene.mesh_of_triangle(tri);
+  return GridHit{m, tri - m_scene.triangle_begin(m)};
+}
+
+size_t FrustumGrid::depth_complexity(int i, int j) const { return m_bands->depth_complexity(i, j); }
+
+void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
+                           std::span<float> depth) const {
+  const auto started = std::chrono::steady_clock::now();
+  const int w = m_scene.width(), h = m_scene.height();
+  const size_t n = size_t(w) * size_t(h);
+  if (object.size() != n || prim.size() != n || depth.size() != n)
+    throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
+  // Where each mesh is on its key grid at now, once per frame (GridMesh::position's arithmetic).
+  struct Blend {
+    size_t k0 = 0, k1 = 0;
+    double alpha = 0;
+    bool still = true;
+  };
+  std::vector<Blend> blends(m_scene.mesh_count());
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
+    const GridMesh& mesh = m_scene.mesh(m);
+    const size_t keys = mesh.key_times.size();
+    Blend& b = blends[m];
+    if (keys < 2 || m_now <= mesh.key_times[0]) continue;
+    b.still = false;
+    if (m_now >= mesh.key_times[keys - 1]) {
+      b.k0 = keys - 2;
+      b.alpha = 1.0;
+    } else {
+      b.k0 = size_t(std::upper_bound(mesh.key_times.begin(), mesh.key_times.end(), m_now) -
+                    mesh.key_times.begin()) - 1;
+      b.alpha = (m_now - mesh.key_times[b.k0]) / (mesh.key_times[b.k0 + 1] - mesh.key_times[b.k0]);
+    }
+    b.k1 = b.k0 + 1;
+  }
+  parallel_chunks(size_t(h), m_threads, [&](size_t row_begin, size_t row_end) {
+    m_bands->fronts(int(row_begin), int(row_end),
+                    object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
+    for (size_t j = row_begin; j < row_end; ++j)
+      for (int i = 0; i < w; ++i) {
+        const size_t p = j * size_t(w) + size_t(i);
+        const uint32_t tri = object[p];
+        if (tri == kNoGridHit) {
+          prim[p] = kNoGridHit;
+          depth[p] = std::numeric_limits<float>::infinity();
+          continue;
+        }
+        const uint32_t m = m_scene.mesh_of_triangle(tri);
+        const GridMesh& mesh = m_scene.mesh(m);
+        const uint32_t local = tri - m_scene.triangle_begin(m);
+        const auto& vs = mesh.triangles[local];
+        const Blend& b = blends[m];
+        Eigen::Vector3d q[3];
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d& a = mesh.key_position(b.k0, vs[size_t(k)]);
+          if (b.still) {
+            q[k] = a;
+          } else {
+            const Eigen::Vector3d& c = mesh.key_position(b.k1, vs[size_t(k)]);
+            q[k] = a + b.alpha * (c - a);
+          }
+        }
+        const double z = plane_depth(q[0], q[1], q[2], m_scene.column_x(i), m_scene.row_y(int(j)));
+        object[p] = mesh.id;
+        prim[p] = local;
+        // The ray pierces the triangle, so z > 0 but for rounding at an edge-on plane.
+        depth[p] = std::isfinite(z) && z > 0 ? float(z) : 0.0f;
+      }
+  });
+  m_timings.readout += seconds_since(started);
+}
+
+std::vector<std::string> FrustumGrid::audit() const { return m_bands->audit(m_now, m_threads); }
+
+GridStats FrustumGrid::stats() const {
+  GridStats s = m_bands->stats();
+  uint64_t present = 0;
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
+    if (m_scene.mesh(m).present(m_now)) present += m_scene.triangle_end(m) - m_scene.triangle_begin(m);
+  s.triangles_present = present;
+  return s;
+}
+
+}  // namespace kinray

@@ -1,0 +1,69 @@
+#pragma once
+// What the kinetic grid of frusta consumes: the pixel-centre rays of the image and the triangle
+// meshes as camera-space flightplans. kinetic/ knows nothing of scenes/, so this mirrors
+// ImageGeometry and CameraSpaceObject (scenes/camera_space.h) formula for formula: the grid, the
+// Embree and the OSMesa backends then see bit-identical rays and vertex positions.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace kinray {
+
+/// Pixel-centre ray directions of a W x H image: d_ij = (x(i), y(j), 1), row 0 at the top.
+struct PixelRays {
+  int width = 0, height = 0;
+  [[nodiscard]] double x(int i) const {
+    return ((2.0 * i + 1.0) / width - 1.0) * (double(width) / double(height));
+  }
+  [[nodiscard]] double y(int j) const { return 1.0 - (2.0 * j + 1.0) / height; }
+  [[nodiscard]] Eigen::Vector3d direction(int i, int j) const { return {x(i), y(j), 1.0}; }
+  [[nodiscard]] size_t pixel_count() const { return size_t(width) * size_t(height); }
+};
+
+/// One triangle mesh as camera-space flightplans: every vertex moves linearly between the shared
+/// key times and stands still before the first and after the last. The spans point into the
+/// caller's data, which must outlive the grid.
+struct GridMesh {
+  uint32_t id = 0;                               ///< reported by the read-out (the object index)
+  std::span<const double> key_times;             ///< strictly increasing, at least one
+  std::span<const Eigen::Vector3d> positions;    ///< [key * vertex_count + v]
+  size_t vertex_count = 0;
+  std::span<const std::array<uint32_t, 3>> triangles;
+  double appear = -std::numeric_limits<double>::infinity();  ///< present on [appear, disappear)
+  double disappear = std::numeric_limits<double>::infinity();
+  bool is_static = false;  ///< positions equal at every key: emits no coverage events
+
+  [[nodiscard]] size_t key_count() const { return key_times.size(); }
+  [[nodiscard]] bool present(double t) const { return t >= appear && t < disappear; }
+  [[nodiscard]] const Eigen::Vector3d& key_position(size_t key, uint32_t v) const {
+    return positions[key * vertex_count + v];
+  }
+  /// Position of vertex v at t: exactly CameraSpaceObject::position's arithmetic.
+  [[nodiscard]] Eigen::Vector3d position(uint32_t v, double t) const {
+    const size_t n = key_times.size();
+    if (n < 2 || t <= key_times[0]) return positions[v];
+    size_t k = n - 2;
+    double alpha = 1.0;
+    if (t < key_times[n - 1]) {
+      k = size_t(std::upper_bound(key_times.begin(), key_times.end(), t) - key_times.begin()) - 1;
+      alpha = (t - key_times[k]) / (key_times[k + 1] - key_times[k]);
+    }
+    const Eigen::Vector3d& a = positions[k * vertex_count + v];
+    const Eigen::Vector3d& b = positions[(k + 1) * vertex_count + v];
+    return a + alpha * (b - a);
+  }
+};
+
+/// The grid's whole input.
+struct GridInput {
+  PixelRays rays;
+  std::vector<GridMesh> meshes;
+};
+
+}  // namespace kinray

@@ -1,0 +1,70 @@
+#pragma once
+// The grid's input, indexed for the simulation: global triangle and vertex ids over all meshes,
+// the vertex -> triangle adjacency, the pixel-centre coordinates, and the flightplan segments.
+// Read-only once built, so every band reads it concurrently.
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "kinetic/grid_input.h"
+#include "kinetic/triangle_motion.h"
+
+namespace kinray {
+
+/// The flightplan segment a mesh is on. With keys K_0 < ... < K_{n-1}, segment `index` is the
+/// number of keys <= t: 0 stands still at key 0 until K_0, 1..n-1 moves from key index-1 to key
+/// index over [K_{index-1}, K_index), n stands still at the last key. Polynomials use the local
+/// time s = t - origin.
+struct MeshSegment {
+  uint32_t index = 0;
+  double origin = 0;
+  double end = std::numeric_limits<double>::infinity();  ///< the next flightplan update
+};
+
+class GridScene {
+ public:
+  explicit GridScene(GridInput input);
+
+  [[nodiscard]] const PixelRays& rays() const { return m_input.rays; }
+  [[nodiscard]] int width() const { return m_input.rays.width; }
+  [[nodiscard]] int height() const { return m_input.rays.height; }
+  [[nodiscard]] double column_x(int i) const { return m_x[size_t(i)]; }
+  [[nodiscard]] double row_y(int j) const { return m_y[size_t(j)]; }
+
+  [[nodiscard]] uint32_t mesh_count() const { return uint32_t(m_input.meshes.size()); }
+  [[nodiscard]] const GridMesh& mesh(uint32_t m) const { return m_input.meshes[m]; }
+  [[nodiscard]] uint32_t triangle_count() const { return m_triangle_begin.back(); }
+  [[nodiscard]] uint32_t vertex_count() const { return m_vertex_begin.back(); }
+  [[nodiscard]] uint32_t triangle_begin(uint32_t m) const { return m_triangle_begin[m]; }
+  [[nodiscard]] uint32_t triangle_end(uint32_t m) const { return m_triangle_begin[m + 1]; }
+  [[nodiscard]] uint32_t vertex_begin(uint32_t m) const { return m_vertex_begin[m]; }
+  [[nodiscard]] uint32_t vertex_end(uint32_t m) const { return m_vertex_begin[m + 1]; }
+  [[nodiscard]] uint32_t mesh_of_triangle(uint32_t tri) const { return m_triangle_mesh[tri]; }
+  [[nodiscard]] uint32_t mesh_of_vertex(uint32_t v) const { return m_vertex_mesh[v]; }
+  /// Global vertex ids of a global triangle.
+  [[nodiscard]] std::array<uint32_t, 3> triangle_vertices(uint32_t tri) const;
+  /// Global ids of the triangles that use global vertex v.
+  [[nodiscard]] std::span<const uint32_t> triangles_of_vertex(uint32_t v) const {
+    return {m_adjacency.data() + m_adjacency_begin[v],
+            m_adjacency.data() + m_adjacency_begin[v + 1]};
+  }
+
+  /// The segment of mesh m active just after t (a key time starts the new segment).
+  [[nodiscard]] MeshSegment segment_at(uint32_t m, double t) const;
+  /// The segment with this index.
+  [[nodiscard]] MeshSegment segment(uint32_t m, uint32_t index) const;
+  /// Vertex `local` of mesh m on segment `seg`, in the segment's local time.
+  [[nodiscard]] PointMotion vertex_motion(uint32_t m, uint32_t local, const MeshSegment& seg) const;
+  [[nodiscard]] TriangleMotion triangle_motion(uint32_t tri, const MeshSegment& seg) const;
+
+ private:
+  GridInput m_input;
+  std::vector<double> m_x, m_y;
+  std::vector<uint32_t> m_triangle_begin, m_vertex_begin;  ///< prefix sums over meshes
+  std::vector<uint32_t> m_triangle_mesh, m_vertex_mesh;
+  std::vector<uint32_t> m_adjacency_begin, m_adjacency;
+};
+
+}  // namespace kinray

@@ -1,0 +1,78 @@
+#pragma once
+// Per (triangle, row) bookkeeping of the kinetic grid (DESIGN.md, "Coverage: event-based polygon
+// tracking"). The centre rays of row j span the plane Pi_j through the eye; a triangle meeting
+// Pi_j does so in a segment whose two end points (the boundaries) lie on two of its edges. Each
+// boundary's column position lives on the projective line of the row and is tracked by a slot on
+// a circle of columns; the record also keeps the interval of columns the triangle covers.
+//
+// The same slot circle tracks a vertex among the row planes of a band.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <utility>
+
+#include "kinetic/event_queue.h"
+
+namespace kinray {
+
+/// `count` positions 0..count-1 (the columns of a row, or the rows of a band) on a projective
+/// circle joined through infinity. Slot k in 1..count-1 lies between positions k-1 and k; slot 0,
+/// "off", is left of position 0 or right of position count-1 (the two are one arc through
+/// infinity, so a point that wraps around is still caught). A point in a slot watches the two
+/// positions that bracket it (off: 0 and count-1) through the signs of a function that is linear
+/// along the positions (an edge function along a row, a row side along the rows): in slot k the
+/// two signs differ, in the off slot they agree.
+struct SlotCircle {
+  int count = 1;
+
+  /// The positions watched in `slot`.
+  [[nodiscard]] std::pair<int, int> watched(int slot) const {
+    return slot == 0 ? std::pair<int, int>{0, count - 1} : std::pair<int, int>{slot - 1, slot};
+  }
+  /// The slot on the other side of `position` from `slot` (which must be next to it).
+  [[nodiscard]] int across(int slot, int position) const {
+    const int below = position, above = position + 1 == count ? 0 : position + 1;
+    return slot == below ? above : below;
+  }
+  [[nodiscard]] static bool consistent(int slot, int sign_lo, int sign_hi) {
+    return slot == 0 ? sign_lo == sign_hi : sign_lo != sign_hi;
+  }
+  /// The slot of a monotone sign pattern sign_at(0..count-1) (values +-1), by bisection.
+  template <class SignAt>
+  [[nodiscard]] int locate(SignAt&& sign_at) const {
+    const int first = sign_at(0);
+    if (count == 1 || sign_at(count - 1) == first) return 0;
+    int lo = 0, hi = count - 1;  // sign_at(lo) == first != sign_at(hi)
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      (sign_at(mid) == first ? lo : hi) = mid;
+    }
+    return hi;
+  }
+};
+
+/// A point tracked on a slot circle: its slot, the signs at the two watched positions, and the
+/// queue entry of the earlier failure of its two certificates "sign keeps its value".
+struct SlotTracker {
+  int32_t slot = 0;
+  int8_t sign_lo = 1, sign_hi = 1;
+  uint8_t edge = 0;  ///< boundaries: the edge the point is tied to (0: v0v1, 1: v1v2, 2: v2v0)
+  EventHandle event = kNoEvent;
+};
+
+inline constexpr uint32_t kNoRecord = ~0u;
+
+/// One (triangle, row) whose triangle meets the row plane.
+struct RowRecord {
+  uint32_t triangle = 0;     ///< global triangle id
+  int32_t row = 0;
+  uint32_t next = kNoRecord; ///< the next record of the same triangle in the band (a list)
+  int32_t lo = 0, hi = -1;   ///< covered columns [lo, hi]; empty when lo > hi
+  std::array<SlotTracker, 2> boundary;
+
+  [[nodiscard]] bool covers(int column) const { return column >= lo && column <= hi; }
+  [[nodiscard]] bool empty() const { return lo > hi; }
+  [[nodiscard]] int covered_count() const { return empty() ? 0 : hi - lo + 1; }
+};
+
+}  // namespace kinray

@@ -1,0 +1,88 @@
+#pragma once
+// The polynomials of a moving triangle on one flightplan segment (DESIGN.md, "Coverage" and
+// "Depth order"). Every vertex moves as p(s) = a + b s in the local time s = t - origin of its
+// segment, so
+//   - the edge function E_pq(d) = (p x q) . d is quadratic in s,
+//   - the orientation O = det(v0, v1, v2) is cubic,
+//   - a vertex's side of the row plane Pi_j, n_j . v = v.y - y_j v.z, is linear,
+//   - the depth along d is z = O / D with D = (e1 x e2) . d = E_01 + E_12 + E_20, quadratic.
+// Every caller (initialisation, events, audit) builds these the same way from the same inputs, so
+// the structure and its certificates agree bit for bit.
+#include <array>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "kinetic/polynomial.h"
+
+namespace kinray {
+
+/// p(s) = a + b s.
+struct PointMotion {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  [[nodiscard]] Eigen::Vector3d at(double s) const { return a + b * s; }
+};
+
+/// The normal of the plane through the eye and a moving edge: p(s) x q(s) = c0 + c1 s + c2 s^2.
+struct EdgeNormal {
+  Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c1 = Eigen::Vector3d::Zero(),
+                  c2 = Eigen::Vector3d::Zero();
+  /// E(d) for d = (x, y, 1), a quadratic in s.
+  [[nodiscard]] Polynomial along(double x, double y) const {
+    Polynomial f;
+    f.degree = 2;
+    f.c[0] = c0.x() * x + c0.y() * y + c0.z();
+    f.c[1] = c1.x() * x + c1.y() * y + c1.z();
+    f.c[2] = c2.x() * x + c2.y() * y + c2.z();
+    return f;
+  }
+};
+
+/// p x q; exactly antisymmetric (edge_normal(q, p) is the negation) and exactly zero for p == q.
+[[nodiscard]] EdgeNormal edge_normal(const PointMotion& p, const PointMotion& q);
+
+/// The side of row plane Pi_j (normal (0, 1, -y)) that v is on: n_j . v(s), linear in s.
+[[nodiscard]] inline Polynomial row_side(const PointMotion& v, double y) {
+  Polynomial f;
+  f.degree = 1;
+  f.c[0] = v.a.y() - y * v.a.z();
+  f.c[1] = v.b.y() - y * v.b.z();
+  return f;
+}
+
+/// Edges are numbered by their first vertex: edge e runs from v[e] to v[(e + 1) % 3].
+inline constexpr int kEdgeStart[3] = {0, 1, 2};
+inline constexpr int kEdgeEnd[3] = {1, 2, 0};
+
+/// A triangle's three vertex motions on one segment, in the segment's local time.
+struct TriangleMotion {
+  std::array<PointMotion, 3> v;
+
+  [[nodiscard]] EdgeNormal edge(int e) const { return edge_normal(v[kEdgeStart[e]], v[kEdgeEnd[e]]); }
+  /// O(s) = det(v0, v1, v2) as the symmetric mean of the three triple products, so that it is
+  /// exactly zero when two vertices coincide (a degenerate triangle covers nothing).
+  [[nodiscard]] Polynomial orientation() const;
+  /// The same motion in the local time s' = s - shift (re-centred at origin + shift).
+  [[nodiscard]] TriangleMotion rebased(double shift) const;
+};
+
+/// The four polynomials of the sign rule and the depth at one pixel-centre ray.
+struct PixelPolynomials {
+  std::array<Polynomial, 3> edge;  ///< E_01, E_12, E_20 along d
+  Polynomial orientation;          ///< O (independent of d)
+  /// D = E_01 + E_12 + E_20: the depth denominator, of the sign of O wherever the ray pierces.
+  [[nodiscard]] Polynomial denominator() const { return edge[0] + edge[1] + edge[2]; }
+};
+[[nodiscard]] PixelPolynomials pixel_polynomials(const TriangleMotion& m, double x, double y);
+
+/// Camera-space depth of the ray d = (x, y, 1) on the plane of (p0, p1, p2), exactly as the
+/// Embree backend reports it: det(p0, p1, p2) / ((p1 - p0) x (p2 - p0)) . d, in double.
+[[nodiscard]] inline double plane_depth(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                        const Eigen::Vector3d& p2, double x, double y) {
+  const double numerator = p0.dot(p1.cross(p2));
+  const double denominator = (p1 - p0).cross(p2 - p0).dot(Eigen::Vector3d(x, y, 1.0));
+  return numerator / denominator;
+}
+
+}  // namespace kinray

@@ -1,0 +1,337 @@
+// The kinetic grid of frusta: exact-answer cases (a depth swap, an edge over a pixel centre, a
+// vertex over row planes, a plane through the eye, geometry passing behind the camera, objects
+// appearing and disappearing) and property tests against a brute-force sign-rule reference, with
+// the audit on: every advance re-checks every record, slot, interval, pixel set and certificate.
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "kinetic/frustum_grid.h"
+#include "grid_test_scenes.h"
+
+namespace kinray {
+namespace {
+
+using test::at_depth;
+using test::OwnedMesh;
+using test::TestScene;
+using test::Vec;
+
+FrustumGridConfig audited(DepthSortKind sort = DepthSortKind::kList, int bands = 2) {
+  FrustumGridConfig config;
+  config.threads = 2;
+  config.bands = bands;
+  config.sort = sort;
+  config.audit = true;
+  return config;
+}
+
+// Advances through `times`, checking the grid against the reference at each; returns the totals.
+test::Comparison run_against_brute_force(FrustumGrid& grid, const GridInput& in,
+                                         const std::vector<double>& times) {
+  test::Comparison total;
+  for (double t : times) {
+    grid.advance_to(t);
+    const test::Comparison c = test::compare_with_brute_force(grid, in);
+    EXPECT_EQ(c.real, 0u) << "t = " << t;
+    total.covered += c.covered;
+    total.ties += c.ties;
+    total.real += c.real;
+  }
+  return total;
+}
+
+std::vector<double> even_times(double a, double b, int n) {
+  std::vector<double> times;
+  for (int k = 0; k <= n; ++k) times.push_back(a + (b - a) * k / n);
+  return times;
+}
+
+class GridSorts : public ::testing::TestWithParam<DepthSortKind> {};
+INSTANTIATE_TEST_SUITE_P(AllSorts, GridSorts,
+                         ::testing::Values(DepthSortKind::kList, DepthSortKind::kTournament,
+                                           DepthSortKind::kHeap),
+                         [](const auto& param) { return std::string(depth_sort_name(param.param)); });
+
+// Two triangles parallel to the image plane; B moves in depth from z = 3 to z = 1 and passes A
+// (z = 2) at exactly t* = 0.5. Its image does not change, so every pixel of B swaps once.
+TEST_P(GridSorts, TwoTrianglesSwapDepthAtTheKnownTime) {
+  TestScene scene;
+  scene.meshes.push_back(test::moving_triangle(
+      {0.0}, {{at_depth(-1.5, -1, 2), at_depth(1.5, -1, 2), at_depth(0, 1.5, 2)}}));
+  auto b_at = [](double z) {
+    return std::array<Vec, 3>{at_depth(-0.8, -0.6, z), at_depth(0.8, -0.6, z), at_depth(0, 0.7, z)};
+  };
+  scene.meshes.push_back(test::moving_triangle({0.0, 1.0}, {b_at(3), b_at(1)}));
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.0, audited(GetParam()));
+
+  size_t pixels_of_b = 0;
+  for (int j = 0; j < scene.height; ++j)
+    for (int i = 0; i < scene.width; ++i) pixels_of_b += test::brute_front(in, i, j, 0.9).mesh == 1;
+  ASSERT_GT(pixels_of_b, 100u);
+
+  grid.advance_to(0.5 - 1e-9);
+  EXPECT_EQ(grid.stats().events.swap, 0u);
+  std::vector<uint32_t> object(in.rays.pixel_count()), prim(object.size());
+  std::vector<float> depth(object.size());
+  for (int j = 0; j < scene.height; ++j)
+    for (int i = 0; i < scene.width; ++i)
+      if (test::brute_front(in, i, j, 0.9).mesh == 1) {
+        ASSERT_TRUE(grid.front(i, j));
+        EXPECT_EQ(grid.front(i, j)->mesh, 0u);
+      }
+  grid.advance_to(0.5 + 1e-9);
+  EXPECT_EQ(grid.stats().events.swap, pixels_of_b);  // one swap per pixel, exactly at t*
+  grid.read_out(object, prim, depth);
+  for (int j = 0; j < scene.height; ++j)
+    for (int i = 0; i < scene.width; ++i) {
+      const size_t p = size_t(j) * size_t(scene.width) + size_t(i);
+      if (test::brute_front(in, i, j, 0.9).mesh == 1) {
+        EXPECT_EQ(object[p], 1u);
+        EXPECT_NEAR(depth[p], 2.0 - 2e-9, 1e-6);
+      }
+    }
+  grid.advance_to(1.0);
+  EXPECT_EQ(grid.stats().events.swap, pixels_of_b);
+  EXPECT_EQ(grid.stats().events.boundary, 0u);  // B's image stands still
+  EXPECT_EQ(grid.stats().events.vertex_row, 0u);
+  EXPECT_EQ(test::compare_with_brute_force(grid, in).real, 0u);
+}
+
+// A rectangle (two triangles) at depth 2 slides right at 0.4 image units per second: every
+// boundary of every row moves by exactly 0.4, so the boundary events are countable, and its
+// right edge reaches a chosen pixel centre at a known time.
+TEST_P(GridSorts, EdgeSweepsOverPixelCentresAtKnownTimes) {
+  TestScene scene;
+  const double z = 2, X0 = -1, X1 = 0.3, Y0 = -0.6, Y1 = 0.6, V = 0.8;
+  OwnedMesh rect;
+  rect.times = {0.0, 1.0};
+  rect.vertex_count = 4;
+  for (double shift : {0.0, V})
+    for (const Vec& p : {Vec(X0 + shift, Y0, z), Vec(X1 + shift, Y0, z), Vec(X1 + shift, Y1, z),
+                         Vec(X0 + shift, Y1, z)})
+      rect.positions.push_back(p);
+  rect.triangles = {{0, 1, 2}, {0, 2, 3}};
+  scene.meshes.push_back(rect);
+  const GridInput in = scene.input();
+  const PixelRays& rays = in.rays;
+
+  // Expected crossings: every boundary x0 of every row the rectangle meets moves to x0 + 0.4.
+  const double shift = V / z;
+  auto crossed = [&](double x0) {
+    int n = 0;
+    for (int i = 0; i < rays.width; ++i) n += rays.x(i) > x0 && rays.x(i) <= x0 + shift;
+    return n;
+  };
+  uint64_t expected = 0;
+  int middle_row = -1;
+  for (int j = 0; j < rays.height; ++j) {
+    const double y = rays.y(j);
+    if (!(y > Y0 / z && y < Y1 / z)) continue;
+    if (middle_row < 0 && y < 0.05) middle_row = j;
+    const double x_diagonal = X0 / z + (y * z - Y0) / (Y1 - Y0) * (X1 - X0) / z;
+    expected += crossed(X0 / z) + 2 * crossed(x_diagonal) + crossed(X1 / z);
+  }
+
+  // The first column right of the right edge at t = 0, and the time the edge reaches it.
+  int column = 0;
+  while (rays.x(column) <= X1 / z) ++column;
+  const double t_hit = (rays.x(column) * z - X1) / V;
+  ASSERT_GT(t_hit, 0.01);
+
+  FrustumGrid grid(in, 0.0, audited(GetParam()));
+  grid.advance_to(t_hit - 1e-9);
+  EXPECT_FALSE(grid.front(column, middle_row));
+  grid.advance_to(t_hit + 1e-9);
+  ASSERT_TRUE(grid.front(column, middle_row));
+  EXPECT_EQ(grid.front(column, middle_row)->triangle, 0u);
+  grid.advance_to(1.0);
+  const GridStats stats = grid.stats();
+  EXPECT_EQ(stats.events.boundary, expected);
+  EXPECT_EQ(stats.events.vertex_row, 0u);
+  EXPECT_EQ(stats.events.orientation, 0u);
+  EXPECT_EQ(stats.events.flightplan, 1u);  // the motion stops at the last key
+  EXPECT_EQ(test::compare_with_brute_force(grid, in).real, 0u);
+}
+
+// A vertex moving down the image crosses a known set of row planes.
+TEST_P(GridSorts, VertexCrossesRowPlanes) {
+  TestScene scene;
+  const double z = 2;
+  scene.meshes.push_back(test::moving_triangle(
+      {0.0, 1.0}, {{at_depth(-1, -0.5, z), at_depth(1, -0.5, z), at_depth(0.1, 0.2, z)},
+                   {at_depth(-1, -0.5, z), at_depth(1, -0.5, z), at_depth(0.1, 0.7, z)}}));
+  const GridInput in = scene.input();
+  uint64_t rows_crossed = 0;
+  for (int j = 0; j < scene.height; ++j) rows_crossed += in.rays.y(j) > 0.2 && in.rays.y(j) < 0.7;
+  FrustumGrid grid(in, 0.0, audited(GetParam(), 3));
+  const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 20));
+  EXPECT_GT(c.covered, 0u);
+  EXPECT_EQ(grid.stats().events.vertex_row, rows_crossed);
+}
+
+// A triangle translating along -z through the eye plane: the sign rule decides what is seen
+// while it straddles the eye; once fully behind, nothing is.
+TEST_P(GridSorts, TrianglePassingBehindTheCamera) {
+  TestScene scene;
+  auto key = [](double dz) {
+    return std::array<Vec, 3>{Vec(-1, -1, 2 + dz), Vec(1.2, -0.8, 2.5 + dz), Vec(0.1, 1.1, 1.7 + dz)};
+  };
+  scene.meshes.push_back(test::moving_triangle({0.0, 1.0}, {key(0), key(-4.0)}));
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.0, audited(GetParam()));
+  const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 40));
+  EXPECT_GT(c.covered, 1000u);
+  for (int j = 0; j < scene.height; ++j)
+    for (int i = 0; i < scene.width; ++i) EXPECT_FALSE(grid.front(i, j));
+  EXPECT_GT(grid.stats().events.boundary, 0u);
+}
+
+// A static triangle whose plane contains the eye covers nothing; one whose plane sweeps through
+// the eye (det(v0, v1, v2) = 2 - 4t, zero at t = 0.5, when its image is the slanted line through
+// v0 and v1) fires orientation events and stays exact.
+TEST_P(GridSorts, EdgeOnTriangleAndPlaneThroughTheEye) {
+  TestScene scene;
+  scene.meshes.push_back(
+      test::moving_triangle({0.0}, {{Vec(0.2, 0, 2), Vec(0.1, 1, 1), Vec(0.3, -1, 3)}}));
+  {
+    FrustumGrid grid(scene.input(), 0.0, audited(GetParam()));
+    for (int j = 0; j < scene.height; ++j)
+      for (int i = 0; i < scene.width; ++i) EXPECT_FALSE(grid.front(i, j));
+  }
+  scene.meshes.push_back(test::moving_triangle(
+      {0.0, 1.0}, {{Vec(-1, -0.5, 1), Vec(1, 0.5, 1), Vec(-1, 0.5, 1.5)},
+                   {Vec(-1, -0.5, 1), Vec(1, 0.5, 1), Vec(1, -0.5, 1.5)}}));
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.0, audited(GetParam()));
+  const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 50));
+  EXPECT_GT(c.covered, 500u);
+  EXPECT_GT(grid.stats().events.orientation, 0u);
+}
+
+// Objects inserted and removed mid-run, over a static background.
+TEST_P(GridSorts, ObjectsAppearAndDisappear) {
+  TestScene scene;
+  scene.meshes.push_back(test::moving_triangle(
+      {0.0}, {{at_depth(-2, -2, 5), at_depth(2, -2, 5), at_depth(0, 2, 5)}}));
+  OwnedMesh visitor = test::moving_triangle(
+      {0.0, 1.0}, {{at_depth(-0.9, -0.5, 2), at_depth(0.2, -0.6, 3), at_depth(-0.3, 0.6, 2.5)},
+                   {at_depth(-0.2, -0.5, 2), at_depth(0.9, -0.4, 3), at_depth(0.4, 0.7, 2.5)}});
+  visitor.appear = 0.3;
+  visitor.disappear = 0.7;
+  scene.meshes.push_back(visitor);
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.0, audited(GetParam()));
+  run_against_brute_force(grid, in, {0.1, 0.3, 0.31, 0.5, 0.69, 0.7, 0.9, 1.0});
+  const GridStats stats = grid.stats();
+  EXPECT_EQ(stats.events.insert, 1u);
+  EXPECT_EQ(stats.events.remove, 1u);
+  for (int j = 0; j < scene.height; ++j)
+    for (int i = 0; i < scene.width; ++i) {
+      if (grid.front(i, j)) EXPECT_EQ(grid.front(i, j)->mesh, 0u);
+    }
+}
+
+// A static mesh emits no coverage events; a moving one cuts through it (interpenetration).
+TEST_P(GridSorts, StaticAndMovingInterpenetrate) {
+  TestScene scene;
+  OwnedMesh wall;
+  wall.vertex_count = 4;
+  wall.positions = {Vec(-3, -2, 3), Vec(3, -2, 3), Vec(3, 2, 4), Vec(-3, 2, 4)};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  wall.is_static = true;
+  scene.meshes.push_back(wall);
+  scene.meshes.push_back(test::moving_triangle(
+      {0.0, 0.5, 1.0}, {{Vec(-1.5, -1, 2), Vec(1, -0.8, 5), Vec(0, 1.2, 3)},
+                        {Vec(-1, -1.2, 3.5), Vec(1.4, -0.6, 2.5), Vec(0.2, 1.0, 4)},
+                        {Vec(-1.2, -0.7, 2.2), Vec(0.8, -1.1, 4.5), Vec(-0.3, 1.4, 2.6)}}));
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.0, audited(GetParam()));
+  const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 25));
+  EXPECT_GT(c.covered, 1000u);
+  const GridStats stats = grid.stats();
+  EXPECT_GT(stats.events.swap, 0u);
+  EXPECT_EQ(stats.events.flightplan, 2u);
+}
+
+struct RandomScene {
+  TestScene scene;
+  explicit RandomScene(uint32_t seed, int triangles = 8) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> xy(-1.5, 1.5), z(0.5, 4), dz(-3, 1);
+    for (int k = 0; k < triangles; ++k) {
+      const int keys = 2 + k % 3;
+      std::vector<double> times;
+      std::vector<std::array<Vec, 3>> positions;
+      std::array<Vec, 3> p;
+      for (Vec& v : p) v = Vec(xy(rng), xy(rng), z(rng));
+      for (int key = 0; key < keys; ++key) {
+        times.push_back(double(key) / (keys - 1));
+        positions.push_back(p);
+        const double drift = dz(rng);
+        for (Vec& v : p) v += Vec(0.5 * xy(rng), 0.5 * xy(rng), drift + 0.3 * xy(rng));
+      }
+      scene.meshes.push_back(test::moving_triangle(times, positions));
+    }
+  }
+};
+
+// Random moving triangles (some pass behind the camera) against brute force at many times.
+TEST_P(GridSorts, RandomMotionsAgreeWithBruteForce) {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    RandomScene r(seed);
+    const GridInput in = r.scene.input();
+    FrustumGrid grid(in, 0.0, audited(GetParam()));
+    const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 30));
+    EXPECT_GT(c.covered, 1000u) << "seed " << seed;
+    EXPECT_LT(c.ties, c.covered / 1000 + 5) << "seed " << seed;
+  }
+}
+
+GridEventCounts geometric(const GridStats& s) { return s.events; }
+bool same_counts(const GridEventCounts& a, const GridEventCounts& b) {
+  return a.boundary == b.boundary && a.vertex_row == b.vertex_row &&
+         a.orientation == b.orientation && a.swap == b.swap && a.flightplan == b.flightplan &&
+         a.insert == b.insert && a.remove == b.remove;
+}
+
+// The frames and the event counts depend neither on the band split nor on the depth sort's
+// kind for coverage events, nor on how many frames are read out.
+TEST(FrustumGrid, IndependentOfBandsAndFrameCount) {
+  RandomScene r(42, 10);
+  const GridInput in = r.scene.input();
+  FrustumGridConfig one;
+  one.threads = 1;
+  one.bands = 1;
+  FrustumGridConfig five = one;
+  five.threads = 2;
+  five.bands = 5;
+  FrustumGrid a(in, 0.0, one), b(in, 0.0, five), dense(in, 0.0, one);
+  for (int k = 1; k <= 8; ++k) {
+    const double t = k / 8.0;
+    for (int f = 1; f <= 16; ++f) dense.advance_to((k - 1 + f / 16.0) / 8.0);
+    a.advance_to(t);
+    b.advance_to(t);
+    dense.advance_to(t);
+    EXPECT_EQ(test::fronts(a), test::fronts(b)) << "t = " << t;
+    EXPECT_EQ(test::fronts(a), test::fronts(dense)) << "t = " << t;
+  }
+  EXPECT_TRUE(same_counts(geometric(a.stats()), geometric(b.stats())));
+  EXPECT_TRUE(same_counts(geometric(a.stats()), geometric(dense.stats())));
+  EXPECT_GT(a.stats().events.total(), 100u);
+}
+
+TEST(FrustumGrid, RejectsTimeGoingBackAndBadInput) {
+  TestScene scene;
+  scene.meshes.push_back(test::moving_triangle({0.0}, {{Vec(0, 0, 1), Vec(1, 0, 1), Vec(0, 1, 1)}}));
+  FrustumGrid grid(scene.input(), 0.5);
+  EXPECT_THROW(grid.advance_to(0.25), std::invalid_argument);
+  EXPECT_THROW((void)parse_depth_sort("bubble"), std::invalid_argument);
+  TestScene bad = scene;
+  bad.meshes[0].triangles = {{0, 1, 7}};
+  EXPECT_THROW(FrustumGrid(bad.input(), 0.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace kinray
