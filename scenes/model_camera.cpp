@@ -53,6 +53,20 @@ std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
   return std::nullopt;
 }
 
+bool camera_sees(const Camera& camera, const Scene& scene) {
+  for (const CameraKey& key : camera.keys) {
+    const Eigen::Matrix3d world_to_camera = key.orientation.normalized().toRotationMatrix().transpose();
+    const double slope = std::tan(key.fov_y_degrees * M_PI / 360);
+    for (const Object& object : scene.objects)
+      for (uint32_t v = 0; v < object.vertex_count(); ++v) {
+        const Vec3 p = world_to_camera * (object.position(v, key.time) - key.position);
+        const double depth = -p.z();  // the stored camera frame looks down -z
+        if (depth > 0 && std::abs(p.x()) <= slope * depth && std::abs(p.y()) <= slope * depth) return true;
+      }
+  }
+  return false;
+}
+
 Camera frame_bounds(const Eigen::AlignedBox3d& bounds, double time) {
   const Vec3 center = bounds.isEmpty() ? Vec3(Vec3::Zero()) : Vec3(bounds.center());
   double radius = bounds.isEmpty() ? 0.0 : 0.5 * bounds.diagonal().norm();

@@ -21,6 +21,12 @@ namespace kinray {
                                                  std::span<const double> key_seconds,
                                                  std::span<const double> key_ticks, const std::string& where);
 
+/// True when some vertex of `scene` lies in the view of `camera` (in front of it and inside its
+/// field of view on a square image) at one of the camera's key times. assimp 5.2 places some
+/// formats' cameras inconsistently (3DS adds the camera position twice, LWS and ASE cameras look
+/// along +z), so a model camera that sees nothing of the model is replaced by automatic framing.
+[[nodiscard]] bool camera_sees(const Camera& camera, const Scene& scene);
+
 /// Vertical field of view of the automatic framing, in degrees.
 inline constexpr double kFramingFovDegrees = 45;
 

@@ -329,6 +329,10 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
   scene.time_end = seconds.size() > 1 ? seconds.back() : seconds.front() + 1.0;
   std::optional<Camera> camera;
   if (options.load_camera) camera = model_camera(model, graph, seconds, ticks, source);
+  if (camera && !camera_sees(*camera, scene)) {
+    warn_repair(source, "the model's own camera sees none of the model; framing it automatically instead");
+    camera.reset();
+  }
   scene.camera = camera ? *camera : frame_bounds(scene.bounds(), seconds.front());
   return scene;
 }

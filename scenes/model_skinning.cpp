@@ -19,7 +19,9 @@ Skin read_skin(const aiMesh& mesh, const NodeGraph& graph, const std::string& wh
     const std::string name = bone->mName.C_Str();
     const std::string bone_where = where + " bone '" + name + "'";
     const int node = graph.find(name);
-    if (node < 0) throw InputError(bone_where, "has no node of that name in the hierarchy");
+    if (node < 0)
+      warn_repair(bone_where, "has no node of that name in the hierarchy; it keeps its bind pose (its share of "
+                              "each vertex follows the mesh's node)");
     const Mat4 offset = to_eigen(bone->mOffsetMatrix);
     if (!offset.allFinite()) throw InputError(bone_where, "has a NaN or infinite offset matrix");
     if (bone->mNumWeights > 0 && bone->mWeights == nullptr) throw InputError(bone_where, "has a weight count but no weights");
@@ -57,7 +59,8 @@ Skin read_skin(const aiMesh& mesh, const NodeGraph& graph, const std::string& wh
 void apply_skin(const Skin& skin, std::span<const Vec3> positions, std::span<const Mat4> globals,
                 const Mat4& mesh_node, std::span<Vec3> out) {
   std::vector<Mat4> bone_matrices(skin.bone_nodes.size());
-  for (size_t b = 0; b < bone_matrices.size(); ++b) bone_matrices[b] = globals[size_t(skin.bone_nodes[b])] * skin.offsets[b];
+  for (size_t b = 0; b < bone_matrices.size(); ++b)
+    bone_matrices[b] = skin.bone_nodes[b] < 0 ? mesh_node : Mat4(globals[size_t(skin.bone_nodes[b])] * skin.offsets[b]);
   for (size_t v = 0; v < positions.size(); ++v) {
     const uint32_t begin = skin.first[v], end = skin.first[v + 1];
     if (begin == end) {

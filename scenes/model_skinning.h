@@ -16,7 +16,7 @@ namespace kinray {
 
 /// The bones of one mesh and, per vertex, the bones that weigh it (weights summing to 1).
 struct Skin {
-  std::vector<int> bone_nodes;      ///< node of each bone, index into NodeGraph::nodes
+  std::vector<int> bone_nodes;      ///< node of each bone, index into NodeGraph::nodes, or -1
   std::vector<Mat4> offsets;        ///< aiBone::mOffsetMatrix of each bone
   std::vector<uint32_t> first;      ///< influences of vertex v: [first[v], first[v + 1])
   std::vector<uint32_t> bones;      ///< bone of each influence
@@ -24,9 +24,10 @@ struct Skin {
   [[nodiscard]] bool empty() const { return bone_nodes.empty(); }
 };
 
-/// Reads the bones of `mesh`. Throws InputError (at `where`) for a bone without a node, a weight
-/// on a vertex out of range, a negative, NaN or infinite weight, or a bad offset matrix. Weights
-/// that do not sum to 1 are normalized (with a warning when they are off by more than 1%).
+/// Reads the bones of `mesh`. Throws InputError (at `where`) for a weight on a vertex out of range,
+/// a negative, NaN or infinite weight, or a bad offset matrix. Repairs, with a warning: a bone
+/// whose node is missing keeps its bind pose (G_b * O_b is the mesh node's transform); weights
+/// that do not sum to 1 are normalized (warned when they are off by more than 1%).
 [[nodiscard]] Skin read_skin(const aiMesh& mesh, const NodeGraph& graph, const std::string& where);
 
 /// World positions of the skinned vertices: `globals` are the node transforms at the time,
