@@ -51,7 +51,7 @@ class Node {
       : m_value(&value), m_file(&file), m_pointer(std::move(pointer)) {}
 
   [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(*m_file + ": " + (m_pointer.empty() ? "/" : m_pointer), problem);
+    throw InputError(m_pointer.empty() ? *m_file : *m_file + ": " + m_pointer, problem);
   }
   [[nodiscard]] const std::string& pointer() const { return m_pointer; }
   [[nodiscard]] const json& value() const { return *m_value; }
@@ -268,9 +268,24 @@ void apply_placement(Object& object, const Placement& placement) {
   object.key_positions = std::move(positions);
 }
 
+/// The fast path of the large arrays (vertices, triangles, uvs): reads `n` finite numbers of a
+/// JSON array straight away; on anything else returns false, and the caller goes through Node for
+/// the precise error.
+bool read_numbers(const json& value, size_t n, double* out) {
+  if (!value.is_array() || value.size() != n) return false;
+  for (size_t i = 0; i < n; ++i) {
+    const json& x = value[i];
+    if (!x.is_number()) return false;
+    out[i] = x.get<double>();
+    if (!std::isfinite(out[i])) return false;
+  }
+  return true;
+}
+
 std::vector<Vec3> parse_vertices(const Node& node) {
   std::vector<Vec3> vertices(node.size());
-  for (size_t v = 0; v < vertices.size(); ++v) vertices[v] = node[v].vec3();
+  for (size_t v = 0; v < vertices.size(); ++v)
+    if (!read_numbers(node.value()[v], 3, vertices[v].data())) vertices[v] = node[v].vec3();
   return vertices;
 }
 
@@ -413,6 +428,13 @@ struct Reader {
     const Node triangles = node.at("triangles");
     object.triangles.resize(triangles.size());
     for (size_t f = 0; f < object.triangles.size(); ++f) {
+      const json& raw = triangles.value()[f];
+      if (raw.is_array() && raw.size() == 3 && raw[0].is_number_unsigned() && raw[1].is_number_unsigned() &&
+          raw[2].is_number_unsigned() && raw[0].get<uint64_t>() <= UINT32_MAX &&
+          raw[1].get<uint64_t>() <= UINT32_MAX && raw[2].get<uint64_t>() <= UINT32_MAX) {
+        object.triangles[f] = {raw[0].get<uint32_t>(), raw[1].get<uint32_t>(), raw[2].get<uint32_t>()};
+        continue;
+      }
       const Node tri = triangles[f];
       tri.expect_size(3);
       for (int c = 0; c < 3; ++c) {
@@ -459,9 +481,14 @@ struct Reader {
       if (uvs->size() != nv)
         uvs->fail("has " + std::to_string(uvs->size()) + " uvs for " + std::to_string(nv) + " vertices");
       for (size_t v = 0; v < nv; ++v) {
-        const Node uv = (*uvs)[v];
-        uv.expect_size(2);
-        object.uvs.emplace_back(float(uv[0].number()), float(uv[1].number()));
+        double uv[2];
+        if (!read_numbers(uvs->value()[v], 2, uv)) {
+          const Node node_uv = (*uvs)[v];
+          node_uv.expect_size(2);
+          uv[0] = node_uv[0].number();
+          uv[1] = node_uv[1].number();
+        }
+        object.uvs.emplace_back(float(uv[0]), float(uv[1]));
       }
     }
   }
