@@ -1,0 +1,203 @@
+#include "renderer/render_job.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <initializer_list>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "renderer/progress.h"
+#include "renderer/shading.h"
+#include "renderer/video_writer.h"
+#include "scenes/error.h"
+#include "scenes/scene_loader.h"
+
+namespace kinray {
+namespace {
+
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+bool parse_int(const std::string& text, int& value) {
+  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text.front()))) return false;
+  char* end = nullptr;
+  errno = 0;
+  const long parsed = std::strtol(text.c_str(), &end, 10);
+  if (errno != 0 || end != text.c_str() + text.size() || parsed > 1'000'000'000L) return false;
+  value = int(parsed);
+  return true;
+}
+
+void check_one_of(const std::string& value, std::initializer_list<const char*> allowed, const char* flag) {
+  std::string list;
+  for (const char* a : allowed) {
+    if (value == a) return;
+    list += (list.empty() ? "" : ", ") + std::string(a);
+  }
+  throw InputError(flag, "must be one of " + list + ", got '" + value + "'");
+}
+
+}  // namespace
+
+std::pair<int, int> parse_size(const std::string& text) {
+  const size_t x = text.find_first_of("xX");
+  int width = 0, height = 0;
+  if (x == std::string::npos || !parse_int(text.substr(0, x), width) || !parse_int(text.substr(x + 1), height))
+    throw InputError("--size", "expected WxH with two positive integers, e.g. 512x512, got '" + text + "'");
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) + ", got '" +
+                                   text + "'");
+  return {width, height};
+}
+
+std::vector<std::string> parse_aov(const std::string& text) {
+  std::vector<std::string> aovs;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, comma - start);
+    check_one_of(name, {"id", "depth"}, "--aov");
+    if (std::find(aovs.begin(), aovs.end(), name) != aovs.end())
+      throw InputError("--aov", "'" + name + "' is given twice");
+    aovs.push_back(name);
+    start = comma + 1;
+  }
+  return aovs;
+}
+
+void validate(const RenderParams& params) {
+  if (params.scene.empty()) throw InputError("SCENE", "no scene given");
+  if (params.width < 1 || params.height < 1 || params.width > kMaxImageSide || params.height > kMaxImageSide)
+    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) + ", got " +
+                                   std::to_string(params.width) + "x" + std::to_string(params.height));
+  validate(schedule_params(params));
+  if (params.threads < 0 || params.threads > 4096)
+    throw InputError("--threads", "must lie in 0..4096 (0: all cores), got " + std::to_string(params.threads));
+  check_one_of(params.embree_mode, {"rebuild", "refit"}, "--embree-mode");
+  if (params.packet != 1 && params.packet != 4 && params.packet != 8 && params.packet != 16)
+    throw InputError("--packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
+  check_one_of(params.sort, {"list", "tournament", "heap"}, "--sort");
+  for (const std::string& aov : params.aov) check_one_of(aov, {"id", "depth"}, "--aov");
+  if (!std::isfinite(params.keyrate) || params.keyrate < 0)
+    throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
+  if (!params.video.empty()) VideoWriter::validate_path(params.video);
+}
+
+FrameScheduleParams schedule_params(const RenderParams& params) {
+  FrameScheduleParams schedule;
+  schedule.frames = params.frames;
+  schedule.fps = params.fps;
+  schedule.inbetweens = params.inbetweens;
+  schedule.time = params.time;
+  return schedule;
+}
+
+BackendConfig backend_config(const RenderParams& params) {
+  BackendConfig config;
+  config.width = params.width;
+  config.height = params.height;
+  config.threads = params.threads;
+  config.embree_mode = params.embree_mode;
+  config.embree_packet = params.packet;
+  config.sort = params.sort;
+  config.audit = params.audit;
+  return config;
+}
+
+ModelOptions model_options(const RenderParams& params) {
+  ModelOptions options;
+  options.animation = params.animation;
+  options.keyrate = params.keyrate;
+  return options;
+}
+
+std::string scene_stem(const std::string& spec) {
+  std::error_code error;
+  // A file keeps its whole name (it may contain ':'); a built-in name drops its parameters.
+  const std::string base = std::filesystem::exists(spec, error) ? spec : spec.substr(0, spec.find(':'));
+  std::string stem = std::filesystem::path(base).stem().string();
+  for (char& c : stem)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  return stem.empty() || stem == "." || stem == ".." ? "scene" : stem;
+}
+
+std::string output_folder(const RenderParams& params) {
+  return params.out.empty() ? (std::filesystem::path("out") / scene_stem(params.scene)).string() : params.out;
+}
+
+RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_started(now_s()) {
+  validate(m_params);
+  m_scene = load_scene(m_params.scene, model_options(m_params));
+  m_scene.validate(m_params.scene);
+  m_camera_space = CameraSpaceScene::build(m_scene);
+  m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
+  m_timings.load = now_s() - m_started;
+}
+
+std::unique_ptr<Backend> RenderJob::make_backend(const std::string& name) {
+  const double start = now_s();
+  std::unique_ptr<Backend> backend =
+      kinray::make_backend(name.empty() ? m_params.backend : name, m_camera_space, backend_config(m_params));
+  m_timings.setup += now_s() - start;
+  return backend;
+}
+
+void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
+  double start = now_s();
+  backend.render(m_frame_times.at(index), frame);
+  m_timings.render += now_s() - start;
+  start = now_s();
+  shade_frame(m_camera_space, frame, m_params.threads);
+  m_timings.shade += now_s() - start;
+}
+
+const RenderTimings& RenderJob::run(Backend& backend, const std::function<void(size_t, const Frame&)>& sink) {
+  Progress progress(m_frame_times.size(), !m_params.quiet && Progress::stderr_is_terminal());
+  Frame frame;
+  frame.resize(m_params.width, m_params.height);
+  progress.update(0);
+  for (size_t index = 0; index < m_frame_times.size(); ++index) {
+    render_frame(backend, index, frame);
+    const double start = now_s();
+    if (sink) sink(index, frame);
+    m_timings.write += now_s() - start;
+    ++m_timings.frames;
+    progress.update(index + 1);
+  }
+  progress.finish();
+  m_timings.total = now_s() - m_started;
+  return m_timings;
+}
+
+nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
+  const RenderParams& params = job.params();
+  const RenderTimings& timings = job.timings();
+  nlohmann::json stats = {
+      {"scene", params.scene},
+      {"backend", backend.name()},
+      {"frames", timings.frames},
+      {"size", {{"width", params.width}, {"height", params.height}}},
+      {"threads", params.threads},
+      {"triangles", job.scene().triangle_count()},
+      {"vertices", job.scene().vertex_count()},
+      {"objects", job.scene().objects.size()},
+      {"shot", {job.scene().time_begin, job.scene().time_end}},
+      {"frame_times", job.frame_times()},
+      {"time_s",
+       {{"total", timings.total},
+        {"load", timings.load},
+        {"setup", timings.setup},
+        {"render", timings.render},
+        {"shade", timings.shade},
+        {"write", timings.write}}},
+  };
+  backend.write_stats(stats);
+  return stats;
+}
+
+}  // namespace kinray

@@ -1,0 +1,120 @@
+#pragma once
+// The frame loop shared by `kinray render`, `diff` and `bench`: RenderParams holds one field per
+// command-line flag (yocto-gl's render_params), RenderJob validates them, loads the scene, fixes
+// the frame times, and renders + shades frame after frame with any backend. Nothing here writes a
+// file: bad input is rejected before a command touches its output.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "renderer/backend.h"
+#include "renderer/frame.h"
+#include "renderer/frame_schedule.h"
+#include "scenes/camera_space.h"
+#include "scenes/model_import.h"
+#include "scenes/scene.h"
+
+namespace kinray {
+
+/// Every flag of `kinray render` (and of diff and bench, which share them), one field each.
+struct RenderParams {
+  std::string scene;                 ///< SCENE: built-in name with parameters, .json file or model file
+  std::string backend = "embree";    ///< --backend
+  int width = 512, height = 512;     ///< --size WxH
+  std::optional<int> frames;         ///< --frames N
+  std::optional<double> fps;         ///< --fps F
+  std::optional<int> inbetweens;     ///< --inbetweens K
+  std::optional<std::pair<double, double>> time;  ///< --time A:B
+  std::string out;                   ///< --out DIR; empty: out/<scene-name>
+  std::string video;                 ///< --video FILE (.mp4 or .avi); empty: none
+  std::vector<std::string> aov;      ///< --aov: any of "id", "depth"
+  std::string stats;                 ///< --stats FILE.json; empty: none
+  int threads = 0;                   ///< --threads; 0: all cores
+  std::string embree_mode = "refit"; ///< --embree-mode rebuild|refit
+  int packet = 1;                    ///< --packet 1|4|8|16
+  std::string sort = "list";         ///< --sort list|tournament|heap
+  bool audit = false;                ///< --audit
+  std::string animation;             ///< --animation NAME|INDEX (model files)
+  double keyrate = 0;                ///< --keyrate HZ (model files)
+  bool quiet = false;                ///< --quiet
+};
+
+inline constexpr int kMaxImageSide = 16384;
+
+/// Parses "WxH" into width and height (1..kMaxImageSide each). Throws InputError naming --size.
+[[nodiscard]] std::pair<int, int> parse_size(const std::string& text);
+/// Parses "id,depth" (any of id, depth; no repeats). Throws InputError naming --aov.
+[[nodiscard]] std::vector<std::string> parse_aov(const std::string& text);
+
+/// Checks every flag that can be checked without the scene; throws InputError naming the flag.
+void validate(const RenderParams& params);
+/// The frame-schedule flags of `params`.
+[[nodiscard]] FrameScheduleParams schedule_params(const RenderParams& params);
+/// The backend flags of `params`.
+[[nodiscard]] BackendConfig backend_config(const RenderParams& params);
+/// The model-import flags of `params`.
+[[nodiscard]] ModelOptions model_options(const RenderParams& params);
+/// The default output folder name of a scene spec: "wavy-sphere:triangles=9" -> "wavy-sphere",
+/// "scenes/cloth.json" -> "cloth".
+[[nodiscard]] std::string scene_stem(const std::string& spec);
+/// params.out, or out/<scene-name> when it is empty.
+[[nodiscard]] std::string output_folder(const RenderParams& params);
+
+/// Where the time of a frame loop went, in seconds.
+struct RenderTimings {
+  size_t frames = 0;
+  double load = 0;    ///< loading the scene and building its camera-space flightplans
+  double setup = 0;   ///< creating the backend
+  double render = 0;  ///< Backend::render
+  double shade = 0;   ///< shade_frame
+  double write = 0;   ///< the frame sink (files, video)
+  double total = 0;   ///< wall time from the start of the job to the end of the loop
+};
+
+/// A validated, loaded scene and its frame times, ready to render with any backend.
+class RenderJob {
+ public:
+  /// Validates `params`, loads the scene and computes the frame times; writes nothing.
+  /// Throws InputError for bad flags or a bad scene.
+  explicit RenderJob(RenderParams params);
+  // m_camera_space points into m_scene, so the job stays where it was made.
+  RenderJob(const RenderJob&) = delete;
+  RenderJob& operator=(const RenderJob&) = delete;
+
+  [[nodiscard]] const RenderParams& params() const { return m_params; }
+  [[nodiscard]] const Scene& scene() const { return m_scene; }
+  [[nodiscard]] const CameraSpaceScene& camera_space() const { return m_camera_space; }
+  [[nodiscard]] const std::vector<double>& frame_times() const { return m_frame_times; }
+  /// Timings so far: load (and setup once make_backend was called).
+  [[nodiscard]] const RenderTimings& timings() const { return m_timings; }
+
+  /// Creates backend `name` (empty: params().backend) for this scene; throws InputError for an
+  /// unknown backend or bad backend flags.
+  [[nodiscard]] std::unique_ptr<Backend> make_backend(const std::string& name = "");
+  /// Renders and shades frame `index` into `frame`, adding the time spent to timings().
+  void render_frame(Backend& backend, size_t index, Frame& frame);
+  /// The frame loop: every frame time in order, rendered, shaded and handed to `sink` (timed as
+  /// "write"), with a progress bar on stderr when it is a terminal and params().quiet is false.
+  /// Returns the timings of the whole job.
+  const RenderTimings& run(Backend& backend, const std::function<void(size_t index, const Frame&)>& sink);
+
+ private:
+  RenderParams m_params;
+  Scene m_scene;
+  CameraSpaceScene m_camera_space;
+  std::vector<double> m_frame_times;
+  RenderTimings m_timings;
+  double m_started = 0;  ///< steady-clock seconds when the job was made
+};
+
+/// The --stats JSON: {"scene", "backend", "frames", "size", "triangles", "vertices", "objects",
+/// "frame_times", "time_s": {"total", "load", "setup", "render", "shade", "write"}} plus what
+/// Backend::write_stats adds.
+[[nodiscard]] nlohmann::json render_stats(const RenderJob& job, const Backend& backend);
+
+}  // namespace kinray

@@ -1,0 +1,40 @@
+#pragma once
+// The flags that `kinray render`, `diff` and `bench` share, defined once so that they stay
+// identical: each command adds the groups it needs and turns what was parsed into RenderParams.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "renderer/render_job.h"
+
+namespace kinray {
+
+/// Parse targets of the shared flags; resolve() converts and validates them.
+struct RenderOptions {
+  RenderParams params;  ///< flags that parse straight into their field
+  std::string size = "512x512";
+  int frames = 0, inbetweens = 0;
+  double fps = 0;
+  std::string time, aov;
+  CLI::Option* frames_option = nullptr;
+  CLI::Option* fps_option = nullptr;
+  CLI::Option* inbetweens_option = nullptr;
+  CLI::Option* time_option = nullptr;
+  CLI::Option* aov_option = nullptr;
+
+  /// RenderParams from the parsed flags. Throws InputError naming the flag at fault.
+  [[nodiscard]] RenderParams resolve() const;
+};
+
+/// SCENE (positional, required), --animation, --keyrate.
+void add_scene_options(CLI::App& command, RenderOptions& options);
+/// --size, --frames | --fps | --inbetweens, --time, --threads.
+void add_frame_options(CLI::App& command, RenderOptions& options);
+/// --backend, --embree-mode, --packet, --sort, --audit.
+void add_backend_options(CLI::App& command, RenderOptions& options);
+/// --out, --video, --aov, --stats, --quiet.
+void add_output_options(CLI::App& command, RenderOptions& options);
+/// All of the above: the flags of `kinray render`.
+void add_render_options(CLI::App& command, RenderOptions& options);
+
+}  // namespace kinray

@@ -1,0 +1,148 @@
+// kinray info SCENE: what a scene holds (triangles, vertices, objects, keyframes, duration, bounds,
+// camera keys), as text or --json.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scenes/error.h"
+#include "scenes/scene_loader.h"
+#include "tools/commands.h"
+
+namespace kinray {
+namespace {
+
+struct InfoOptions {
+  std::string scene;
+  std::string animation;
+  double keyrate = 0;
+  bool json = false;
+};
+
+constexpr size_t kListedObjects = 20;
+
+nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+std::string text(const Vec3& v) {
+  std::ostringstream out;
+  out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return out.str();
+}
+
+nlohmann::json describe(const std::string& spec, const Scene& scene) {
+  const Eigen::AlignedBox3d bounds = scene.bounds();
+  size_t moving = 0;
+  nlohmann::json objects = nlohmann::json::array();
+  for (const Object& object : scene.objects) {
+    const bool is_static = object.is_static();
+    moving += !is_static;
+    nlohmann::json entry = {{"name", object.name},
+                            {"triangles", object.triangles.size()},
+                            {"vertices", object.vertex_count()},
+                            {"keys", object.key_count()},
+                            {"static", is_static},
+                            {"material", object.material}};
+    if (std::isfinite(object.appear)) entry["appear"] = object.appear;
+    if (std::isfinite(object.disappear)) entry["disappear"] = object.disappear;
+    objects.push_back(entry);
+  }
+  nlohmann::json camera = nlohmann::json::array();
+  for (const CameraKey& key : scene.camera.keys) {
+    const Eigen::Matrix3d rotation = key.orientation.normalized().toRotationMatrix();
+    camera.push_back({{"time", key.time},
+                      {"position", vec(key.position)},
+                      {"direction", vec(rotation * Vec3(0, 0, -1))},
+                      {"up", vec(rotation * Vec3(0, 1, 0))},
+                      {"fov_y_degrees", key.fov_y_degrees}});
+  }
+  const std::vector<double> key_times = scene.key_times();
+  return {{"scene", spec},
+          {"name", scene.name},
+          {"triangles", scene.triangle_count()},
+          {"vertices", scene.vertex_count()},
+          {"objects", scene.objects.size()},
+          {"moving_objects", moving},
+          {"materials", scene.materials.size()},
+          {"textures", scene.textures.size()},
+          {"keyframes", key_times.size()},
+          {"key_times", key_times},
+          {"time_begin", scene.time_begin},
+          {"time_end", scene.time_end},
+          {"duration", scene.time_end - scene.time_begin},
+          {"bounds", bounds.isEmpty() ? nlohmann::json(nullptr)
+                                      : nlohmann::json{{"min", vec(bounds.min())}, {"max", vec(bounds.max())}}},
+          {"camera_keys", camera},
+          {"object_list", objects}};
+}
+
+void print_text(const Scene& scene, const nlohmann::json& info) {
+  std::printf("scene       %s (%s)\n", info["scene"].get<std::string>().c_str(), scene.name.c_str());
+  std::printf("triangles   %zu\n", scene.triangle_count());
+  std::printf("vertices    %zu\n", scene.vertex_count());
+  std::printf("objects     %zu (%zu moving, %zu static)\n", scene.objects.size(),
+              info["moving_objects"].get<size_t>(), scene.objects.size() - info["moving_objects"].get<size_t>());
+  std::printf("materials   %zu (%zu textures)\n", scene.materials.size(), scene.textures.size());
+  std::printf("keyframes   %zu (the key grid that --inbetweens subdivides)\n", info["keyframes"].get<size_t>());
+  std::printf("duration    %g s (shot [%g, %g])\n", scene.time_end - scene.time_begin, scene.time_begin,
+              scene.time_end);
+  const Eigen::AlignedBox3d bounds = scene.bounds();
+  if (bounds.isEmpty())
+    std::printf("bounds      empty\n");
+  else
+    std::printf("bounds      min %s  max %s\n", text(bounds.min()).c_str(), text(bounds.max()).c_str());
+  std::printf("camera      %zu key%s\n", scene.camera.keys.size(), scene.camera.keys.size() == 1 ? "" : "s");
+  for (const auto& key : info["camera_keys"]) {
+    const auto p = key["position"], d = key["direction"];
+    std::printf("  t=%-8g position (%g, %g, %g)  looking (%g, %g, %g)  fov_y %g deg\n", key["time"].get<double>(),
+                p[0].get<double>(), p[1].get<double>(), p[2].get<double>(), d[0].get<double>(), d[1].get<double>(),
+                d[2].get<double>(), key["fov_y_degrees"].get<double>());
+  }
+  size_t listed = 0;
+  for (const auto& object : info["object_list"]) {
+    if (listed++ == kListedObjects) {
+      std::printf("  ... and %zu more objects\n", scene.objects.size() - kListedObjects);
+      break;
+    }
+    std::string visibility;
+    if (object.contains("appear") || object.contains("disappear"))
+      visibility = "  visible [" + (object.contains("appear") ? object["appear"].dump() : std::string("-inf")) +
+                   ", " + (object.contains("disappear") ? object["disappear"].dump() : std::string("inf")) + ")";
+    std::printf("  object %-3zu %-20s %8zu triangles %3zu keys  %s%s\n", listed - 1,
+                object["name"].get<std::string>().c_str(), object["triangles"].get<size_t>(),
+                object["keys"].get<size_t>(), object["static"].get<bool>() ? "static" : "moving", visibility.c_str());
+  }
+}
+
+}  // namespace
+
+void register_info_command(CLI::App& app) {
+  CLI::App* command = app.add_subcommand(
+      "info", "Print what a scene holds: triangles, vertices, objects, keyframes, duration, bounds, camera keys");
+  auto options = std::make_shared<InfoOptions>();
+  command
+      ->add_option("SCENE", options->scene,
+                   "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene file or a model file")
+      ->required();
+  command->add_option("--animation", options->animation, "Model files: the animation to play (name or index)");
+  command->add_option("--keyrate", options->keyrate, "Model files: resample at this many keys per second");
+  command->add_flag("--json", options->json, "Print JSON instead of text");
+  command->callback([options] {
+    if (!std::isfinite(options->keyrate) || options->keyrate < 0)
+      throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
+    ModelOptions model;
+    model.animation = options->animation;
+    model.keyrate = options->keyrate;
+    const Scene scene = load_scene(options->scene, model);
+    scene.validate(options->scene);
+    const nlohmann::json info = describe(options->scene, scene);
+    if (options->json)
+      std::printf("%s\n", info.dump(2).c_str());
+    else
+      print_text(scene, info);
+  });
+}
+
+}  // namespace kinray

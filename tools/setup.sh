@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# kinray set-up on Debian 12: installs the Debian packages that are missing, builds into build/,
+# then either renders the default scene or runs the whole test suite.
+#
+#   bash tools/setup.sh render   # install, build, render wavy-sphere to out/wavy-sphere/ (default)
+#   bash tools/setup.sh test     # install, build, run every test (ctest)
+#   bash tools/setup.sh build    # install and build only
+set -euo pipefail
+
+mode="${1:-render}"
+case "$mode" in
+  render | test | build) ;;
+  *)
+    echo "usage: bash tools/setup.sh [render|test|build]" >&2
+    exit 2
+    ;;
+esac
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+
+packages=(
+  cmake ninja-build g++ pkg-config
+  libeigen3-dev libembree-dev libassimp-dev assimp-testmodels libosmesa6-dev
+  libopencv-imgcodecs-dev libopencv-imgproc-dev libopencv-videoio-dev
+  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+)
+
+# dpkg-query answers in milliseconds, so a machine that has everything never touches apt.
+missing=()
+for package in "${packages[@]}"; do
+  status="$(dpkg-query -W -f='${Status}' "$package" 2>/dev/null || true)"
+  [[ "$status" == "install ok installed" ]] || missing+=("$package")
+done
+if ((${#missing[@]} > 0)); then
+  echo "setup: installing ${missing[*]}"
+  sudo=()
+  if [[ "$(id -u)" != 0 ]]; then
+    command -v sudo >/dev/null || { echo "setup: need root or sudo to install packages" >&2; exit 1; }
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" apt-get update
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+echo "setup: building into build/"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"
+
+case "$mode" in
+  render)
+    build/bin/kinray render wavy-sphere --frames 24 --out out/wavy-sphere
+    echo "setup: the 24 frames are in $root/out/wavy-sphere/ (frame_00000.png .. frame_00023.png)"
+    ;;
+  test)
+    ctest --test-dir build --output-on-failure -j2
+    ;;
+  build)
+    echo "setup: the program is $root/build/bin/kinray"
+    ;;
+esac
