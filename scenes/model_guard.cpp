@@ -1,20 +1,39 @@
 #include "scenes/model_guard.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <iostream>
 
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 namespace kinray {
 
-std::optional<std::string> run_in_child(const std::function<std::string()>& work, double timeout_seconds) {
+size_t reader_address_space() {
+  size_t used_pages = 0;
+  std::ifstream("/proc/self/statm") >> used_pages;  // first field: total program size in pages
+  const long page = sysconf(_SC_PAGESIZE), physical = sysconf(_SC_PHYS_PAGES);
+  if (page <= 0 || physical <= 0) return 0;
+  const size_t budget = std::min(size_t(physical) / 2 * size_t(page), size_t(8) << 30);
+  return used_pages * size_t(page) + budget;
+}
+
+std::optional<std::string> run_in_child(const std::function<std::string()>& work, double timeout_seconds,
+                                        size_t address_space_bytes) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) return std::nullopt;
+  // Pending output would otherwise be copied into the child and written twice.
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
   const pid_t child = fork();
   if (child < 0) {
     close(fds[0]);
@@ -23,6 +42,11 @@ std::optional<std::string> run_in_child(const std::function<std::string()>& work
   }
   if (child == 0) {
     close(fds[0]);
+    dup2(STDERR_FILENO, STDOUT_FILENO);
+    if (address_space_bytes > 0) {
+      const rlimit limit{rlim_t(address_space_bytes), rlim_t(address_space_bytes)};
+      setrlimit(RLIMIT_AS, &limit);
+    }
     std::string message;
     try {
       message = work();
@@ -74,6 +98,22 @@ std::optional<std::string> run_in_child(const std::function<std::string()>& work
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return std::nullopt;
   return message.empty() ? std::string("failed") : message;
+}
+
+StdoutToStderr::StdoutToStderr() {
+  std::cout.flush();
+  std::fflush(stdout);
+  m_saved = dup(STDOUT_FILENO);
+  if (m_saved >= 0) dup2(STDERR_FILENO, STDOUT_FILENO);
+}
+
+StdoutToStderr::~StdoutToStderr() {
+  std::cout.flush();
+  std::fflush(stdout);
+  if (m_saved >= 0) {
+    dup2(m_saved, STDOUT_FILENO);
+    close(m_saved);
+  }
 }
 
 }  // namespace kinray

@@ -20,6 +20,7 @@
 #include "scenes/model_morph.h"
 #include "scenes/model_skinning.h"
 #include "scenes/model_textures.h"
+#include "scenes/model_xfile_check.h"
 
 namespace kinray {
 
@@ -344,6 +345,7 @@ Scene load_model(const std::string& path, const ModelOptions& options) {
   if (!std::filesystem::is_regular_file(status)) throw InputError(path, "is not a regular file");
   if (!std::isfinite(options.import_timeout) || options.import_timeout <= 0)
     throw InputError(path, "the import timeout must be a positive number of seconds");
+  check_x_skin_weights(path);
   auto read = [&](Assimp::Importer& importer) { return importer.ReadFile(path, model_import_flags()); };
   if (options.isolate_import) {
     const std::optional<std::string> failure = run_in_child(
@@ -351,12 +353,13 @@ Scene load_model(const std::string& path, const ModelOptions& options) {
           Assimp::Importer importer;
           return read(importer) ? std::string() : std::string(importer.GetErrorString());
         },
-        options.import_timeout);
+        options.import_timeout, reader_address_space());
     if (failure) throw InputError(path, "assimp cannot read it: " + *failure);
   }
   Assimp::Importer importer;
   const aiScene* model = nullptr;
   try {
+    const StdoutToStderr shield;
     model = read(importer);
   } catch (const std::exception& failure) {
     throw InputError(path, std::string("assimp cannot read it: ") + failure.what());
