@@ -1,11 +1,48 @@
 #include "kinetic/event_queue.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <utility>
 
 namespace kinray {
 
 namespace {
-constexpr uint32_t kArity = 4;
+constexpr uint32_t kArity = EventQueue::kArity;
+constexpr size_t kAlign = 128;
+}  // namespace
+
+EventQueue::EventQueue(EventQueue&& other) noexcept
+    : m_heap(std::exchange(other.m_heap, nullptr)),
+      m_capacity(std::exchange(other.m_capacity, 0)),
+      m_size(std::exchange(other.m_size, 0)),
+      m_slots(std::move(other.m_slots)),
+      m_free(std::exchange(other.m_free, kNoEvent)) {}
+
+EventQueue& EventQueue::operator=(EventQueue&& other) noexcept {
+  if (this != &other) {
+    std::free(m_heap);
+    m_heap = std::exchange(other.m_heap, nullptr);
+    m_capacity = std::exchange(other.m_capacity, 0);
+    m_size = std::exchange(other.m_size, 0);
+    m_slots = std::move(other.m_slots);
+    m_free = std::exchange(other.m_free, kNoEvent);
+  }
+  return *this;
+}
+
+EventQueue::~EventQueue() { std::free(m_heap); }
+
+void EventQueue::grow(size_t capacity) {
+  if (capacity <= m_capacity) return;
+  const size_t bytes = ((capacity + kOffset + 1) * sizeof(Node) + kAlign - 1) / kAlign * kAlign;
+  auto* heap = static_cast<Node*>(std::aligned_alloc(kAlign, bytes));
+  if (!heap) throw std::bad_alloc();
+  if (m_heap) std::memcpy(heap, m_heap, (m_size + kOffset) * sizeof(Node));
+  std::free(m_heap);
+  m_heap = heap;
+  m_capacity = capacity;
 }
 
 EventHandle EventQueue::push(const EventKey& key, uint64_t payload) {
@@ -19,23 +56,24 @@ EventHandle EventQueue::push(const EventKey& key, uint64_t payload) {
     h = static_cast<EventHandle>(m_slots.size());
     m_slots.emplace_back();
   }
-  const auto pos = static_cast<uint32_t>(m_heap.size());
-  m_heap.push_back({key, h});
-  m_slots[h] = {payload, pos};
-  sift_up(pos);
+  m_slots[h].key = key;
+  m_slots[h].payload = payload;
+  if (m_size == m_capacity) grow(m_capacity < 16 ? 16 : 2 * m_capacity);
+  sift_up(m_size++, Node{key.time, h, 0});
   return h;
 }
 
 void EventQueue::update(EventHandle h, const EventKey& key) {
   KINRAY_CHECK(contains(h));
   KINRAY_CHECK_MSG(!std::isnan(key.time), "event time is NaN");
-  const uint32_t pos = m_slots[h].pos;
-  const bool up = key < m_heap[pos].key;
-  m_heap[pos].key = key;
+  const bool up = key < m_slots[h].key;
+  m_slots[h].key = key;
+  const uint32_t r = m_slots[h].pos;
+  const Node node{key.time, h, 0};
   if (up)
-    sift_up(pos);
+    sift_up(r, node);
   else
-    sift_down(pos);
+    sift_down(r, node);
 }
 
 void EventQueue::erase(EventHandle h) {
@@ -43,95 +81,83 @@ void EventQueue::erase(EventHandle h) {
   remove_at(m_slots[h].pos);
 }
 
-void EventQueue::set_payload(EventHandle h, uint64_t payload) {
-  KINRAY_DCHECK(contains(h));
-  m_slots[h].payload = payload;
-}
-
 void EventQueue::pop() {
-  KINRAY_CHECK(!m_heap.empty());
+  KINRAY_CHECK(m_size > 0);
   remove_at(0);
 }
 
-void EventQueue::remove_at(uint32_t pos) {
-  const EventHandle h = m_heap[pos].handle;
+void EventQueue::remove_at(uint32_t r) {
+  const EventHandle h = m_heap[r + kOffset].handle;
   m_slots[h].pos = kFreeSlot;
   m_slots[h].payload = m_free;
   m_free = h;
-  const auto last = static_cast<uint32_t>(m_heap.size() - 1);
-  if (pos != last) {
-    const bool up = m_heap[last].key < m_heap[pos].key;
-    m_heap[pos] = m_heap[last];
-    m_slots[m_heap[pos].handle].pos = pos;
-    m_heap.pop_back();
-    if (up)
-      sift_up(pos);
-    else
-      sift_down(pos);
-  } else {
-    m_heap.pop_back();
-  }
+  const uint32_t last = --m_size;
+  if (r == last) return;
+  const Node moved = m_heap[last + kOffset];
+  if (r > 0 && less(moved, m_heap[(r - 1) / kArity + kOffset]))
+    sift_up(r, moved);
+  else
+    sift_down(r, moved);
 }
 
-void EventQueue::sift_up(uint32_t pos) {
-  const Node node = m_heap[pos];
-  while (pos > 0) {
-    const uint32_t parent = (pos - 1) / kArity;
-    if (!(node.key < m_heap[parent].key)) break;
-    m_heap[pos] = m_heap[parent];
-    m_slots[m_heap[pos].handle].pos = pos;
-    pos = parent;
+void EventQueue::sift_up(uint32_t r, Node node) {
+  while (r > 0) {
+    const uint32_t parent = (r - 1) / kArity;
+    const Node& p = m_heap[parent + kOffset];
+    if (!less(node, p)) break;
+    place(r, p);
+    r = parent;
   }
-  m_heap[pos] = node;
-  m_slots[node.handle].pos = pos;
+  place(r, node);
 }
 
-void EventQueue::sift_down(uint32_t pos) {
-  const Node node = m_heap[pos];
-  const auto n = static_cast<uint32_t>(m_heap.size());
+void EventQueue::sift_down(uint32_t r, Node node) {
+  const uint32_t n = m_size;
   for (;;) {
-    const uint32_t first = pos * kArity + 1;
+    const uint32_t first = r * kArity + 1;
     if (first >= n) break;
-    uint32_t best = first;
-    const uint32_t end = first + kArity < n ? first + kArity : n;
-    for (uint32_t c = first + 1; c < end; ++c)
-      if (m_heap[c].key < m_heap[best].key) best = c;
-    if (!(m_heap[best].key < node.key)) break;
-    m_heap[pos] = m_heap[best];
-    m_slots[m_heap[pos].handle].pos = pos;
-    pos = best;
+    const Node* c = m_heap + first + kOffset;
+    uint32_t best = 0;
+    const uint32_t count = n - first < kArity ? n - first : kArity;
+    for (uint32_t i = 1; i < count; ++i)
+      if (less(c[i], c[best])) best = i;
+    if (!less(c[best], node)) break;
+    place(r, c[best]);
+    r = first + best;
   }
-  m_heap[pos] = node;
-  m_slots[node.handle].pos = pos;
+  place(r, node);
 }
 
 void EventQueue::clear() {
-  m_heap.clear();
+  m_size = 0;
   m_slots.clear();
   m_free = kNoEvent;
 }
 
 void EventQueue::reserve(size_t n) {
-  m_heap.reserve(n);
+  grow(n);
   m_slots.reserve(n);
 }
 
 size_t EventQueue::memory_bytes() const {
-  return sizeof(*this) + m_heap.capacity() * sizeof(Node) + m_slots.capacity() * sizeof(Slot);
+  return sizeof(*this) + (m_capacity + kOffset + 1) * sizeof(Node) +
+         m_slots.capacity() * sizeof(Slot);
 }
 
 void EventQueue::audit() const {
-  for (uint32_t pos = 0; pos < m_heap.size(); ++pos) {
-    const EventHandle h = m_heap[pos].handle;
-    KINRAY_CHECK(h < m_slots.size() && m_slots[h].pos == pos);
-    if (pos > 0) KINRAY_CHECK(!(m_heap[pos].key < m_heap[(pos - 1) / kArity].key));
+  for (uint32_t r = 0; r < m_size; ++r) {
+    const Node& node = m_heap[r + kOffset];
+    const EventHandle h = node.handle;
+    KINRAY_CHECK(h < m_slots.size() && m_slots[h].pos == r);
+    KINRAY_CHECK(node.time == m_slots[h].key.time);
+    if (r > 0) KINRAY_CHECK(!less(node, m_heap[(r - 1) / kArity + kOffset]));
   }
   size_t free_count = 0;
   for (uint32_t h = m_free; h != kNoEvent; h = static_cast<uint32_t>(m_slots[h].payload)) {
     KINRAY_CHECK(h < m_slots.size() && m_slots[h].pos == kFreeSlot);
     KINRAY_CHECK(++free_count <= m_slots.size());
   }
-  KINRAY_CHECK(free_count + m_heap.size() == m_slots.size());
+  KINRAY_CHECK(free_count + m_size == m_slots.size());
 }
 
 }  // namespace kinray

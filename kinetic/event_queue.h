@@ -30,31 +30,40 @@ inline bool operator==(const EventKey& x, const EventKey& y) {
 using EventHandle = uint32_t;  ///< stable until erase / pop of that event
 inline constexpr EventHandle kNoEvent = ~0u;
 
-/// Event queue shared by many kinetic structures. Handles of popped or erased events are
+/// Event queue shared by many kinetic structures: an 8-ary min-heap of (time, handle) pairs of 16
+/// bytes, each group of eight siblings in one aligned pair of cache lines; the full keys and payloads live
+/// in a slot per handle (consulted for ties in time only). Handles of popped or erased events are
 /// recycled by later pushes.
 class EventQueue {
  public:
+  EventQueue() = default;
+  EventQueue(const EventQueue&) = delete;
+  EventQueue& operator=(const EventQueue&) = delete;
+  EventQueue(EventQueue&& other) noexcept;
+  EventQueue& operator=(EventQueue&& other) noexcept;
+  ~EventQueue();
+
   EventHandle push(const EventKey& key, uint64_t payload);  ///< O(log n)
   void update(EventHandle h, const EventKey& key);          ///< O(log n), either direction
   void erase(EventHandle h);                                ///< O(log n)
-  void set_payload(EventHandle h, uint64_t payload);        ///< O(1)
-
-  [[nodiscard]] bool empty() const { return m_heap.empty(); }
-  [[nodiscard]] size_t size() const { return m_heap.size(); }
-  [[nodiscard]] const EventKey& top_key() const {
-    KINRAY_DCHECK(!m_heap.empty());
-    return m_heap.front().key;
+  void set_payload(EventHandle h, uint64_t payload) {       ///< O(1)
+    KINRAY_DCHECK(contains(h));
+    m_slots[h].payload = payload;
   }
+
+  [[nodiscard]] bool empty() const { return m_size == 0; }
+  [[nodiscard]] size_t size() const { return m_size; }
+  [[nodiscard]] const EventKey& top_key() const { return m_slots[top()].key; }
   [[nodiscard]] uint64_t top_payload() const { return m_slots[top()].payload; }
   [[nodiscard]] EventHandle top() const {
-    KINRAY_DCHECK(!m_heap.empty());
-    return m_heap.front().handle;
+    KINRAY_DCHECK(m_size > 0);
+    return m_heap[kOffset].handle;
   }
   void pop();  ///< removes the top event; its handle becomes invalid
 
   [[nodiscard]] const EventKey& key(EventHandle h) const {
     KINRAY_DCHECK(contains(h));
-    return m_heap[m_slots[h].pos].key;
+    return m_slots[h].key;
   }
   [[nodiscard]] uint64_t payload(EventHandle h) const {
     KINRAY_DCHECK(contains(h));
@@ -72,19 +81,39 @@ class EventQueue {
 
  private:
   static constexpr uint32_t kFreeSlot = ~0u;
+ public:
+  static constexpr uint32_t kArity = 8;  ///< children per node
+
+ private:
+  // Heap entry r is stored at m_heap[r + kOffset]; the children of r, 8r+1 .. 8r+8, are then
+  // stored at 8(r+1) .. 8(r+1)+7: one 128-byte aligned group (two cache lines).
+  static constexpr uint32_t kOffset = kArity - 1;
   struct Node {
-    EventKey key;
+    double time;
     EventHandle handle;
+    uint32_t unused;
   };
   struct Slot {
-    uint64_t payload = 0;  ///< the event's payload, or the next free slot when free
-    uint32_t pos = kFreeSlot;
+    EventKey key;
+    uint64_t payload = 0;      ///< the event's payload, or the next free slot when free
+    uint32_t pos = kFreeSlot;  ///< heap index r of the event
   };
-  void sift_up(uint32_t pos);
-  void sift_down(uint32_t pos);
-  void remove_at(uint32_t pos);
+  bool less(const Node& x, const Node& y) const {
+    if (x.time != y.time) return x.time < y.time;
+    return m_slots[x.handle].key < m_slots[y.handle].key;
+  }
+  void place(uint32_t r, const Node& node) {
+    m_heap[r + kOffset] = node;
+    m_slots[node.handle].pos = r;
+  }
+  void sift_up(uint32_t r, Node node);
+  void sift_down(uint32_t r, Node node);
+  void remove_at(uint32_t r);
+  void grow(size_t capacity);
 
-  std::vector<Node> m_heap;
+  Node* m_heap = nullptr;  ///< 64-byte aligned, m_capacity + kOffset + 1 nodes
+  size_t m_capacity = 0;
+  uint32_t m_size = 0;
   std::vector<Slot> m_slots;
   uint32_t m_free = kNoEvent;
 };

@@ -353,30 +353,32 @@ std::optional<double> first_failure_linear(const Polynomial& f, double s_now, do
   const double c0 = f.c[0], c1 = f.c[1];
   if (c1 > 0) return std::nullopt;
   auto neg = [&](double s) { return c0 + c1 * s <= 0; };
-  double lo = s_now, hi;
-  if (std::isfinite(s_end)) {
-    if (!neg(s_end)) return std::nullopt;
-    hi = s_end;
-  } else {
-    hi = -c0 / c1;
-    if (!std::isfinite(hi)) hi = std::numeric_limits<double>::max();
-    double step = std::max(std::fabs(hi), 1.0) * kUnitRoundoff;
-    while (!neg(hi) || !(hi > lo)) {
-      hi = std::max(hi, lo) + step;
+  const bool bounded = std::isfinite(s_end);
+  if (bounded && !neg(s_end)) return std::nullopt;
+  const double top = bounded ? s_end : std::numeric_limits<double>::max();
+  if (!neg(top)) return std::nullopt;
+  // Start at the rounded root and gallop to a bracket [lo, hi] of adjacent or nearby doubles.
+  double g = -c0 / c1;
+  if (!(g > s_now)) g = std::nextafter(s_now, kInf);
+  if (!(g < top)) g = top;
+  double lo, hi;
+  double step = std::max(std::fabs(g), std::numeric_limits<double>::min()) * kUnitRoundoff;
+  if (neg(g)) {
+    hi = g;
+    lo = std::nextafter(g, -kInf);
+    while (lo > s_now && neg(lo)) {
+      hi = lo;
+      lo = std::max(s_now, lo - step);
       step *= 2;
-      if (!std::isfinite(hi)) return std::nullopt;
     }
-  }
-  const double guess = -c0 / c1;
-  if (guess > lo && guess < hi) {
-    if (neg(guess)) {
-      hi = guess;
-      const double below = std::nextafter(guess, -kInf);
-      if (below <= lo || !neg(below)) return hi;
-    } else {
-      lo = guess;
-      const double above = std::nextafter(guess, kInf);
-      if (above >= hi || neg(above)) return std::min(above, hi);
+    lo = std::max(lo, s_now);
+  } else {
+    lo = g;
+    hi = std::nextafter(g, kInf);
+    while (hi < top && !neg(hi)) {
+      lo = hi;
+      hi = std::min(top, hi + step);
+      step *= 2;
     }
   }
   while (std::nextafter(lo, kInf) < hi) {
