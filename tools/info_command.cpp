@@ -129,6 +129,7 @@ void register_info_command(CLI::App& app) {
   command->add_option("--animation", options->animation, "Model files: the animation to play (name or index)");
   command->add_option("--keyrate", options->keyrate, "Model files: resample at this many keys per second");
   command->add_flag("--json", options->json, "Print JSON instead of text");
+  command->footer(describe_scene_spec_syntax());
   command->callback([options] {
     if (!std::isfinite(options->keyrate) || options->keyrate < 0)
       throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");

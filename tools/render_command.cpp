@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <memory>
 #include <system_error>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "renderer/image_io.h"
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
+#include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 
@@ -40,6 +42,17 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
     throw InputError("--out", "'" + out + "' exists and is not a folder");
   if (!params.stats.empty() && fs::is_directory(params.stats, error))
     throw InputError("--stats", "'" + params.stats + "' is a folder");
+  // A file where a folder must be would only fail after the whole render.
+  for (const auto& [file, flag] : {std::pair{params.stats, "--stats"}, std::pair{params.video, "--video"}}) {
+    for (fs::path parent = fs::path(file).parent_path(); !parent.empty(); parent = parent.parent_path()) {
+      if (fs::exists(parent, error)) {
+        if (!fs::is_directory(parent, error))
+          throw InputError(flag, "'" + parent.string() + "' is not a folder");
+        break;
+      }
+      if (parent == parent.parent_path()) break;
+    }
+  }
 }
 
 void create_folder(const fs::path& folder, const char* flag) {
@@ -98,6 +111,7 @@ void register_render_command(CLI::App& app) {
       "render", "Render a scene to PNG frames out/<scene>/frame_00000.png ... (and a video, ID/depth buffers, stats)");
   auto options = std::make_shared<RenderOptions>();
   add_render_options(*command, *options);
+  command->footer(describe_scene_spec_syntax());
   command->callback([options] { run_render(options->resolve()); });
 }
 
