@@ -246,14 +246,24 @@ ColorError compare_colors(const Frame& a, const Frame& b) {
   return error;
 }
 
-void write_heat_map(const FrameDiff& diff, const std::string& path) {
+void write_heat_map(const FrameDiff& diff, const std::string& path, const Frame* context) {
+  if (context && (context->width != diff.width || context->height != diff.height)) context = nullptr;
   cv::Mat image(diff.height, diff.width, CV_8UC3);
   for (int j = 0; j < diff.height; ++j)
     for (int i = 0; i < diff.width; ++i) {
+      const size_t p = size_t(j) * size_t(diff.width) + size_t(i);
       cv::Vec3b bgr;
-      switch (diff.pixels[size_t(j) * size_t(diff.width) + size_t(i)]) {
-        case PixelClass::kBackground: bgr = {48, 48, 48}; break;
-        case PixelClass::kEqual: bgr = {0, 0, 0}; break;
+      // Dim grey (at most 40% of full scale) keeps the yellow and red the brightest pixels.
+      const auto underlay = [&](uint8_t plain) -> cv::Vec3b {
+        if (!context) return {plain, plain, plain};
+        const Color& c = context->color[p];
+        const float luminance = std::clamp(0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z(), 0.0f, 1.0f);
+        const auto grey = uint8_t(std::lround(20.0f + 80.0f * std::sqrt(luminance)));
+        return {grey, grey, grey};
+      };
+      switch (diff.pixels[p]) {
+        case PixelClass::kBackground: bgr = underlay(48); break;
+        case PixelClass::kEqual: bgr = underlay(0); break;
         case PixelClass::kTie: bgr = {0, 255, 255}; break;
         case PixelClass::kReal: bgr = {0, 0, 255}; break;
       }

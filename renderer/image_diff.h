@@ -81,9 +81,11 @@ class FrameComparator {
 /// Colour comparison of two frames of the same size (throws std::invalid_argument otherwise).
 [[nodiscard]] ColorError compare_colors(const Frame& a, const Frame& b);
 
-/// Writes the heat map of `diff` as an 8-bit RGB PNG: black = equal, dark grey = both background,
-/// yellow = tie, red = real mismatch. Throws InputError when the file cannot be written.
-void write_heat_map(const FrameDiff& diff, const std::string& path);
+/// Writes the heat map of `diff` as an 8-bit RGB PNG: yellow = tie, red = real mismatch; equal
+/// pixels black and background dark grey, or, with a `context` frame of the same size, both as
+/// that frame's shaded image in dim grey so the mismatches can be placed. Throws InputError when
+/// the file cannot be written.
+void write_heat_map(const FrameDiff& diff, const std::string& path, const Frame* context = nullptr);
 
 /// One frame's line of a diff summary.
 struct FrameDiffSummary {

@@ -123,7 +123,7 @@ void run_diff(const DiffOptions& options) {
     line.color = compare_colors(a, b);
     if (!options.report.empty() && diff.mismatch_real + diff.mismatch_tie > 0) {
       line.heat_map = (report / numbered("diff", index)).string();
-      write_heat_map(diff, line.heat_map);
+      write_heat_map(diff, line.heat_map, &b);
       if (diff.mismatch_real > 0) {
         write_color_png((report / numbered("tested", index)).string(), a);
         write_color_png((report / numbered("reference", index)).string(), b);
@@ -167,7 +167,7 @@ void register_diff_command(CLI::App& app) {
                       "Real mismatches allowed per frame: N pixels or P% of the pixels (default 0 against "
                       "embree, 0.1% against osmesa)");
   command->add_option("--report", options->report,
-                      "Folder for heat maps (diff_NNNNN.png: black equal, grey background, yellow tie, red real), "
+                      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the reference in dim grey), "
                       "both shaded frames where a frame has real mismatches, and summary.json");
   command->add_option("--json", options->json, "Write the summary as JSON to FILE");
   command->add_flag("-q,--quiet", options->render.params.quiet, "No progress bar and no table");
