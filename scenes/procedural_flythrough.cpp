@@ -40,7 +40,7 @@ Scene make_flythrough(const ProceduralParams& params) {
   const double z_last = camera_position(params.duration).z() + 40.0;
   const int rows = int(std::ceil((z_last - z_first) / kRowSpacing));
   const double columns[] = {-6.5, -2.2, 2.2, 6.5};
-  const int lintels = (rows + 1) / 2;
+  const int lintels = rows / 2;  // on every odd row
   const int boxes = rows * 4 + lintels;
 
   // Three quarters of the triangle budget to the boxes, whatever their subdivision leaves to the
