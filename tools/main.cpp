@@ -26,10 +26,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   kinray::register_render_command(app);
   kinray::register_info_command(app);
-  // The diff and bench subcommands register here once tools/diff_command.cpp and
-  // tools/bench_command.cpp exist (their engineers add the calls):
   kinray::register_diff_command(app);
-  // kinray::register_bench_command(app);
+  kinray::register_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
