@@ -21,8 +21,8 @@ Mesh make_cube_lattice(int n, Place&& place) {
     int axis, u, v;
     bool positive;
   };
-  static constexpr Face kFaces[6] = {{0, 1, 2, true}, {0, 2, 1, false}, {1, 2, 0, true},
-                                     {1, 0, 2, false}, {2, 0, 1, true}, {2, 1, 0, false}};
+  static constexpr Face kFaces[6] = {{0, 1, 2, true},  {0, 2, 1, false}, {1, 2, 0, true},
+                                     {1, 0, 2, false}, {2, 0, 1, true},  {2, 1, 0, false}};
   Mesh mesh;
   const size_t side = size_t(n) + 1;
   mesh.positions.reserve(6 * size_t(n) * size_t(n) + 2);
@@ -37,7 +37,8 @@ Mesh make_cube_lattice(int n, Place&& place) {
         lattice[face.u] = a;
         lattice[face.v] = b;
         const bool border = a == 0 || a == n || b == 0 || b == n;
-        const uint64_t key = (uint64_t(lattice[0]) * side + uint64_t(lattice[1])) * side + uint64_t(lattice[2]);
+        const uint64_t key =
+            (uint64_t(lattice[0]) * side + uint64_t(lattice[1])) * side + uint64_t(lattice[2]);
         uint32_t index = uint32_t(mesh.positions.size());
         if (border) {
           const auto [it, inserted] = shared.emplace(key, index);
@@ -47,7 +48,8 @@ Mesh make_cube_lattice(int n, Place&& place) {
           }
         }
         face_index[size_t(b) * side + size_t(a)] = index;
-        const Vec3 unit(2.0 * lattice[0] / n - 1.0, 2.0 * lattice[1] / n - 1.0, 2.0 * lattice[2] / n - 1.0);
+        const Vec3 unit(2.0 * lattice[0] / n - 1.0, 2.0 * lattice[1] / n - 1.0,
+                        2.0 * lattice[2] / n - 1.0);
         mesh.positions.push_back(place(unit));
       }
     for (int b = 0; b < n; ++b)
@@ -74,14 +76,16 @@ Mesh make_sphere(double radius, int subdivisions) {
   return make_cube_lattice(std::max(1, subdivisions), [radius](const Vec3& c) {
     // Equal-angle warp: lattice lines become great circles at equal angles, so triangles near the
     // cube's corners are not much smaller than those at the face centres.
-    const Vec3 warped(std::tan(c.x() * M_PI / 4), std::tan(c.y() * M_PI / 4), std::tan(c.z() * M_PI / 4));
+    const Vec3 warped(std::tan(c.x() * M_PI / 4), std::tan(c.y() * M_PI / 4),
+                      std::tan(c.z() * M_PI / 4));
     return Vec3(radius * warped.normalized());
   });
 }
 
 Mesh make_box(const Vec3& size, int subdivisions) {
-  return make_cube_lattice(std::max(1, subdivisions),
-                           [half = Vec3(0.5 * size)](const Vec3& c) { return Vec3(c.cwiseProduct(half)); });
+  return make_cube_lattice(std::max(1, subdivisions), [half = Vec3(0.5 * size)](const Vec3& c) {
+    return Vec3(c.cwiseProduct(half));
+  });
 }
 
 Mesh make_grid(double size_x, double size_z, int nx, int nz) {
@@ -109,7 +113,8 @@ Mesh make_grid(double size_x, double size_z, int nx, int nz) {
   return mesh;
 }
 
-void transform_positions(const Mesh& mesh, const Eigen::Affine3d& transform, std::vector<Vec3>& out) {
+void transform_positions(const Mesh& mesh, const Eigen::Affine3d& transform,
+                         std::vector<Vec3>& out) {
   out.resize(mesh.positions.size());
   for (size_t v = 0; v < out.size(); ++v) out[v] = transform * mesh.positions[v];
 }
@@ -143,10 +148,9 @@ Object make_keyframed_object(std::string name, const Mesh& mesh, uint32_t materi
 Object make_rigid_object(std::string name, const Mesh& mesh, uint32_t material,
                          const std::vector<double>& times,
                          const std::function<Eigen::Affine3d(double t)>& transform) {
-  return make_keyframed_object(std::move(name), mesh, material, times,
-                               [&](double t, std::vector<Vec3>& out) {
-                                 transform_positions(mesh, transform(t), out);
-                               });
+  return make_keyframed_object(
+      std::move(name), mesh, material, times,
+      [&](double t, std::vector<Vec3>& out) { transform_positions(mesh, transform(t), out); });
 }
 
 }  // namespace kinray

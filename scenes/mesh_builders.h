@@ -3,12 +3,11 @@
 // Every builder shares vertices along edges (watertight meshes: a kinetic boundary never sees a
 // crack between two triangles of one object) and orients triangles counter-clockwise seen from
 // outside in the right-handed world.
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "scenes/scene.h"
 
@@ -37,11 +36,13 @@ struct Mesh {
 [[nodiscard]] Mesh make_grid(double size_x, double size_z, int nx, int nz);
 
 /// Applies `transform` to every position of `mesh`, into `out` (resized).
-void transform_positions(const Mesh& mesh, const Eigen::Affine3d& transform, std::vector<Vec3>& out);
+void transform_positions(const Mesh& mesh, const Eigen::Affine3d& transform,
+                         std::vector<Vec3>& out);
 
 /// A static object (one key at time 0): `mesh` placed by `transform`.
-[[nodiscard]] Object make_static_object(std::string name, const Mesh& mesh, uint32_t material,
-                                        const Eigen::Affine3d& transform = Eigen::Affine3d::Identity());
+[[nodiscard]] Object make_static_object(
+    std::string name, const Mesh& mesh, uint32_t material,
+    const Eigen::Affine3d& transform = Eigen::Affine3d::Identity());
 
 /// Writes the positions of every vertex at time t into `out` (already sized to the vertex count).
 using PoseFunction = std::function<void(double t, std::vector<Vec3>& out)>;
@@ -49,7 +50,8 @@ using PoseFunction = std::function<void(double t, std::vector<Vec3>& out)>;
 /// An object with `mesh`'s triangles and uvs whose key positions at each of `times` come from
 /// `pose` (called in parallel for different keys, so it must be thread-safe).
 [[nodiscard]] Object make_keyframed_object(std::string name, const Mesh& mesh, uint32_t material,
-                                           const std::vector<double>& times, const PoseFunction& pose);
+                                           const std::vector<double>& times,
+                                           const PoseFunction& pose);
 
 /// A rigid motion: `mesh` placed by `transform(t)` at each of `times`.
 [[nodiscard]] Object make_rigid_object(std::string name, const Mesh& mesh, uint32_t material,

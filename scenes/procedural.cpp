@@ -9,17 +9,27 @@ namespace kinray {
 const std::vector<BuiltinScene>& builtin_scenes() {
   static const std::vector<BuiltinScene> scenes = {
       {"wavy-sphere",
-       "a slowly spinning sphere with travelling waves on its surface, fixed camera (default, benchmark)",
-       {40000, 2, 24}, &make_wavy_sphere},
-      {"cloth", "a hanging cloth whose lower part curls up in front of, then behind, its upper part",
-       {20000, 3, 24}, &make_cloth},
-      {"orbit", "spheres and boxes orbiting a central sphere, passing in front of each other and through it",
-       {20000, 3, 24}, &make_orbit},
-      {"flythrough", "an animated camera (position, orientation, fov) flying between pillars and under lintels",
-       {20000, 4, 24}, &make_flythrough},
+       "a slowly spinning sphere with travelling waves on its surface, fixed camera (default, "
+       "benchmark)",
+       {40000, 2, 24},
+       &make_wavy_sphere},
+      {"cloth",
+       "a hanging cloth whose lower part curls up in front of, then behind, its upper part",
+       {20000, 3, 24},
+       &make_cloth},
+      {"orbit",
+       "spheres and boxes orbiting a central sphere, passing in front of each other and through it",
+       {20000, 3, 24},
+       &make_orbit},
+      {"flythrough",
+       "an animated camera (position, orientation, fov) flying between pillars and under lintels",
+       {20000, 4, 24},
+       &make_flythrough},
       {"static-moving",
-       "static ground and wall, a bouncing ball, and a spinning box that appears and later disappears",
-       {10000, 2, 24}, &make_static_moving},
+       "static ground and wall, a bouncing ball, and a spinning box that appears and later "
+       "disappears",
+       {10000, 2, 24},
+       &make_static_moving},
   };
   return scenes;
 }
@@ -43,24 +53,28 @@ Scene make_builtin_scene(const std::string& name, const std::map<std::string, do
   if (!builtin) {
     std::string valid;
     for (const std::string& n : builtin_scene_names()) valid += (valid.empty() ? "" : ", ") + n;
-    throw InputError("scene '" + name + "'", "unknown built-in scene; the built-in scenes are " + valid);
+    throw InputError("scene '" + name + "'",
+                     "unknown built-in scene; the built-in scenes are " + valid);
   }
   ProceduralParams values = builtin->defaults;
   const std::string where = "scene '" + name + "'";
   for (const auto& [key, value] : params) {
-    double* field = key == "triangles" ? &values.triangles
+    double* field = key == "triangles"  ? &values.triangles
                     : key == "duration" ? &values.duration
                     : key == "keyrate"  ? &values.keyrate
                                         : nullptr;
     if (!field)
-      throw InputError(where, "unknown parameter '" + key + "'; the parameters are triangles, duration, keyrate");
+      throw InputError(where, "unknown parameter '" + key +
+                                  "'; the parameters are triangles, duration, keyrate");
     if (!std::isfinite(value) || !(value > 0))
-      throw InputError(where, "parameter " + key + " must be a finite number > 0, got " + std::to_string(value));
+      throw InputError(
+          where, "parameter " + key + " must be a finite number > 0, got " + std::to_string(value));
     *field = value;
   }
   // Past these the scene would not fit in memory (or not be keyframed at all): refuse, don't crash.
   if (values.triangles > 5e7)
-    throw InputError(where, "triangles must be at most 5e7, got " + std::to_string(values.triangles));
+    throw InputError(where,
+                     "triangles must be at most 5e7, got " + std::to_string(values.triangles));
   if (values.duration * values.keyrate > 1e5)
     throw InputError(where, "duration * keyrate must be at most 1e5 keys");
   Scene scene = builtin->make(values);

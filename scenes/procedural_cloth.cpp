@@ -19,8 +19,8 @@ constexpr double kLength = 2.0;
 constexpr double kTop = 1.0;
 constexpr double kMaxTurn = 1.4 * M_PI;  // beyond pi the free edge comes back up over the sheet
 constexpr double kCurlExponent = 1.5;
-constexpr double kPeriod = 3.0;           // seconds for a roll in front, and back, and behind
-constexpr double kPhasePerWidth = 0.8;    // radians of phase across the width: the cloth waves
+constexpr double kPeriod = 3.0;         // seconds for a roll in front, and back, and behind
+constexpr double kPhasePerWidth = 0.8;  // radians of phase across the width: the cloth waves
 
 }  // namespace
 
@@ -34,8 +34,8 @@ Scene make_cloth(const ProceduralParams& params) {
   // Grid vertex (i, j): i across the width, j down the arc length.
   const Mesh sheet = make_grid(kWidth, kLength, n, n);
   const std::vector<double> times = procedural_key_times(params.duration, params.keyrate);
-  scene.objects.push_back(make_keyframed_object(
-      "cloth", sheet, 0, times, [n](double t, std::vector<Vec3>& out) {
+  scene.objects.push_back(
+      make_keyframed_object("cloth", sheet, 0, times, [n](double t, std::vector<Vec3>& out) {
         const size_t row = size_t(n) + 1;
         const double step = kLength / n;
         for (int i = 0; i <= n; ++i) {
@@ -52,8 +52,10 @@ Scene make_cloth(const ProceduralParams& params) {
         }
       }));
   const Mesh rod = make_box(Vec3(kWidth + 0.3, 0.08, 0.08), 1);
-  scene.objects.push_back(make_static_object("rod", rod, 1, Eigen::Affine3d(Eigen::Translation3d(0, kTop + 0.045, 0))));
-  scene.camera.keys = {Camera::look_at(0, Vec3(1.2, 0.7, -4.6), Vec3(0, 0.25, 0), Vec3::UnitY(), 45)};
+  scene.objects.push_back(
+      make_static_object("rod", rod, 1, Eigen::Affine3d(Eigen::Translation3d(0, kTop + 0.045, 0))));
+  scene.camera.keys = {
+      Camera::look_at(0, Vec3(1.2, 0.7, -4.6), Vec3(0, 0.25, 0), Vec3::UnitY(), 45)};
   return scene;
 }
 

@@ -13,7 +13,7 @@ namespace kinray {
 
 namespace {
 
-constexpr double kSpeed = 4.5;       // metres per second along +z
+constexpr double kSpeed = 4.5;  // metres per second along +z
 constexpr double kStartZ = -6.0;
 constexpr double kRowSpacing = 4.0;  // pillar rows along z
 constexpr double kSway = 1.2;        // metres either side of the aisle's centre line
@@ -46,13 +46,15 @@ Scene make_flythrough(const ProceduralParams& params) {
   // Three quarters of the triangle budget to the boxes, whatever their subdivision leaves to the
   // ground (at least two triangles), so the total stays close to the request.
   const int subdivisions = std::max(1, int(std::sqrt(0.75 * params.triangles / boxes / 12.0)));
-  const double ground_budget = std::max(2.0, params.triangles - 12.0 * subdivisions * subdivisions * boxes);
+  const double ground_budget =
+      std::max(2.0, params.triangles - 12.0 * subdivisions * subdivisions * boxes);
   const double ground_width = 26.0, ground_length = z_last - z_first + 8.0;
-  const int ground_nx = std::max(1, int(std::lround(std::sqrt(ground_budget / 2 * ground_width / ground_length))));
+  const int ground_nx =
+      std::max(1, int(std::lround(std::sqrt(ground_budget / 2 * ground_width / ground_length))));
   const int ground_nz = std::max(1, int(std::lround(ground_budget / 2 / ground_nx)));
-  scene.objects.push_back(make_static_object(
-      "ground", make_grid(ground_width, ground_length, ground_nx, ground_nz), 0,
-      Eigen::Affine3d(Eigen::Translation3d(0, 0, 0.5 * (z_first + z_last)))));
+  scene.objects.push_back(
+      make_static_object("ground", make_grid(ground_width, ground_length, ground_nx, ground_nz), 0,
+                         Eigen::Affine3d(Eigen::Translation3d(0, 0, 0.5 * (z_first + z_last)))));
 
   uint32_t seed = 12345;  // a fixed linear congruential sequence: the same heights on every run
   auto next_uniform = [&seed] {
@@ -63,14 +65,14 @@ Scene make_flythrough(const ProceduralParams& params) {
     const double z = z_first + r * kRowSpacing;
     for (double x : columns) {
       const double height = 2.6 + 2.4 * next_uniform();
-      scene.objects.push_back(make_static_object(
-          "pillar", make_box(Vec3(0.8, height, 0.8), subdivisions), 1,
-          Eigen::Affine3d(Eigen::Translation3d(x, 0.5 * height, z))));
+      scene.objects.push_back(
+          make_static_object("pillar", make_box(Vec3(0.8, height, 0.8), subdivisions), 1,
+                             Eigen::Affine3d(Eigen::Translation3d(x, 0.5 * height, z))));
     }
     if (r % 2 == 1)
-      scene.objects.push_back(make_static_object(
-          "lintel", make_box(Vec3(5.2, 0.45, 0.9), subdivisions), 2,
-          Eigen::Affine3d(Eigen::Translation3d(0, 3.05, z))));
+      scene.objects.push_back(
+          make_static_object("lintel", make_box(Vec3(5.2, 0.45, 0.9), subdivisions), 2,
+                             Eigen::Affine3d(Eigen::Translation3d(0, 3.05, z))));
   }
 
   const std::vector<double> times = procedural_key_times(params.duration, params.keyrate);
@@ -78,7 +80,8 @@ Scene make_flythrough(const ProceduralParams& params) {
   for (double t : times) {
     const double dt = 1e-3;
     const Vec3 eye = camera_position(t);
-    const Vec3 forward = (camera_position(t + dt) - camera_position(t - dt)).normalized() - Vec3(0, 0.08, 0);
+    const Vec3 forward =
+        (camera_position(t + dt) - camera_position(t - dt)).normalized() - Vec3(0, 0.08, 0);
     // Bank into the turn: roll against the sideways acceleration of the sway.
     const double roll = 0.18 * std::sin(2 * M_PI * t / kSwayPeriod);
     const Vec3 up = Eigen::AngleAxisd(roll, forward.normalized()) * Vec3::UnitY();

@@ -14,24 +14,24 @@ namespace {
 
 struct Orbiter {
   const char* name;
-  bool sphere;           ///< else a box
-  Vec3 size;             ///< sphere: x = radius; box: edge lengths
-  double budget;         ///< share of the triangle count
-  double radius;         ///< orbit radius
-  double breathing;      ///< orbit radius varies by +- this, twice per orbit
-  Vec3 normal;           ///< orbit plane normal (the sense of the orbit follows the right hand)
-  double period;         ///< seconds per orbit
-  double phase;          ///< radians at t = 0
+  bool sphere;       ///< else a box
+  Vec3 size;         ///< sphere: x = radius; box: edge lengths
+  double budget;     ///< share of the triangle count
+  double radius;     ///< orbit radius
+  double breathing;  ///< orbit radius varies by +- this, twice per orbit
+  Vec3 normal;       ///< orbit plane normal (the sense of the orbit follows the right hand)
+  double period;     ///< seconds per orbit
+  double phase;      ///< radians at t = 0
   Vec3 tumble_axis;
-  double tumble_rate;    ///< radians per second
+  double tumble_rate;  ///< radians per second
   Color color;
 };
 
 const Orbiter kOrbiters[] = {
-    {"moon", true, Vec3(0.42, 0, 0), 0.2, 1.75, 0.0, Vec3(0.25, 1, 0.1), 3.0, 0.3, Vec3::UnitY(), 0.8,
-     Color(0.36f, 0.58f, 0.90f)},
-    {"pebble", true, Vec3(0.3, 0, 0), 0.1, 1.4, 0.5, Vec3(-0.4, 1, 0.5), 2.2, 2.4, Vec3::UnitX(), 1.5,
-     Color(0.95f, 0.80f, 0.35f)},
+    {"moon", true, Vec3(0.42, 0, 0), 0.2, 1.75, 0.0, Vec3(0.25, 1, 0.1), 3.0, 0.3, Vec3::UnitY(),
+     0.8, Color(0.36f, 0.58f, 0.90f)},
+    {"pebble", true, Vec3(0.3, 0, 0), 0.1, 1.4, 0.5, Vec3(-0.4, 1, 0.5), 2.2, 2.4, Vec3::UnitX(),
+     1.5, Color(0.95f, 0.80f, 0.35f)},
     {"cube", false, Vec3(0.55, 0.55, 0.55), 0.12, 2.2, 0.0, Vec3(0.9, 0.5, 0.5), -3.6, 4.0,
      Vec3(1, 1, 0), 2.0, Color(0.55f, 0.80f, 0.45f)},
     {"bar", false, Vec3(1.1, 0.22, 0.22), 0.12, 1.35, 0.0, Vec3(1, 0.15, 0.3), 2.6, 1.0,
@@ -49,7 +49,8 @@ Scene make_orbit(const ProceduralParams& params) {
   scene.materials = {Material{"sandstone", Color(0.90f, 0.55f, 0.38f)}};
   const std::vector<double> times = procedural_key_times(params.duration, params.keyrate);
 
-  const Mesh centre = make_sphere(kCentreRadius, cube_subdivisions_for(kCentreBudget * params.triangles));
+  const Mesh centre =
+      make_sphere(kCentreRadius, cube_subdivisions_for(kCentreBudget * params.triangles));
   scene.objects.push_back(make_rigid_object("centre", centre, 0, times, [](double t) {
     return Eigen::Affine3d(Eigen::AngleAxisd(0.3 * t, Vec3::UnitY()));
   }));
@@ -73,7 +74,8 @@ Scene make_orbit(const ProceduralParams& params) {
                                  Eigen::AngleAxisd(orbiter.tumble_rate * t, tumble_axis));
         }));
   }
-  scene.camera.keys = {Camera::look_at(0, Vec3(1.5, 2.2, -6.5), Vec3(0, -0.1, 0), Vec3::UnitY(), 45)};
+  scene.camera.keys = {
+      Camera::look_at(0, Vec3(1.5, 2.2, -6.5), Vec3(0, -0.1, 0), Vec3::UnitY(), 45)};
   return scene;
 }
 

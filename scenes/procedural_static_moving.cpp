@@ -26,7 +26,9 @@ Scene make_static_moving(const ProceduralParams& params) {
                      Material{"tomato", Color(0.90f, 0.30f, 0.24f)},
                      Material{"saffron", Color(0.96f, 0.74f, 0.22f)}};
   const double tris = params.triangles;
-  auto grid_cells = [](double budget) { return std::max(1, int(std::lround(std::sqrt(budget / 2)))); };
+  auto grid_cells = [](double budget) {
+    return std::max(1, int(std::lround(std::sqrt(budget / 2))));
+  };
 
   const int ground_n = grid_cells(0.25 * tris);
   scene.objects.push_back(make_static_object("ground", make_grid(8, 8, ground_n, ground_n), 0));
@@ -44,7 +46,8 @@ Scene make_static_moving(const ProceduralParams& params) {
     const double x = -2.6 * std::cos(2 * M_PI * t / duration);
     const double y = kBallRadius + kBounceHeight * std::abs(std::sin(M_PI * t / kBouncePeriod));
     const double roll = -(x + 2.6) / kBallRadius;
-    return Eigen::Affine3d(Eigen::Translation3d(x, y, 0.4) * Eigen::AngleAxisd(roll, Vec3::UnitZ()));
+    return Eigen::Affine3d(Eigen::Translation3d(x, y, 0.4) *
+                           Eigen::AngleAxisd(roll, Vec3::UnitZ()));
   }));
 
   const Mesh box = make_box(Vec3(0.8, 0.8, 0.8), cube_subdivisions_for(0.2 * tris));
@@ -56,7 +59,8 @@ Scene make_static_moving(const ProceduralParams& params) {
   spinner.disappear = 0.75 * duration;
   scene.objects.push_back(std::move(spinner));
 
-  scene.camera.keys = {Camera::look_at(0, Vec3(0.9, 2.6, -8.0), Vec3(0, 1.0, 0.8), Vec3::UnitY(), 45)};
+  scene.camera.keys = {
+      Camera::look_at(0, Vec3(0.9, 2.6, -8.0), Vec3(0, 1.0, 0.8), Vec3::UnitY(), 45)};
   return scene;
 }
 

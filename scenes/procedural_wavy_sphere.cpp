@@ -14,10 +14,10 @@ namespace kinray {
 namespace {
 
 struct Wave {
-  Vec3 direction;       ///< the wave travels along the sphere in the direction of increasing d . p
-  double wavenumber;    ///< radians per unit of d . p
-  double angular_speed; ///< radians per second
-  double amplitude;     ///< fraction of the radius
+  Vec3 direction;        ///< the wave travels along the sphere in the direction of increasing d . p
+  double wavenumber;     ///< radians per unit of d . p
+  double angular_speed;  ///< radians per second
+  double amplitude;      ///< fraction of the radius
 };
 
 // Wavelengths of about a quarter to a sixth of the circumference, periods of 1.3 to 2 seconds:
@@ -28,7 +28,7 @@ const Wave kWaves[] = {
     {Vec3(-0.4, 0.35, 0.85).normalized(), 11.0, -2 * M_PI * 0.5, 0.035},
 };
 const Vec3 kSpinAxis = Vec3(0.25, 1.0, 0.15).normalized();
-constexpr double kSpinRate = 0.18;        // radians per second, a turn every 35 s
+constexpr double kSpinRate = 0.18;       // radians per second, a turn every 35 s
 constexpr double kCameraDistance = 4.0;  // sphere covers about 1/3 of the image at fov 45
 
 }  // namespace
@@ -47,7 +47,8 @@ Scene make_wavy_sphere(const ProceduralParams& params) {
           const Vec3& p = mesh.positions[v];
           double height = 1.0;
           for (const Wave& wave : kWaves)
-            height += wave.amplitude * std::sin(wave.wavenumber * wave.direction.dot(p) - wave.angular_speed * t);
+            height += wave.amplitude *
+                      std::sin(wave.wavenumber * wave.direction.dot(p) - wave.angular_speed * t);
           out[v] = spin * (height * p);
         }
       }));

@@ -6,11 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <optional>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <sstream>
 
 #include "scenes/camera_space.h"
 #include "scenes/error.h"
@@ -32,15 +31,19 @@ constexpr double kMaxResampledKeys = 1e5;
 std::string escape_pointer_token(const std::string& key) {
   std::string token;
   for (char c : key) {
-    if (c == '~') token += "~0";
-    else if (c == '/') token += "~1";
-    else token += c;
+    if (c == '~')
+      token += "~0";
+    else if (c == '/')
+      token += "~1";
+    else
+      token += c;
   }
   return token;
 }
 
 std::string type_name(const json& value) {
-  return value.is_null() ? "null (which is how JSON writers store NaN and infinity)" : std::string(value.type_name());
+  return value.is_null() ? "null (which is how JSON writers store NaN and infinity)"
+                         : std::string(value.type_name());
 }
 
 /// A JSON value together with where it came from: the file and its JSON pointer. Every accessor
@@ -60,14 +63,18 @@ class Node {
   void expect_object(std::initializer_list<const char*> allowed) const {
     if (!m_value->is_object()) fail("expected an object, got " + type_name(*m_value));
     for (const auto& item : m_value->items()) {
-      if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return item.key() == a; }) != allowed.end())
+      if (std::find_if(allowed.begin(), allowed.end(),
+                       [&](const char* a) { return item.key() == a; }) != allowed.end())
         continue;
       std::string valid;
       for (const char* a : allowed) valid += (valid.empty() ? "" : ", ") + std::string(a);
-      child(item.key()).fail("unknown key '" + item.key() + "'; the keys allowed here are " + valid);
+      child(item.key())
+          .fail("unknown key '" + item.key() + "'; the keys allowed here are " + valid);
     }
   }
-  [[nodiscard]] bool has(const char* key) const { return m_value->is_object() && m_value->contains(key); }
+  [[nodiscard]] bool has(const char* key) const {
+    return m_value->is_object() && m_value->contains(key);
+  }
   [[nodiscard]] Node at(const char* key) const {
     if (!m_value->is_object()) fail("expected an object, got " + type_name(*m_value));
     if (!m_value->contains(key)) fail(std::string("missing key '") + key + "'");
@@ -83,7 +90,9 @@ class Node {
   }
   /// Requires an array of `n` elements.
   void expect_size(size_t n) const {
-    if (size() != n) fail("expected an array of " + std::to_string(n) + " elements, got " + std::to_string(size()));
+    if (size() != n)
+      fail("expected an array of " + std::to_string(n) + " elements, got " +
+           std::to_string(size()));
   }
   [[nodiscard]] Node operator[](size_t i) const {
     return Node((*m_value)[i], *m_file, m_pointer + "/" + std::to_string(i));
@@ -102,7 +111,8 @@ class Node {
   }
   [[nodiscard]] uint64_t unsigned_integer() const {
     if (!m_value->is_number_integer()) fail("expected an integer, got " + type_name(*m_value));
-    if (m_value->is_number_integer() && !m_value->is_number_unsigned()) fail("expected an integer >= 0");
+    if (m_value->is_number_integer() && !m_value->is_number_unsigned())
+      fail("expected an integer >= 0");
     return m_value->get<uint64_t>();
   }
   /// An integer in [lo, hi].
@@ -110,7 +120,8 @@ class Node {
     if (!m_value->is_number_integer()) fail("expected an integer, got " + type_name(*m_value));
     const int64_t x = m_value->get<int64_t>();
     if (x < lo || x > hi)
-      fail("expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(x));
+      fail("expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+           std::to_string(x));
     return int(x);
   }
   [[nodiscard]] std::string string() const {
@@ -141,8 +152,8 @@ struct Trs {
     return Eigen::Translation3d(translation) * rotation * Eigen::Scaling(scale);
   }
   [[nodiscard]] static Trs blend(const Trs& a, const Trs& b, double alpha) {
-    return {a.translation + alpha * (b.translation - a.translation), a.rotation.slerp(alpha, b.rotation),
-            a.scale + alpha * (b.scale - a.scale)};
+    return {a.translation + alpha * (b.translation - a.translation),
+            a.rotation.slerp(alpha, b.rotation), a.scale + alpha * (b.scale - a.scale)};
   }
 };
 
@@ -162,10 +173,12 @@ struct Placement {
 
 Eigen::Quaterniond parse_quaternion(const Node& node) {
   node.expect_size(4);
-  const Eigen::Quaterniond q(node[0].number(), node[1].number(), node[2].number(), node[3].number());
+  const Eigen::Quaterniond q(node[0].number(), node[1].number(), node[2].number(),
+                             node[3].number());
   const double norm = q.norm();
   if (!(norm > 1e-12)) node.fail("a rotation quaternion [w, x, y, z] must not be zero");
-  // Keep an already unit quaternion bit for bit, so that files written by save_scene_file round-trip.
+  // Keep an already unit quaternion bit for bit, so that files written by save_scene_file
+  // round-trip.
   return std::abs(norm - 1) < 1e-12 ? q : q.normalized();
 }
 
@@ -174,7 +187,8 @@ Eigen::Quaterniond parse_rotation(const Node& node) {
   node.expect_object({"axis", "degrees"});
   const Vec3 axis = node.at("axis").vec3();
   if (!(axis.norm() > 1e-12)) node.at("axis").fail("the rotation axis must not be zero");
-  return Eigen::Quaterniond(Eigen::AngleAxisd(node.at("degrees").number() * M_PI / 180, axis.normalized()));
+  return Eigen::Quaterniond(
+      Eigen::AngleAxisd(node.at("degrees").number() * M_PI / 180, axis.normalized()));
 }
 
 Trs parse_trs(const Node& node) {
@@ -207,16 +221,20 @@ std::vector<double> resample(const std::vector<double>& times, double keyrate, c
   if (keyrate <= 0 || times.size() < 2) return times;
   const double span = times.back() - times.front();
   if (span * keyrate > kMaxResampledKeys)
-    where.fail("resampling at this keyrate would make more than " + std::to_string(int(kMaxResampledKeys)) + " keys");
+    where.fail("resampling at this keyrate would make more than " +
+               std::to_string(int(kMaxResampledKeys)) + " keys");
   std::vector<double> result = times;
   const size_t intervals = size_t(std::ceil(span * keyrate - 1e-9));
-  for (size_t k = 1; k < intervals; ++k) result.push_back(times.front() + span * double(k) / double(intervals));
+  for (size_t k = 1; k < intervals; ++k)
+    result.push_back(times.front() + span * double(k) / double(intervals));
   std::sort(result.begin(), result.end());
   // Merge near-coincident times (a grid time a hair from an original key) into the original.
   std::vector<double> merged;
   for (double t : result)
-    if (merged.empty() || t - merged.back() > 1e-9 * std::max(1.0, span)) merged.push_back(t);
-    else if (std::find(times.begin(), times.end(), t) != times.end()) merged.back() = t;
+    if (merged.empty() || t - merged.back() > 1e-9 * std::max(1.0, span))
+      merged.push_back(t);
+    else if (std::find(times.begin(), times.end(), t) != times.end())
+      merged.back() = t;
   return merged;
 }
 
@@ -256,13 +274,15 @@ void apply_placement(Object& object, const Placement& placement) {
       for (Vec3& p : key) p = *placement.rest * p;
   if (placement.keys.empty()) return;
   std::vector<double> times = placement.times;
-  if (object.key_count() > 1) times.insert(times.end(), object.key_times.begin(), object.key_times.end());
+  if (object.key_count() > 1)
+    times.insert(times.end(), object.key_times.begin(), object.key_times.end());
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   std::vector<std::vector<Vec3>> positions(times.size(), std::vector<Vec3>(object.vertex_count()));
   for (size_t k = 0; k < times.size(); ++k) {
     const Eigen::Affine3d matrix = placement.at(times[k]).matrix();
-    for (uint32_t v = 0; v < object.vertex_count(); ++v) positions[k][v] = matrix * object.position(v, times[k]);
+    for (uint32_t v = 0; v < object.vertex_count(); ++v)
+      positions[k][v] = matrix * object.position(v, times[k]);
   }
   object.key_times = std::move(times);
   object.key_positions = std::move(positions);
@@ -309,7 +329,9 @@ Texture read_texture_file(const Node& where, const fs::path& path) {
   } catch (const cv::Exception& error) {
     where.fail("cannot decode texture " + path.string() + ": " + error.what());
   }
-  if (image.empty()) where.fail("cannot read texture " + path.string() + (fs::exists(path) ? " (not an image OpenCV can decode)" : " (no such file)"));
+  if (image.empty())
+    where.fail("cannot read texture " + path.string() +
+               (fs::exists(path) ? " (not an image OpenCV can decode)" : " (no such file)"));
   if (image.depth() != CV_8U) image.convertTo(image, CV_8U, 1.0 / 256);
   Texture texture;
   texture.path = path.string();
@@ -331,7 +353,7 @@ struct Reader {
   fs::path directory;
   Scene scene;
   std::map<std::string, uint32_t> material_by_name;
-  bool has_materials = false;                 ///< the file lists materials: the first is the default
+  bool has_materials = false;                ///< the file lists materials: the first is the default
   std::optional<uint32_t> default_material;  ///< else one is made when an object needs it
   std::optional<Scene> first_provided;  ///< camera and shot of the first builtin or model object
 
@@ -362,7 +384,8 @@ struct Reader {
       }
       if (auto texture = node.find("texture")) {
         const fs::path path = resolve(texture->string());
-        const auto [it, inserted] = texture_by_path.emplace(path.string(), int(scene.textures.size()));
+        const auto [it, inserted] =
+            texture_by_path.emplace(path.string(), int(scene.textures.size()));
         if (inserted) scene.textures.push_back(read_texture_file(*texture, path));
         material.texture = it->second;
       }
@@ -375,7 +398,8 @@ struct Reader {
     const auto material = object.find("material");
     if (!material) {
       if (has_materials) return 0;
-      // Made on demand, so that a file of builtin objects reproduces the built-in's materials exactly.
+      // Made on demand, so that a file of builtin objects reproduces the built-in's materials
+      // exactly.
       if (!default_material) {
         default_material = uint32_t(scene.materials.size());
         scene.materials.push_back(Material{"default"});
@@ -388,14 +412,16 @@ struct Reader {
       if (it != material_by_name.end()) return it->second;
       std::string valid;
       for (const auto& [n, index] : material_by_name) valid += (valid.empty() ? "" : ", ") + n;
-      material->fail("no material called '" + name + "'" + (valid.empty() ? "" : "; the materials are " + valid));
+      material->fail("no material called '" + name + "'" +
+                     (valid.empty() ? "" : "; the materials are " + valid));
     }
     return uint32_t(material->integer(0, int(scene.materials.size()) - 1));
   }
 
   /// Appends a whole scene brought in by a builtin or model object, remapping its materials.
   void merge(Scene&& other, const Node& object, const std::string& prefix) {
-    const std::optional<uint32_t> material = object.has("material") ? std::optional(material_of(object)) : std::nullopt;
+    const std::optional<uint32_t> material =
+        object.has("material") ? std::optional(material_of(object)) : std::nullopt;
     const uint32_t material_offset = uint32_t(scene.materials.size());
     const int texture_offset = int(scene.textures.size());
     for (Material m : other.materials) {
@@ -420,7 +446,8 @@ struct Reader {
     if (auto disappear = node.find("disappear")) {
       object.disappear = disappear->number();
       if (!(object.disappear > object.appear))
-        disappear->fail("an object must disappear after it appears (appear = " + std::to_string(object.appear) + ")");
+        disappear->fail("an object must disappear after it appears (appear = " +
+                        std::to_string(object.appear) + ")");
     }
   }
 
@@ -429,10 +456,12 @@ struct Reader {
     object.triangles.resize(triangles.size());
     for (size_t f = 0; f < object.triangles.size(); ++f) {
       const json& raw = triangles.value()[f];
-      if (raw.is_array() && raw.size() == 3 && raw[0].is_number_unsigned() && raw[1].is_number_unsigned() &&
-          raw[2].is_number_unsigned() && raw[0].get<uint64_t>() <= UINT32_MAX &&
-          raw[1].get<uint64_t>() <= UINT32_MAX && raw[2].get<uint64_t>() <= UINT32_MAX) {
-        object.triangles[f] = {raw[0].get<uint32_t>(), raw[1].get<uint32_t>(), raw[2].get<uint32_t>()};
+      if (raw.is_array() && raw.size() == 3 && raw[0].is_number_unsigned() &&
+          raw[1].is_number_unsigned() && raw[2].is_number_unsigned() &&
+          raw[0].get<uint64_t>() <= UINT32_MAX && raw[1].get<uint64_t>() <= UINT32_MAX &&
+          raw[2].get<uint64_t>() <= UINT32_MAX) {
+        object.triangles[f] = {raw[0].get<uint32_t>(), raw[1].get<uint32_t>(),
+                               raw[2].get<uint32_t>()};
         continue;
       }
       const Node tri = triangles[f];
@@ -447,19 +476,25 @@ struct Reader {
     const bool vertex_keys = keys && keys->size() > 0 && (*keys)[0].has("vertices");
     if (vertex_keys) {
       if (auto rest = node.find("vertices"))
-        rest->fail("give either 'vertices' (moved by transform keys) or a 'vertices' array in every key, not both");
-      if (auto keyrate = node.find("keyrate")) keyrate->fail("'keyrate' resamples transform keys; these keys are vertex arrays");
+        rest->fail(
+            "give either 'vertices' (moved by transform keys) or a 'vertices' array in every key, "
+            "not both");
+      if (auto keyrate = node.find("keyrate"))
+        keyrate->fail("'keyrate' resamples transform keys; these keys are vertex arrays");
       std::optional<double> previous;
       for (size_t k = 0; k < keys->size(); ++k) {
         const Node key = (*keys)[k];
-        if (!key.has("vertices")) key.fail("missing key 'vertices': every key of this mesh is a vertex array, since key 0 is");
+        if (!key.has("vertices"))
+          key.fail(
+              "missing key 'vertices': every key of this mesh is a vertex array, since key 0 is");
         key.expect_object({"time", "vertices"});
         previous = parse_key_time(key, previous);
         object.key_times.push_back(*previous);
         object.key_positions.push_back(parse_vertices(key.at("vertices")));
         if (object.key_positions.back().size() != object.key_positions[0].size())
-          key.at("vertices").fail("has " + std::to_string(object.key_positions.back().size()) +
-                                  " vertices, key 0 has " + std::to_string(object.key_positions[0].size()));
+          key.at("vertices")
+              .fail("has " + std::to_string(object.key_positions.back().size()) +
+                    " vertices, key 0 has " + std::to_string(object.key_positions[0].size()));
       }
       apply_placement(object, parse_placement(node, false));
     } else {
@@ -475,11 +510,13 @@ struct Reader {
     for (size_t f = 0; f < object.triangles.size(); ++f)
       for (int c = 0; c < 3; ++c)
         if (object.triangles[f][size_t(c)] >= nv)
-          triangles[f][size_t(c)].fail("vertex index " + std::to_string(object.triangles[f][size_t(c)]) +
+          triangles[f][size_t(c)].fail("vertex index " +
+                                       std::to_string(object.triangles[f][size_t(c)]) +
                                        " out of range (" + std::to_string(nv) + " vertices)");
     if (auto uvs = node.find("uvs")) {
       if (uvs->size() != nv)
-        uvs->fail("has " + std::to_string(uvs->size()) + " uvs for " + std::to_string(nv) + " vertices");
+        uvs->fail("has " + std::to_string(uvs->size()) + " uvs for " + std::to_string(nv) +
+                  " vertices");
       for (size_t v = 0; v < nv; ++v) {
         double uv[2];
         if (!read_numbers(uvs->value()[v], 2, uv)) {
@@ -543,10 +580,11 @@ struct Reader {
 
   void read_object(const Node& node, size_t index) {
     const std::string kind = node.at("kind").string();
-    const std::string name = node.has("name") ? node.at("name").string() : kind + " " + std::to_string(index);
+    const std::string name =
+        node.has("name") ? node.at("name").string() : kind + " " + std::to_string(index);
     if (kind == "mesh") {
-      node.expect_object({"kind", "name", "material", "appear", "disappear", "vertices", "triangles", "uvs",
-                          "keys", "transform", "keyrate"});
+      node.expect_object({"kind", "name", "material", "appear", "disappear", "vertices",
+                          "triangles", "uvs", "keys", "transform", "keyrate"});
       Object object;
       object.name = name;
       object.material = material_of(node);
@@ -555,25 +593,26 @@ struct Reader {
       scene.objects.push_back(std::move(object));
     } else if (kind == "sphere" || kind == "box" || kind == "grid") {
       if (kind == "sphere")
-        node.expect_object({"kind", "name", "material", "appear", "disappear", "radius", "triangles",
-                            "subdivisions", "keys", "transform", "keyrate"});
+        node.expect_object({"kind", "name", "material", "appear", "disappear", "radius",
+                            "triangles", "subdivisions", "keys", "transform", "keyrate"});
       else
-        node.expect_object({"kind", "name", "material", "appear", "disappear", "size", "subdivisions", "keys",
-                            "transform", "keyrate"});
+        node.expect_object({"kind", "name", "material", "appear", "disappear", "size",
+                            "subdivisions", "keys", "transform", "keyrate"});
       Object object = make_static_object(name, read_primitive(node, kind), material_of(node));
       read_visibility(node, object);
       apply_placement(object, parse_placement(node, true));
       scene.objects.push_back(std::move(object));
     } else if (kind == "model") {
-      node.expect_object({"kind", "name", "material", "appear", "disappear", "path", "animation", "keyrate",
-                          "keys", "transform"});
+      node.expect_object({"kind", "name", "material", "appear", "disappear", "path", "animation",
+                          "keyrate", "keys", "transform"});
       const Node path_node = node.at("path");
       const fs::path path = resolve(path_node.string());
       if (!fs::exists(path)) path_node.fail("no such file: " + path.string());
       ModelOptions options;
       if (auto animation = node.find("animation"))
-        options.animation = animation->value().is_number_integer() ? std::to_string(animation->integer(0, 1 << 30))
-                                                                   : animation->string();
+        options.animation = animation->value().is_number_integer()
+                                ? std::to_string(animation->integer(0, 1 << 30))
+                                : animation->string();
       // The keyrate resamples the model's own animation; transform keys are resampled too.
       if (auto keyrate = node.find("keyrate")) options.keyrate = keyrate->positive();
       Scene model;
@@ -588,19 +627,25 @@ struct Reader {
       const Node scene_node = node.at("scene");
       std::map<std::string, double> params;
       if (auto p = node.find("params")) {
-        if (!p->value().is_object()) p->fail("expected an object of numbers, like {\"triangles\": 2000}");
+        if (!p->value().is_object())
+          p->fail("expected an object of numbers, like {\"triangles\": 2000}");
         for (const auto& item : p->value().items())
-          params[item.key()] = Node(item.value(), file, p->pointer() + "/" + escape_pointer_token(item.key())).number();
+          params[item.key()] =
+              Node(item.value(), file, p->pointer() + "/" + escape_pointer_token(item.key()))
+                  .number();
       }
       Scene builtin;
       try {
         builtin = make_builtin_scene(scene_node.string(), params);
       } catch (const InputError& error) {
-        (node.has("params") && is_builtin_scene(scene_node.string()) ? node.at("params") : scene_node).fail(error.what());
+        (node.has("params") && is_builtin_scene(scene_node.string()) ? node.at("params")
+                                                                     : scene_node)
+            .fail(error.what());
       }
       merge(std::move(builtin), node, node.has("name") ? name : "");
     } else {
-      node.at("kind").fail("unknown object kind '" + kind + "'; the kinds are mesh, sphere, box, grid, model, builtin");
+      node.at("kind").fail("unknown object kind '" + kind +
+                           "'; the kinds are mesh, sphere, box, grid, model, builtin");
     }
   }
 
@@ -608,7 +653,9 @@ struct Reader {
     const auto camera = root.find("camera");
     if (!camera) {
       if (!first_provided)
-        root.fail("missing key 'camera' (only a file with a builtin or model object may leave it out, and take theirs)");
+        root.fail(
+            "missing key 'camera' (only a file with a builtin or model object may leave it out, "
+            "and take theirs)");
       scene.camera = first_provided->camera;
       return;
     }
@@ -630,16 +677,21 @@ struct Reader {
         if (!(fov > 0.5 && fov < 179.5)) fov_node->fail("fov_y must lie in (0.5, 179.5) degrees");
       }
       if (key.has("look_at") == key.has("orientation"))
-        key.fail("give either 'look_at' (with an optional 'up') or 'orientation' (a quaternion [w, x, y, z])");
+        key.fail(
+            "give either 'look_at' (with an optional 'up') or 'orientation' (a quaternion [w, x, "
+            "y, z])");
       if (auto target_node = key.find("look_at")) {
         const Vec3 target = target_node->vec3();
-        if (!((target - position).norm() > 1e-12)) target_node->fail("the camera looks at its own position");
+        if (!((target - position).norm() > 1e-12))
+          target_node->fail("the camera looks at its own position");
         const Vec3 up = key.has("up") ? key.at("up").vec3() : Vec3::UnitY();
         if (!(up.norm() > 1e-12)) key.at("up").fail("the up vector must not be zero");
         result.keys.push_back(Camera::look_at(time, position, target, up, fov));
       } else {
-        if (auto up = key.find("up")) up->fail("'up' goes with 'look_at'; an orientation says where up is");
-        result.keys.push_back(CameraKey{time, position, parse_quaternion(key.at("orientation")), fov});
+        if (auto up = key.find("up"))
+          up->fail("'up' goes with 'look_at'; an orientation says where up is");
+        result.keys.push_back(
+            CameraKey{time, position, parse_quaternion(key.at("orientation")), fov});
       }
     }
     if (auto keyrate = camera->find("keyrate")) {
@@ -659,7 +711,9 @@ struct Reader {
     const auto shot = root.find("shot");
     if (!shot) {
       if (!first_provided)
-        root.fail("missing key 'shot' (only a file with a builtin or model object may leave it out, and take theirs)");
+        root.fail(
+            "missing key 'shot' (only a file with a builtin or model object may leave it out, and "
+            "take theirs)");
       scene.time_begin = first_provided->time_begin;
       scene.time_end = first_provided->time_end;
       return;
@@ -668,8 +722,9 @@ struct Reader {
     scene.time_begin = shot->at("begin").number();
     scene.time_end = shot->at("end").number();
     if (!(scene.time_end > scene.time_begin))
-      shot->at("end").fail("the shot must end after it begins (begin = " + std::to_string(scene.time_begin) +
-                           ", end = " + std::to_string(scene.time_end) + ")");
+      shot->at("end").fail(
+          "the shot must end after it begins (begin = " + std::to_string(scene.time_begin) +
+          ", end = " + std::to_string(scene.time_end) + ")");
   }
 
   void read(const json& document) {
@@ -708,7 +763,9 @@ json shortest(float x) {
   return json(std::stod(std::string(buffer, result.ptr)));
 }
 
-json vec3_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
+json vec3_json(const Vec3& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
 
 }  // namespace
 
@@ -721,8 +778,10 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     const auto [line, column] = line_and_column(text, error.byte > 0 ? error.byte - 1 : 0);
     std::string message = error.what();
     const size_t colon = message.find(": ");
-    if (message.find("parse error") != std::string::npos && colon != std::string::npos) message = message.substr(colon + 2);
-    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column), "JSON syntax error: " + message);
+    if (message.find("parse error") != std::string::npos && colon != std::string::npos)
+      message = message.substr(colon + 2);
+    throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column),
+                     "JSON syntax error: " + message);
   } catch (const json::exception& error) {
     // A number too large for a double ("number overflow parsing '1e999'") carries no position:
     // find the token in the text.
@@ -767,7 +826,8 @@ void save_scene_file(const Scene& scene, const std::string& path) {
               {"base_color",
                json::array({shortest(material.base_color.x()), shortest(material.base_color.y()),
                             shortest(material.base_color.z())})}};
-    if (material.texture >= 0) m["texture"] = fs::absolute(scene.textures[size_t(material.texture)].path).string();
+    if (material.texture >= 0)
+      m["texture"] = fs::absolute(scene.textures[size_t(material.texture)].path).string();
     materials.push_back(std::move(m));
   }
   // Material names must be unique in a file; fall back to indices when they are not.
@@ -799,7 +859,8 @@ void save_scene_file(const Scene& scene, const std::string& path) {
     o["triangles"] = std::move(triangles);
     if (!object.uvs.empty()) {
       json uvs = json::array();
-      for (const Vec2f& uv : object.uvs) uvs.push_back(json::array({shortest(uv.x()), shortest(uv.y())}));
+      for (const Vec2f& uv : object.uvs)
+        uvs.push_back(json::array({shortest(uv.x()), shortest(uv.y())}));
       o["uvs"] = std::move(uvs);
     }
     json keys = json::array();

@@ -34,7 +34,8 @@ std::map<std::string, double> parse_parameters(const std::string& spec, const st
     double number = 0;
     const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
     if (error != std::errc() || end != value.data() + value.size() || value.empty())
-      throw InputError("scene '" + spec + "'", "parameter " + key + " needs a number, got '" + value + "'");
+      throw InputError("scene '" + spec + "'",
+                       "parameter " + key + " needs a number, got '" + value + "'");
     if (!params.emplace(key, number).second)
       throw InputError("scene '" + spec + "'", "parameter " + key + " is given twice");
   }
@@ -44,12 +45,14 @@ std::map<std::string, double> parse_parameters(const std::string& spec, const st
 }  // namespace
 
 Scene load_scene(const std::string& spec, const ModelOptions& model_options) {
-  if (spec.empty()) throw InputError("scene ''", "empty scene name; " + describe_scene_spec_syntax());
+  if (spec.empty())
+    throw InputError("scene ''", "empty scene name; " + describe_scene_spec_syntax());
   const std::string name = spec.substr(0, spec.find(':'));
   if (is_builtin_scene(name)) {
     const size_t colon = spec.find(':');
-    return make_builtin_scene(name, colon == std::string::npos ? std::map<std::string, double>{}
-                                                               : parse_parameters(spec, spec.substr(colon + 1)));
+    return make_builtin_scene(name, colon == std::string::npos
+                                        ? std::map<std::string, double>{}
+                                        : parse_parameters(spec, spec.substr(colon + 1)));
   }
   std::error_code error;
   if (ends_with_json(spec)) return load_scene_file(spec);
@@ -62,21 +65,25 @@ Scene load_scene(const std::string& spec, const ModelOptions& model_options) {
     throw InputError(spec, "neither a scene file (.json) nor a model format assimp can import");
   }
   if (std::filesystem::exists(spec, error)) throw InputError(spec, "not a regular file");
-  const bool looks_like_path = spec.find('/') != std::string::npos || spec.find('.') != std::string::npos;
+  const bool looks_like_path =
+      spec.find('/') != std::string::npos || spec.find('.') != std::string::npos;
   if (looks_like_path) throw InputError(spec, "no such file");
   std::string names;
   for (const std::string& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
-  throw InputError("scene '" + spec + "'", "neither a built-in scene (" + names + ") nor an existing file");
+  throw InputError("scene '" + spec + "'",
+                   "neither a built-in scene (" + names + ") nor an existing file");
 }
 
 std::string describe_scene_spec_syntax() {
   std::ostringstream text;
-  text << "A scene is a built-in name with optional parameters (NAME[:triangles=N,duration=S,keyrate=K]),\n"
+  text << "A scene is a built-in name with optional parameters "
+          "(NAME[:triangles=N,duration=S,keyrate=K]),\n"
           "a JSON scene file (*.json, see docs/scene_format.md) or a model file assimp can import\n"
           "(glTF, FBX, COLLADA, OBJ, ...). Built-in scenes (defaults in brackets):\n";
   for (const BuiltinScene& scene : builtin_scenes())
-    text << "  " << scene.name << " [triangles=" << scene.defaults.triangles << ", duration=" << scene.defaults.duration
-         << ", keyrate=" << scene.defaults.keyrate << "]: " << scene.description << "\n";
+    text << "  " << scene.name << " [triangles=" << scene.defaults.triangles
+         << ", duration=" << scene.defaults.duration << ", keyrate=" << scene.defaults.keyrate
+         << "]: " << scene.description << "\n";
   text << "Example: cloth:triangles=2000,duration=1.5";
   return text.str();
 }

@@ -33,13 +33,14 @@ Camera fixed(const Vec3& eye, double fov = 90) {
 }
 
 void expect_near(const Vec3& actual, const Vec3& expected, double tolerance = 1e-12) {
-  EXPECT_NEAR((actual - expected).norm(), 0.0, tolerance) << "actual (" << actual.transpose() << "), expected ("
-                                                           << expected.transpose() << ")";
+  EXPECT_NEAR((actual - expected).norm(), 0.0, tolerance)
+      << "actual (" << actual.transpose() << "), expected (" << expected.transpose() << ")";
 }
 
 TEST(CameraSpace, LookAtFromThePositiveZSide) {
   // fov 90: tan(45 deg) = 1, so no folding. Camera at (0, 0, 5) looking at the origin.
-  const Scene scene = triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), fixed(Vec3(0, 0, 5)));
+  const Scene scene =
+      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), fixed(Vec3(0, 0, 5)));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   ASSERT_EQ(cs.objects.size(), 1u);
   EXPECT_TRUE(cs.objects[0].is_static);
@@ -51,7 +52,8 @@ TEST(CameraSpace, LookAtFromThePositiveZSide) {
 TEST(CameraSpace, LookAtFromTheNegativeZSideMirrorsX) {
   // Camera at (0, 0, -5) looking at the origin: depth 5, up stays up, and in a right-handed world
   // +x is on the viewer's left (camera-space x = -1).
-  const Scene scene = triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 2), fixed(Vec3(0, 0, -5)));
+  const Scene scene =
+      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 2), fixed(Vec3(0, 0, -5)));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   expect_near(cs.objects[0].position(0, 0), Vec3(-1, 0, 5));
   expect_near(cs.objects[0].position(1, 0), Vec3(0, 1, 5));
@@ -61,14 +63,15 @@ TEST(CameraSpace, LookAtFromTheNegativeZSideMirrorsX) {
 TEST(CameraSpace, FovFoldsIntoXAndY) {
   // fov 60: x and y scaled by 1 / tan(30 deg) = sqrt(3); z untouched, so the ray parameter of a
   // hit is still the depth.
-  const Scene scene = triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), fixed(Vec3(0, 0, 5), 60));
+  const Scene scene =
+      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), fixed(Vec3(0, 0, 5), 60));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   expect_near(cs.objects[0].position(0, 0), Vec3(std::sqrt(3.0), 0, 5));
   expect_near(cs.objects[0].position(1, 0), Vec3(0, std::sqrt(3.0), 5));
   EXPECT_NEAR(cs.tan_half_fov(0), 1 / std::sqrt(3.0), 1e-15);
   // The point at the top edge of the 60-degree view, (0, 5 tan 30, 0), lands on y/z = 1.
-  const Scene edge = triangle_scene(Vec3(0, 5 * std::tan(M_PI / 6), 0), Vec3(1, 0, 0), Vec3(0, 0, 0),
-                                    fixed(Vec3(0, 0, 5), 60));
+  const Scene edge = triangle_scene(Vec3(0, 5 * std::tan(M_PI / 6), 0), Vec3(1, 0, 0),
+                                    Vec3(0, 0, 0), fixed(Vec3(0, 0, 5), 60));
   const Vec3 top = CameraSpaceScene::build(edge).objects[0].position(0, 0);
   EXPECT_NEAR(top.y() / top.z(), 1.0, 1e-12);
 }
@@ -85,7 +88,8 @@ TEST(CameraSpace, AnimatedCameraIsLinearInCameraSpaceBetweenKeys) {
   ASSERT_EQ(object.key_times, (std::vector<double>{0, 1}));
   // Key 0: (1, 0, 0) on the right at depth 5, folded by sqrt(3).
   expect_near(object.position(0, 0), Vec3(std::sqrt(3.0), 0, 5));
-  // Key 1: the camera at (5, 0, 0) looks down -x, its right is -z: (1, 0, 0) is dead ahead at depth 4.
+  // Key 1: the camera at (5, 0, 0) looks down -x, its right is -z: (1, 0, 0) is dead ahead at
+  // depth 4.
   expect_near(object.position(0, 1), Vec3(0, 0, 4));
   // In between: the straight line between the two camera-space keys (not the world motion).
   expect_near(object.position(0, 0.5), Vec3(std::sqrt(3.0) / 2, 0, 4.5));
@@ -135,10 +139,12 @@ TEST(CameraSpace, KeyGridIsTheUnionOfObjectAndCameraKeys) {
 }
 
 TEST(CameraSpace, NormalsAreUnitAndPerpendicular) {
-  const Scene scene = triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), fixed(Vec3(3, 4, 5)));
+  const Scene scene =
+      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), fixed(Vec3(3, 4, 5)));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   const CameraSpaceObject& object = cs.objects[0];
-  const Vec3 e1 = object.position(1, 0) - object.position(0, 0), e2 = object.position(2, 0) - object.position(0, 0);
+  const Vec3 e1 = object.position(1, 0) - object.position(0, 0),
+             e2 = object.position(2, 0) - object.position(0, 0);
   for (uint32_t v = 0; v < 3; ++v) {
     const Eigen::Vector3f n = object.normal(v, 0);
     EXPECT_NEAR(n.norm(), 1.0f, 1e-6f);
@@ -177,7 +183,8 @@ TEST(CameraSpace, PixelCentreRays) {
   EXPECT_EQ(image.direction(2, 1), Vec3(0.5, -0.5, 1));
   EXPECT_EQ(image.pixel_count(), 8u);
   // A point on the right of a camera lands in the right half of the image.
-  const Scene scene = triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), fixed(Vec3(0, 0, 5), 45));
+  const Scene scene =
+      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), fixed(Vec3(0, 0, 5), 45));
   const Vec3 p = CameraSpaceScene::build(scene).objects[0].position(0, 0);
   EXPECT_GT(p.x() / p.z(), 0);
 }

@@ -53,8 +53,10 @@ void rasterize(const CameraSpaceScene& scene, const ImageGeometry& image, double
         for (int i = i0; i <= i1; ++i) {
           const Vec3 d = image.direction(i, j);
           const double a = e01.dot(d), b = e12.dot(d), c = e20.dot(d);
-          const bool inside = orientation > 0 ? (a >= 0 && b >= 0 && c >= 0) : (a <= 0 && b <= 0 && c <= 0);
-          if (inside) hit(object.object, f, size_t(j) * image.width + i, orientation / normal.dot(d));
+          const bool inside =
+              orientation > 0 ? (a >= 0 && b >= 0 && c >= 0) : (a <= 0 && b <= 0 && c <= 0);
+          if (inside)
+            hit(object.object, f, size_t(j) * image.width + i, orientation / normal.dot(d));
         }
     }
   }
@@ -103,7 +105,8 @@ TEST(ProceduralMesh, BoxAndGrid) {
   EXPECT_EQ(grid.positions.size(), 20u);
   EXPECT_EQ(grid.uvs.size(), 20u);
   for (const Triangle& t : grid.triangles) {
-    const Vec3 normal = (grid.positions[t[1]] - grid.positions[t[0]]).cross(grid.positions[t[2]] - grid.positions[t[0]]);
+    const Vec3 normal = (grid.positions[t[1]] - grid.positions[t[0]])
+                            .cross(grid.positions[t[2]] - grid.positions[t[0]]);
     EXPECT_GT(normal.y(), 0);  // faces +y
   }
   EXPECT_EQ(grid.positions.front(), Vec3(-2, 0, -1));
@@ -124,20 +127,24 @@ TEST(Procedural, EveryBuiltinHasTheRequestedSizeDurationAndKeys) {
   for (const BuiltinScene& builtin : builtin_scenes()) {
     SCOPED_TRACE(builtin.name);
     for (double request : {3000.0, 12000.0}) {
-      const Scene scene = make_builtin_scene(builtin.name, {{"triangles", request}, {"duration", 1.5}});
+      const Scene scene =
+          make_builtin_scene(builtin.name, {{"triangles", request}, {"duration", 1.5}});
       EXPECT_EQ(scene.name, builtin.name);
       EXPECT_NO_THROW(scene.validate(builtin.name));
       EXPECT_NEAR(double(scene.triangle_count()), request, 0.15 * request);
       EXPECT_EQ(scene.time_begin, 0.0);
       EXPECT_EQ(scene.time_end, 1.5);
       EXPECT_TRUE(anything_moves(scene));
-      // Keyed at 24 keys per second: 36 intervals over 1.5 s, whether the objects or the camera move.
+      // Keyed at 24 keys per second: 36 intervals over 1.5 s, whether the objects or the camera
+      // move.
       EXPECT_EQ(scene.key_times().size(), 37u);
     }
     const Scene defaults = make_builtin_scene(builtin.name);
     EXPECT_EQ(defaults.time_end, builtin.defaults.duration);
-    EXPECT_NEAR(double(defaults.triangle_count()), builtin.defaults.triangles, 0.15 * builtin.defaults.triangles);
-    const Scene slow = make_builtin_scene(builtin.name, {{"triangles", 500}, {"duration", 2}, {"keyrate", 5}});
+    EXPECT_NEAR(double(defaults.triangle_count()), builtin.defaults.triangles,
+                0.15 * builtin.defaults.triangles);
+    const Scene slow =
+        make_builtin_scene(builtin.name, {{"triangles", 500}, {"duration", 2}, {"keyrate", 5}});
     EXPECT_EQ(slow.key_times().size(), 11u);
   }
 }
@@ -150,7 +157,8 @@ TEST(Procedural, VerticesMoveBetweenKeys) {
     for (const Object& object : scene.objects)
       for (size_t k = 1; k < object.key_count(); ++k)
         for (size_t v = 0; v < object.vertex_count(); ++v)
-          motion = std::max(motion, (object.key_positions[k][v] - object.key_positions[k - 1][v]).norm());
+          motion = std::max(motion,
+                            (object.key_positions[k][v] - object.key_positions[k - 1][v]).norm());
     EXPECT_GT(motion, 1e-3);
   }
 }
@@ -176,8 +184,10 @@ TEST(Procedural, BadNamesAndParametersAreInputErrors) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message("wavy-spere", {}).find("wavy-sphere, cloth, orbit, flythrough, static-moving"), std::string::npos);
-  EXPECT_NE(message("cloth", {{"triangle", 10}}).find("triangles, duration, keyrate"), std::string::npos);
+  EXPECT_NE(message("wavy-spere", {}).find("wavy-sphere, cloth, orbit, flythrough, static-moving"),
+            std::string::npos);
+  EXPECT_NE(message("cloth", {{"triangle", 10}}).find("triangles, duration, keyrate"),
+            std::string::npos);
   for (double bad : {0.0, -5.0, std::numeric_limits<double>::quiet_NaN(), kInfinity})
     for (const char* key : {"triangles", "duration", "keyrate"})
       EXPECT_NE(message("orbit", {{key, bad}}).find(key), std::string::npos) << key << "=" << bad;
@@ -220,22 +230,27 @@ TEST(Procedural, WavySphereFillsAThirdOfTheImageAndMovesAboutAPixelPerKey) {
     for (size_t pixel = 0; pixel < prim.size(); ++pixel) {
       if (prim[pixel] == kNoPrim) continue;
       ++covered;
-      // The surface point seen at this pixel, as barycentrics of its triangle, carried to the next key.
+      // The surface point seen at this pixel, as barycentrics of its triangle, carried to the next
+      // key.
       const Triangle& tri = triangles[prim[pixel]];
       const Vec3 d = image.direction(int(pixel % 512), int(pixel / 512)) * depth[pixel];
       Eigen::Matrix3d basis;
       basis << now[tri[0]], now[tri[1]], now[tri[2]];
       const Vec3 weights = basis.inverse() * d;
-      const Vec3 moved = weights[0] * next[tri[0]] + weights[1] * next[tri[1]] + weights[2] * next[tri[2]];
-      const Eigen::Vector2d from(d.x() / d.z(), d.y() / d.z()), to(moved.x() / moved.z(), moved.y() / moved.z());
+      const Vec3 moved =
+          weights[0] * next[tri[0]] + weights[1] * next[tri[1]] + weights[2] * next[tri[2]];
+      const Eigen::Vector2d from(d.x() / d.z(), d.y() / d.z()),
+          to(moved.x() / moved.z(), moved.y() / moved.z());
       motion_sum += (to - from).norm() * 256;  // 2 units of the image plane span 512 pixels
       ++motion_samples;
     }
     coverage_sum += double(covered) / double(image.pixel_count());
-    // The brief's figure: every vertex on the camera's side of the sphere, projected at keys k and k+1.
+    // The brief's figure: every vertex on the camera's side of the sphere, projected at keys k and
+    // k+1.
     for (size_t v = 0; v < sphere.vertex_count; ++v) {
       if (scene.objects[0].key_positions[k][v].dot(scene.camera.keys[0].position) <= 0) continue;
-      const Eigen::Vector2d from = now[v].head<2>() / now[v].z(), to = next[v].head<2>() / next[v].z();
+      const Eigen::Vector2d from = now[v].head<2>() / now[v].z(),
+                            to = next[v].head<2>() / next[v].z();
       vertex_motion_sum += (to - from).norm() * 256;
       ++vertex_samples;
     }
@@ -244,8 +259,10 @@ TEST(Procedural, WavySphereFillsAThirdOfTheImageAndMovesAboutAPixelPerKey) {
   const double coverage = coverage_sum / intervals;
   const double surface_motion = motion_sum / double(motion_samples);
   const double vertex_motion = vertex_motion_sum / double(vertex_samples);
-  std::printf("wavy-sphere at 512x512: coverage %.3f, visible surface moves %.2f px per key, "
-              "camera-side vertices %.2f px per key\n", coverage, surface_motion, vertex_motion);
+  std::printf(
+      "wavy-sphere at 512x512: coverage %.3f, visible surface moves %.2f px per key, "
+      "camera-side vertices %.2f px per key\n",
+      coverage, surface_motion, vertex_motion);
   EXPECT_NEAR(coverage, 1.0 / 3.0, 0.04);
   EXPECT_GE(surface_motion, 1.0);
   EXPECT_LE(surface_motion, 2.0);
@@ -263,7 +280,8 @@ DepthSwaps depth_swaps(const Scene& scene, const ImageGeometry& image,
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   std::vector<uint8_t> seen(image.pixel_count(), 0);  // bit 0: A in front, bit 1: B in front
   for (double t : scene.key_times()) {
-    std::vector<double> nearest_a(image.pixel_count(), kInfinity), nearest_b(image.pixel_count(), kInfinity);
+    std::vector<double> nearest_a(image.pixel_count(), kInfinity),
+        nearest_b(image.pixel_count(), kInfinity);
     rasterize(cs, image, t, [&](uint32_t object, uint32_t prim, size_t pixel, double z) {
       if (z <= 0) return;
       const int which = part(object, prim);
@@ -291,13 +309,16 @@ TEST(Procedural, ClothFoldsOverItselfAndSwapsDepthOrder) {
   const uint32_t n = uint32_t(std::lround(std::sqrt(double(cloth.vertex_count())))) - 1;
   ASSERT_EQ(size_t(n + 1) * (n + 1), cloth.vertex_count());
   // Part A: the upper half of the sheet (grid rows run down its length); part B: its lowest third.
-  const DepthSwaps swaps = depth_swaps(scene, ImageGeometry{96, 96}, [&](uint32_t object, uint32_t prim) {
-    if (object != 0) return -1;
-    const double down = double(prim / 2 / n) / n;
-    return down < 0.5 ? 0 : down > 2.0 / 3.0 ? 1 : -1;
-  });
-  std::printf("cloth at 96x96: upper part in front of lower at %zu pixels, lower in front of upper at %zu, "
-              "both (a swap) at %zu\n", swaps.a_in_front, swaps.b_in_front, swaps.both);
+  const DepthSwaps swaps =
+      depth_swaps(scene, ImageGeometry{96, 96}, [&](uint32_t object, uint32_t prim) {
+        if (object != 0) return -1;
+        const double down = double(prim / 2 / n) / n;
+        return down < 0.5 ? 0 : down > 2.0 / 3.0 ? 1 : -1;
+      });
+  std::printf(
+      "cloth at 96x96: upper part in front of lower at %zu pixels, lower in front of upper at %zu, "
+      "both (a swap) at %zu\n",
+      swaps.a_in_front, swaps.b_in_front, swaps.both);
   EXPECT_GT(swaps.a_in_front, 20u);
   EXPECT_GT(swaps.b_in_front, 20u);
   EXPECT_GT(swaps.both, 10u);  // the same pixel sees the order reverse during the shot
@@ -309,9 +330,10 @@ TEST(Procedural, OrbitersPassInFrontOfEachOtherAndInterpenetrate) {
   // Every orbiter is seen both in front of and behind the central sphere.
   for (uint32_t o = 1; o < scene.objects.size(); ++o) {
     SCOPED_TRACE(scene.objects[o].name);
-    const DepthSwaps swaps = depth_swaps(scene, ImageGeometry{64, 64}, [o](uint32_t object, uint32_t) {
-      return object == o ? 0 : object == 0 ? 1 : -1;
-    });
+    const DepthSwaps swaps =
+        depth_swaps(scene, ImageGeometry{64, 64}, [o](uint32_t object, uint32_t) {
+          return object == o ? 0 : object == 0 ? 1 : -1;
+        });
     EXPECT_GT(swaps.a_in_front, 0u);
     EXPECT_GT(swaps.b_in_front, 0u);
   }
@@ -321,7 +343,8 @@ TEST(Procedural, OrbitersPassInFrontOfEachOtherAndInterpenetrate) {
     const Object& object = scene.objects[o];
     bool inside = false;
     for (const auto& key : object.key_positions)
-      for (const Vec3& p : key) inside |= p.norm() < 0.97;  // the centre's tessellated radius >= 0.97
+      for (const Vec3& p : key)
+        inside |= p.norm() < 0.97;  // the centre's tessellated radius >= 0.97
     if (inside) penetrating.push_back(object.name);
   }
   EXPECT_EQ(penetrating, (std::vector<std::string>{"pebble", "bar"}));

@@ -69,7 +69,8 @@ TEST(Scene, FlightplanUpdatesAreValidated) {
   object.set_flightplans({0, 1}, {object.key_positions[0], object.key_positions[2]});
   EXPECT_EQ(object.position(0, 0.5), Vec3(2, 2, 0));
   // A bad update throws and leaves the flightplans as they were.
-  EXPECT_THROW(object.set_flightplans({1, 0}, {object.key_positions[0], object.key_positions[1]}), InputError);
+  EXPECT_THROW(object.set_flightplans({1, 0}, {object.key_positions[0], object.key_positions[1]}),
+               InputError);
   EXPECT_THROW(object.set_flightplans({0, 1}, {object.key_positions[0]}), InputError);
   EXPECT_EQ(object.key_times, (std::vector<double>{0, 1}));
   EXPECT_EQ(object.position(0, 0.5), Vec3(2, 2, 0));
@@ -102,7 +103,8 @@ TEST(Scene, LookAtBuildsARightHandedFrame) {
   const CameraKey down = Camera::look_at(0, Vec3(0, 5, 0), Vec3::Zero(), Vec3::UnitY(), 45);
   EXPECT_TRUE(down.orientation.coeffs().allFinite());
   EXPECT_NEAR(down.orientation.norm(), 1, 1e-12);
-  EXPECT_NEAR((down.orientation * Vec3::UnitZ() - Vec3(0, 1, 0)).norm(), 0, 1e-12);  // back = up the y axis
+  EXPECT_NEAR((down.orientation * Vec3::UnitZ() - Vec3(0, 1, 0)).norm(), 0,
+              1e-12);  // back = up the y axis
 }
 
 TEST(Scene, ValidationNamesTheProblem) {
@@ -114,29 +116,55 @@ TEST(Scene, ValidationNamesTheProblem) {
     const char* problem;
   };
   const std::vector<Case> cases = {
-      {"NaN vertex", [&](Scene& s) { s.objects[0].key_positions[1][2].y() = nan; }, "vertex 2 at key 1 is NaN or infinite"},
-      {"infinite vertex", [](Scene& s) { s.objects[0].key_positions[0][0].x() = kInfinity; }, "NaN or infinite"},
-      {"index out of range", [](Scene& s) { s.objects[0].triangles[0][1] = 3; }, "vertex index 3 out of range (3 vertices)"},
-      {"unsorted key times", [](Scene& s) { s.objects[0].key_times = {0, 2, 1}; }, "(unsorted)"},
-      {"duplicate key times", [](Scene& s) { s.objects[0].key_times = {0, 2, 2}; }, "(duplicate)"},
-      {"NaN key time", [&](Scene& s) { s.objects[0].key_times[1] = nan; }, "key time 1 is not a finite number"},
+      {"NaN vertex", [&](Scene& s) { s.objects[0].key_positions[1][2].y() = nan; },
+       "vertex 2 at key 1 is NaN or infinite"},
+      {"infinite vertex", [](Scene& s) { s.objects[0].key_positions[0][0].x() = kInfinity; },
+       "NaN or infinite"},
+      {"index out of range", [](Scene& s) { s.objects[0].triangles[0][1] = 3; },
+       "vertex index 3 out of range (3 vertices)"},
+      {"unsorted key times",
+       [](Scene& s) {
+         s.objects[0].key_times = {0, 2, 1};
+       },
+       "(unsorted)"},
+      {"duplicate key times",
+       [](Scene& s) {
+         s.objects[0].key_times = {0, 2, 2};
+       },
+       "(duplicate)"},
+      {"NaN key time", [&](Scene& s) { s.objects[0].key_times[1] = nan; },
+       "key time 1 is not a finite number"},
       {"no keys", [](Scene& s) { s.objects[0].key_times.clear(); }, "no key times"},
-      {"key count mismatch", [](Scene& s) { s.objects[0].key_positions.pop_back(); }, "3 key times but 2 key position sets"},
-      {"vertex count mismatch", [](Scene& s) { s.objects[0].key_positions[2].pop_back(); }, "key 2 has 2 vertices, key 0 has 3"},
+      {"key count mismatch", [](Scene& s) { s.objects[0].key_positions.pop_back(); },
+       "3 key times but 2 key position sets"},
+      {"vertex count mismatch", [](Scene& s) { s.objects[0].key_positions[2].pop_back(); },
+       "key 2 has 2 vertices, key 0 has 3"},
       {"uv count", [](Scene& s) { s.objects[0].uvs = {Vec2f(0, 0)}; }, "has 1 uvs for 3 vertices"},
-      {"material index", [](Scene& s) { s.objects[0].material = 4; }, "material index 4 out of range"},
-      {"appear after disappear", [](Scene& s) {
+      {"material index", [](Scene& s) { s.objects[0].material = 4; },
+       "material index 4 out of range"},
+      {"appear after disappear",
+       [](Scene& s) {
          s.objects[0].appear = 2;
          s.objects[0].disappear = 1;
-       }, "must disappear after it appears"},
-      {"empty shot", [](Scene& s) { s.time_end = s.time_begin; }, "the shot must have finite times with end > begin"},
+       },
+       "must disappear after it appears"},
+      {"empty shot", [](Scene& s) { s.time_end = s.time_begin; },
+       "the shot must have finite times with end > begin"},
       {"NaN shot", [&](Scene& s) { s.time_begin = nan; }, "the shot must have finite times"},
-      {"negative colour", [](Scene& s) { s.materials[0].base_color.x() = -0.5f; }, "material 0 has an invalid base colour"},
-      {"missing texture", [](Scene& s) { s.materials[0].texture = 0; }, "material 0 names a missing texture"},
+      {"negative colour", [](Scene& s) { s.materials[0].base_color.x() = -0.5f; },
+       "material 0 has an invalid base colour"},
+      {"missing texture", [](Scene& s) { s.materials[0].texture = 0; },
+       "material 0 names a missing texture"},
       {"no materials", [](Scene& s) { s.materials.clear(); }, "no materials"},
-      {"fov", [](Scene& s) { s.camera.keys[0].fov_y_degrees = 180; }, "fov_y must lie in (0.5, 179.5) degrees"},
-      {"camera NaN", [&](Scene& s) { s.camera.keys[0].position.z() = nan; }, "camera: a key has a NaN"},
-      {"camera times", [](Scene& s) { s.camera.keys = {CameraKey{1}, CameraKey{0}}; }, "camera: key times must be strictly increasing"},
+      {"fov", [](Scene& s) { s.camera.keys[0].fov_y_degrees = 180; },
+       "fov_y must lie in (0.5, 179.5) degrees"},
+      {"camera NaN", [&](Scene& s) { s.camera.keys[0].position.z() = nan; },
+       "camera: a key has a NaN"},
+      {"camera times",
+       [](Scene& s) {
+         s.camera.keys = {CameraKey{1}, CameraKey{0}};
+       },
+       "camera: key times must be strictly increasing"},
       {"no camera keys", [](Scene& s) { s.camera.keys.clear(); }, "camera: no key times"},
   };
   for (const Case& c : cases) {
@@ -161,7 +189,8 @@ TEST(Scene, KeyTimesCountsAndBounds) {
   scene.camera.keys = {CameraKey{0.5}, CameraKey{5}};
   scene.time_begin = 0.1;
   scene.time_end = 2.5;
-  // Shot ends, the moving object's key 2 and the camera key 0.5; keys outside the shot are left out.
+  // Shot ends, the moving object's key 2 and the camera key 0.5; keys outside the shot are left
+  // out.
   EXPECT_EQ(scene.key_times(), (std::vector<double>{0.1, 0.5, 2, 2.5}));
   EXPECT_EQ(scene.triangle_count(), 2u);
   EXPECT_EQ(scene.vertex_count(), 6u);
@@ -179,7 +208,7 @@ TEST(Scene, TextureSamplingIsBilinearAndWraps) {
   EXPECT_EQ(texture.sample(Vec2f(0.75f, 0.25f)), Color(1, 1, 1));
   EXPECT_NEAR((texture.sample(Vec2f(0.5f, 0.5f)) - Color(0.5f, 0.5f, 0.5f)).norm(), 0, 1e-6);
   EXPECT_EQ(texture.sample(Vec2f(1.25f, -0.25f)), Color(1, 0, 0));  // wraps around
-  EXPECT_EQ(Texture{}.sample(Vec2f(0.3f, 0.3f)), Color::Ones());     // no image: white
+  EXPECT_EQ(Texture{}.sample(Vec2f(0.3f, 0.3f)), Color::Ones());    // no image: white
 }
 
 }  // namespace

@@ -2,10 +2,10 @@
 // through save_scene_file, and that each kind of mistake is one InputError naming the file, the
 // JSON pointer and the problem.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "scenes/error.h"
 #include "scenes/procedural.h"
@@ -56,10 +56,12 @@ class SceneFile : public ::testing::Test {
 std::string with_objects(const std::string& objects) {
   return R"({"shot": {"begin": 0, "end": 1},
              "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]},
-             "objects": [)" + objects + "]}";
+             "objects": [)" +
+         objects + "]}";
 }
 
-const char* kTriangle = R"({"kind": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]]})";
+const char* kTriangle =
+    R"({"kind": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]]})";
 
 void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.name, b.name);
@@ -115,7 +117,8 @@ TEST_F(SceneFile, EveryExampleLoadsAndRoundTrips) {
 }
 
 TEST_F(SceneFile, BuiltinObjectsReproduceTheBuiltinScene) {
-  expect_same_scene(load_scene_file((kExamples / "wavy-sphere.json").string()), make_builtin_scene("wavy-sphere"));
+  expect_same_scene(load_scene_file((kExamples / "wavy-sphere.json").string()),
+                    make_builtin_scene("wavy-sphere"));
   const std::string path = write("cloth.json", R"({"objects": [{"kind": "builtin", "scene": "cloth",
                                                    "params": {"triangles": 800, "duration": 1}}]})");
   expect_same_scene(load_scene_file(path), [] {
@@ -170,7 +173,8 @@ TEST_F(SceneFile, TransformThenTransformKeysOrbitAPrimitive) {
 }
 
 TEST_F(SceneFile, PrimitivesMaterialsAndTextures) {
-  const std::string texture = fs::relative("/usr/share/assimp/models/OBJ/wal67ar_small.jpg", m_dir).string();
+  const std::string texture =
+      fs::relative("/usr/share/assimp/models/OBJ/wal67ar_small.jpg", m_dir).string();
   const Scene scene = load_scene_file(write("prims.json", R"({
     "shot": {"begin": 0, "end": 1},
     "materials": [{"name": "red", "base_color": [1, 0, 0]},
@@ -240,7 +244,8 @@ TEST_F(SceneFile, SyntaxErrorsNameLineAndColumn) {
   const std::string message = error_of("{\n  \"shot\": {\"begin\": 0,, \"end\": 1}\n}");
   EXPECT_NE(message.find("bad.json:2:"), std::string::npos) << message;
   EXPECT_NE(message.find("syntax error"), std::string::npos) << message;
-  const std::string overflow = error_of(with_objects(R"({"kind": "mesh", "vertices": [[0, 0, 1e999]], "triangles": []})"));
+  const std::string overflow =
+      error_of(with_objects(R"({"kind": "mesh", "vertices": [[0, 0, 1e999]], "triangles": []})"));
   EXPECT_NE(overflow.find("bad.json:3:"), std::string::npos) << overflow;
   EXPECT_NE(overflow.find("1e999"), std::string::npos) << overflow;
   EXPECT_NE(error_of("").find("syntax error"), std::string::npos);
@@ -254,57 +259,80 @@ struct Mistake {
 };
 
 TEST_F(SceneFile, MistakesNameTheFileTheKeyAndTheProblem) {
-  const std::string base = R"("shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]})";
+  const std::string base =
+      R"("shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]})";
   const std::vector<Mistake> mistakes = {
-      {"missing key", with_objects(R"({"vertices": [[0, 0, 0]], "triangles": []})"), "/objects/0:", "missing key 'kind'"},
-      {"missing camera position", R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"look_at": [0, 0, 0]}]}, "objects": []})",
+      {"missing key", with_objects(R"({"vertices": [[0, 0, 0]], "triangles": []})"),
+       "/objects/0:", "missing key 'kind'"},
+      {"missing camera position",
+       R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"look_at": [0, 0, 0]}]}, "objects": []})",
        "/camera/keys/0:", "missing key 'position'"},
-      {"missing camera", R"({"shot": {"begin": 0, "end": 1}, "objects": []})", "bad.json: missing key 'camera'", "only a file with a builtin"},
+      {"missing camera", R"({"shot": {"begin": 0, "end": 1}, "objects": []})",
+       "bad.json: missing key 'camera'", "only a file with a builtin"},
       {"NaN vertex (JSON writes NaN as null)",
-       with_objects(R"({"kind": "mesh", "vertices": [[0, 0, 0], [1, 0, null], [0, 1, 0]], "triangles": [[0, 1, 2]]})"),
+       with_objects(
+           R"({"kind": "mesh", "vertices": [[0, 0, 0], [1, 0, null], [0, 1, 0]], "triangles": [[0, 1, 2]]})"),
        "/objects/0/vertices/1/2:", "expected a number, got null"},
       {"index out of range",
-       with_objects(R"({"kind": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2], [0, 1, 3]]})"),
+       with_objects(
+           R"({"kind": "mesh", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2], [0, 1, 3]]})"),
        "/objects/0/triangles/1/2:", "vertex index 3 out of range (3 vertices)"},
-      {"negative index", with_objects(R"({"kind": "mesh", "vertices": [[0, 0, 0]], "triangles": [[0, -1, 0]]})"),
+      {"negative index",
+       with_objects(R"({"kind": "mesh", "vertices": [[0, 0, 0]], "triangles": [[0, -1, 0]]})"),
        "/objects/0/triangles/0/1:", "expected an integer >= 0"},
       {"unsorted key times",
        with_objects(R"({"kind": "sphere", "keys": [{"time": 0}, {"time": 1}, {"time": 0.5}]})"),
        "/objects/0/keys/2/time:", "(unsorted)"},
       {"duplicate key times",
-       with_objects(R"({"kind": "mesh", "triangles": [], "keys": [{"time": 0, "vertices": [[0, 0, 0]]}, {"time": 0, "vertices": [[1, 0, 0]]}]})"),
+       with_objects(
+           R"({"kind": "mesh", "triangles": [], "keys": [{"time": 0, "vertices": [[0, 0, 0]]}, {"time": 0, "vertices": [[1, 0, 0]]}]})"),
        "/objects/0/keys/1/time:", "(duplicate)"},
       {"duplicate camera key times",
        R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"time": 1, "position": [0, 0, -5], "look_at": [0, 0, 0]},
           {"time": 1, "position": [0, 0, -4], "look_at": [0, 0, 0]}]}, "objects": []})",
        "/camera/keys/1/time:", "(duplicate)"},
-      {"zero-length shot", R"({"shot": {"begin": 1, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]}, "objects": []})",
+      {"zero-length shot",
+       R"({"shot": {"begin": 1, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]}, "objects": []})",
        "/shot/end:", "must end after it begins"},
-      {"unknown object kind", with_objects(R"({"kind": "cylinder"})"), "/objects/0/kind:", "unknown object kind 'cylinder'"},
-      {"unknown key", with_objects(R"({"kind": "sphere", "radious": 2})"), "/objects/0/radious:", "unknown key 'radious'"},
-      {"wrong type", "{" + base + R"(, "objects": [{"kind": "sphere", "radius": "big"}]})", "/objects/0/radius:",
-       "expected a number, got string"},
+      {"unknown object kind", with_objects(R"({"kind": "cylinder"})"),
+       "/objects/0/kind:", "unknown object kind 'cylinder'"},
+      {"unknown key", with_objects(R"({"kind": "sphere", "radious": 2})"),
+       "/objects/0/radious:", "unknown key 'radious'"},
+      {"wrong type", "{" + base + R"(, "objects": [{"kind": "sphere", "radius": "big"}]})",
+       "/objects/0/radius:", "expected a number, got string"},
       {"vertex count differs between keys",
-       with_objects(R"({"kind": "mesh", "triangles": [], "keys": [{"time": 0, "vertices": [[0, 0, 0]]}, {"time": 1, "vertices": [[0, 0, 0], [1, 1, 1]]}]})"),
+       with_objects(
+           R"({"kind": "mesh", "triangles": [], "keys": [{"time": 0, "vertices": [[0, 0, 0]]}, {"time": 1, "vertices": [[0, 0, 0], [1, 1, 1]]}]})"),
        "/objects/0/keys/1/vertices:", "has 2 vertices, key 0 has 1"},
       {"mixed key kinds",
-       with_objects(R"({"kind": "mesh", "triangles": [], "keys": [{"time": 0, "vertices": [[0, 0, 0]]}, {"time": 1, "translation": [1, 0, 0]}]})"),
+       with_objects(
+           R"({"kind": "mesh", "triangles": [], "keys": [{"time": 0, "vertices": [[0, 0, 0]]}, {"time": 1, "translation": [1, 0, 0]}]})"),
        "/objects/0/keys/1:", "missing key 'vertices'"},
-      {"unknown material", "{" + base + R"(, "materials": [{"name": "red"}], "objects": [{"kind": "box", "material": "blue"}]})",
+      {"unknown material",
+       "{" + base +
+           R"(, "materials": [{"name": "red"}], "objects": [{"kind": "box", "material": "blue"}]})",
        "/objects/0/material:", "no material called 'blue'; the materials are red"},
-      {"missing texture", "{" + base + R"(, "materials": [{"texture": "nowhere.png"}], "objects": []})",
+      {"missing texture",
+       "{" + base + R"(, "materials": [{"texture": "nowhere.png"}], "objects": []})",
        "/materials/0/texture:", "no such file"},
-      {"missing model", with_objects(R"({"kind": "model", "path": "nowhere.gltf"})"), "/objects/0/path:", "no such file"},
-      {"unknown builtin", with_objects(R"({"kind": "builtin", "scene": "teapot"})"), "/objects/0/scene:", "unknown built-in scene"},
-      {"bad builtin parameter", with_objects(R"({"kind": "builtin", "scene": "cloth", "params": {"triangles": -3}})"),
+      {"missing model", with_objects(R"({"kind": "model", "path": "nowhere.gltf"})"),
+       "/objects/0/path:", "no such file"},
+      {"unknown builtin", with_objects(R"({"kind": "builtin", "scene": "teapot"})"),
+       "/objects/0/scene:", "unknown built-in scene"},
+      {"bad builtin parameter",
+       with_objects(R"({"kind": "builtin", "scene": "cloth", "params": {"triangles": -3}})"),
        "/objects/0/params:", "triangles must be a finite number > 0"},
-      {"fov out of range", R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0], "fov_y": 180}]}, "objects": []})",
+      {"fov out of range",
+       R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0], "fov_y": 180}]}, "objects": []})",
        "/camera/keys/0/fov_y:", "fov_y must lie in (0.5, 179.5)"},
-      {"look_at and orientation", R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5]}]}, "objects": []})",
+      {"look_at and orientation",
+       R"({"shot": {"begin": 0, "end": 1}, "camera": {"keys": [{"position": [0, 0, -5]}]}, "objects": []})",
        "/camera/keys/0:", "give either 'look_at'"},
-      {"disappears before it appears", with_objects(R"({"kind": "sphere", "appear": 1, "disappear": 0.5})"),
+      {"disappears before it appears",
+       with_objects(R"({"kind": "sphere", "appear": 1, "disappear": 0.5})"),
        "/objects/0/disappear:", "must disappear after it appears"},
-      {"zero quaternion", with_objects(R"({"kind": "sphere", "transform": {"rotation": [0, 0, 0, 0]}})"),
+      {"zero quaternion",
+       with_objects(R"({"kind": "sphere", "transform": {"rotation": [0, 0, 0, 0]}})"),
        "/objects/0/transform/rotation:", "must not be zero"},
       {"not an object at the top", "[1, 2]", "bad.json: expected an object", "got array"},
   };

@@ -1,10 +1,10 @@
 // Naming a scene: built-ins with parameters, scene files, model files, and the errors for
 // everything else.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "scenes/error.h"
 #include "scenes/procedural.h"
@@ -40,20 +40,25 @@ TEST(SceneLoader, BuiltinNamesWithParameters) {
 }
 
 TEST(SceneLoader, BadBuiltinSpecs) {
-  EXPECT_NE(error_of("cloth:triangles=abc").find("parameter triangles needs a number, got 'abc'"), std::string::npos);
+  EXPECT_NE(error_of("cloth:triangles=abc").find("parameter triangles needs a number, got 'abc'"),
+            std::string::npos);
   EXPECT_NE(error_of("cloth:triangles").find("expected key=value"), std::string::npos);
-  EXPECT_NE(error_of("cloth:size=3").find("the parameters are triangles, duration, keyrate"), std::string::npos);
+  EXPECT_NE(error_of("cloth:size=3").find("the parameters are triangles, duration, keyrate"),
+            std::string::npos);
   EXPECT_NE(error_of("cloth:duration=1,duration=2").find("given twice"), std::string::npos);
-  EXPECT_NE(error_of("cloth:duration=0").find("duration must be a finite number > 0"), std::string::npos);
+  EXPECT_NE(error_of("cloth:duration=0").find("duration must be a finite number > 0"),
+            std::string::npos);
   EXPECT_NE(error_of("cloth:duration=nan").find("duration"), std::string::npos);
   const std::string unknown = error_of("teapot");
   EXPECT_NE(unknown.find("teapot"), std::string::npos);
-  EXPECT_NE(unknown.find("wavy-sphere, cloth, orbit, flythrough, static-moving"), std::string::npos);
+  EXPECT_NE(unknown.find("wavy-sphere, cloth, orbit, flythrough, static-moving"),
+            std::string::npos);
   EXPECT_NE(error_of("").find("empty scene name"), std::string::npos);
 }
 
 TEST(SceneLoader, SceneFilesAndModels) {
-  const std::string example = std::string(KINRAY_SOURCE_DIR) + "/scenes/examples/static-moving.json";
+  const std::string example =
+      std::string(KINRAY_SOURCE_DIR) + "/scenes/examples/static-moving.json";
   const Scene file = load_scene(example);
   EXPECT_EQ(file.name, "static-moving");
   EXPECT_EQ(file.objects.size(), 4u);
@@ -70,13 +75,15 @@ TEST(SceneLoader, MissingAndUnreadableFilesAreNamed) {
   const std::string missing_model = error_of("models/missing.gltf");
   EXPECT_NE(missing_model.find("models/missing.gltf: no such file"), std::string::npos);
 
-  const fs::path text = fs::temp_directory_path() / ("kinray_scene_loader_" + std::to_string(getpid()) + ".txt");
+  const fs::path text =
+      fs::temp_directory_path() / ("kinray_scene_loader_" + std::to_string(getpid()) + ".txt");
   std::ofstream(text) << "not a scene";
   const std::string not_a_scene = error_of(text.string());
   fs::remove(text);
   EXPECT_NE(not_a_scene.find(text.string()), std::string::npos);
   EXPECT_NE(not_a_scene.find("neither a scene file"), std::string::npos);
-  EXPECT_NE(error_of(fs::temp_directory_path().string()).find("not a regular file"), std::string::npos);
+  EXPECT_NE(error_of(fs::temp_directory_path().string()).find("not a regular file"),
+            std::string::npos);
 }
 
 TEST(SceneLoader, DescribesTheSyntaxAndEveryBuiltin) {
