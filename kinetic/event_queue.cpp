@@ -18,6 +18,7 @@ EventQueue::EventQueue(EventQueue&& other) noexcept
       m_capacity(std::exchange(other.m_capacity, 0)),
       m_size(std::exchange(other.m_size, 0)),
       m_slots(std::move(other.m_slots)),
+      m_pos(std::move(other.m_pos)),
       m_free(std::exchange(other.m_free, kNoEvent)) {}
 
 EventQueue& EventQueue::operator=(EventQueue&& other) noexcept {
@@ -27,6 +28,7 @@ EventQueue& EventQueue::operator=(EventQueue&& other) noexcept {
     m_capacity = std::exchange(other.m_capacity, 0);
     m_size = std::exchange(other.m_size, 0);
     m_slots = std::move(other.m_slots);
+    m_pos = std::move(other.m_pos);
     m_free = std::exchange(other.m_free, kNoEvent);
   }
   return *this;
@@ -55,6 +57,7 @@ EventHandle EventQueue::push(const EventKey& key, uint64_t payload) {
     KINRAY_CHECK(m_slots.size() < kNoEvent - 1);
     h = static_cast<EventHandle>(m_slots.size());
     m_slots.emplace_back();
+    m_pos.push_back(kFreeSlot);
   }
   m_slots[h].key = key;
   m_slots[h].payload = payload;
@@ -68,7 +71,7 @@ void EventQueue::update(EventHandle h, const EventKey& key) {
   KINRAY_CHECK_MSG(!std::isnan(key.time), "event time is NaN");
   const bool up = key < m_slots[h].key;
   m_slots[h].key = key;
-  const uint32_t r = m_slots[h].pos;
+  const uint32_t r = m_pos[h];
   const Node node{key.time, h, 0};
   if (up)
     sift_up(r, node);
@@ -78,7 +81,7 @@ void EventQueue::update(EventHandle h, const EventKey& key) {
 
 void EventQueue::erase(EventHandle h) {
   KINRAY_CHECK(contains(h));
-  remove_at(m_slots[h].pos);
+  remove_at(m_pos[h]);
 }
 
 void EventQueue::pop() {
@@ -88,7 +91,7 @@ void EventQueue::pop() {
 
 void EventQueue::remove_at(uint32_t r) {
   const EventHandle h = m_heap[r + kOffset].handle;
-  m_slots[h].pos = kFreeSlot;
+  m_pos[h] = kFreeSlot;
   m_slots[h].payload = m_free;
   m_free = h;
   const uint32_t last = --m_size;
@@ -117,10 +120,17 @@ void EventQueue::sift_down(uint32_t r, Node node) {
     const uint32_t first = r * kArity + 1;
     if (first >= n) break;
     const Node* c = m_heap + first + kOffset;
-    uint32_t best = 0;
     const uint32_t count = n - first < kArity ? n - first : kArity;
-    for (uint32_t i = 1; i < count; ++i)
-      if (less(c[i], c[best])) best = i;
+    // Smallest time without branches (random times mispredict), then the rare exact ties.
+    uint32_t best = 0;
+    double best_time = c[0].time;
+    for (uint32_t i = 1; i < count; ++i) {
+      const bool smaller = c[i].time < best_time;
+      best = smaller ? i : best;
+      best_time = smaller ? c[i].time : best_time;
+    }
+    for (uint32_t i = 0; i < count; ++i)
+      if (c[i].time == best_time && i != best && less(c[i], c[best])) best = i;
     if (!less(c[best], node)) break;
     place(r, c[best]);
     r = first + best;
@@ -131,30 +141,32 @@ void EventQueue::sift_down(uint32_t r, Node node) {
 void EventQueue::clear() {
   m_size = 0;
   m_slots.clear();
+  m_pos.clear();
   m_free = kNoEvent;
 }
 
 void EventQueue::reserve(size_t n) {
   grow(n);
   m_slots.reserve(n);
+  m_pos.reserve(n);
 }
 
 size_t EventQueue::memory_bytes() const {
   return sizeof(*this) + (m_capacity + kOffset + 1) * sizeof(Node) +
-         m_slots.capacity() * sizeof(Slot);
+         m_slots.capacity() * sizeof(Slot) + m_pos.capacity() * sizeof(uint32_t);
 }
 
 void EventQueue::audit() const {
   for (uint32_t r = 0; r < m_size; ++r) {
     const Node& node = m_heap[r + kOffset];
     const EventHandle h = node.handle;
-    KINRAY_CHECK(h < m_slots.size() && m_slots[h].pos == r);
+    KINRAY_CHECK(h < m_slots.size() && m_pos[h] == r);
     KINRAY_CHECK(node.time == m_slots[h].key.time);
     if (r > 0) KINRAY_CHECK(!less(node, m_heap[(r - 1) / kArity + kOffset]));
   }
   size_t free_count = 0;
   for (uint32_t h = m_free; h != kNoEvent; h = static_cast<uint32_t>(m_slots[h].payload)) {
-    KINRAY_CHECK(h < m_slots.size() && m_slots[h].pos == kFreeSlot);
+    KINRAY_CHECK(h < m_slots.size() && m_pos[h] == kFreeSlot);
     KINRAY_CHECK(++free_count <= m_slots.size());
   }
   KINRAY_CHECK(free_count + m_size == m_slots.size());

@@ -70,7 +70,14 @@ class EventQueue {
     return m_slots[h].payload;
   }
   [[nodiscard]] bool contains(EventHandle h) const {
-    return h < m_slots.size() && m_slots[h].pos != kFreeSlot;
+    return h < m_pos.size() && m_pos[h] != kFreeSlot;
+  }
+  /// Hint that event h is about to be updated or erased (software prefetch of its slot).
+  void prefetch(EventHandle h) const {
+    if (h < m_slots.size()) {
+      __builtin_prefetch(&m_slots[h]);
+      __builtin_prefetch(&m_pos[h]);
+    }
   }
 
   void clear();
@@ -93,10 +100,9 @@ class EventQueue {
     EventHandle handle;
     uint32_t unused;
   };
-  struct Slot {
+  struct alignas(32) Slot {
     EventKey key;
-    uint64_t payload = 0;      ///< the event's payload, or the next free slot when free
-    uint32_t pos = kFreeSlot;  ///< heap index r of the event
+    uint64_t payload = 0;  ///< the event's payload, or the next free slot when free
   };
   bool less(const Node& x, const Node& y) const {
     if (x.time != y.time) return x.time < y.time;
@@ -104,7 +110,7 @@ class EventQueue {
   }
   void place(uint32_t r, const Node& node) {
     m_heap[r + kOffset] = node;
-    m_slots[node.handle].pos = r;
+    m_pos[node.handle] = r;
   }
   void sift_up(uint32_t r, Node node);
   void sift_down(uint32_t r, Node node);
@@ -114,7 +120,8 @@ class EventQueue {
   Node* m_heap = nullptr;  ///< 64-byte aligned, m_capacity + kOffset + 1 nodes
   size_t m_capacity = 0;
   uint32_t m_size = 0;
-  std::vector<Slot> m_slots;
+  std::vector<Slot> m_slots;     ///< per handle: key and payload (two slots per cache line)
+  std::vector<uint32_t> m_pos;  ///< per handle: heap index r of the event, kFreeSlot if free
   uint32_t m_free = kNoEvent;
 };
 

@@ -95,6 +95,8 @@ class KineticSortedList {
     const auto i = static_cast<size_t>(payload);
     KINRAY_CHECK(i + 1 < m_entries.size());
     m_entries[i].event = kNoEvent;  // popped
+    if (i > 0) m_core.queue().prefetch(m_entries[i - 1].event);
+    if (i + 2 < m_entries.size()) m_core.queue().prefetch(m_entries[i + 1].event);
     m_core.begin_event(now);
     const uint32_t a = m_entries[i].id, b = m_entries[i + 1].id;
     OrderCertificate c = m_core.certificate(a, b, now);

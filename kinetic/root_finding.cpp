@@ -349,8 +349,7 @@ bool walk(const Polynomial& f, double s0, double s1, Walker& walker) {
 
 // Degree 1 (after trimming): Horner's value fl(c0 + fl(c1 s)) is monotone in s, so the answer
 // is the smallest double r > s_now with fl(f(r)) <= 0.
-std::optional<double> first_failure_linear(const Polynomial& f, double s_now, double s_end) {
-  const double c0 = f.c[0], c1 = f.c[1];
+std::optional<double> first_failure_linear(double c0, double c1, double s_now, double s_end) {
   if (c1 > 0) return std::nullopt;
   auto neg = [&](double s) { return c0 + c1 * s <= 0; };
   const bool bounded = std::isfinite(s_end);
@@ -405,20 +404,22 @@ int sign_after(const Polynomial& f, double s) {
 std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end) {
   ++t_stats.calls;
   KINRAY_DCHECK(std::isfinite(s_now) && !std::isnan(s_end));
-  const int now_sign = sign_after(f, s_now);
-  if (now_sign == 0) return std::nullopt;  // zero polynomial
-  if (now_sign < 0) return s_now;
-  if (!(s_end > s_now)) return std::nullopt;
   const int n = f.effective_degree();
-  if (n == 0) {
-    ++t_stats.fast_path_no_root;
-    return std::nullopt;
-  }
-  if (n == 1) {
-    auto r = first_failure_linear(f.trimmed(), s_now, s_end);
+  if (n <= 1) {
+    // Horner's value c0 + c1 s, as operator() and sign_after compute it.
+    const double c0 = f.c[0], c1 = n == 1 ? f.c[1] : 0.0;
+    const double v = n == 1 ? c0 + c1 * s_now : c0;
+    const int now_sign = v != 0 ? sign_of(v) : sign_of(c1);
+    if (now_sign == 0) return std::nullopt;  // zero polynomial
+    if (now_sign < 0) return s_now;
+    std::optional<double> r;
+    if (n == 1 && s_end > s_now) r = first_failure_linear(c0, c1, s_now, s_end);
     if (!r) ++t_stats.fast_path_no_root;
     return r;
   }
+  const int now_sign = sign_after(f, s_now);
+  if (now_sign < 0) return s_now;
+  if (!(s_end > s_now)) return std::nullopt;
   Walker walker(f, 1, s_now, true);
   if (walk(f, s_now, s_end, walker)) {
     ++t_stats.fast_path_no_root;
