@@ -1,0 +1,48 @@
+// Imported models through the Embree reference backend: one 64 x 64 frame of a few models at the
+// start, middle and end of their shot, and the centre rays hit them.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "renderer/backend.h"
+#include "renderer/embree_backend.h"
+#include "renderer/frame.h"
+#include "scenes/camera_space.h"
+#include "scenes/model_import.h"
+#include "tests/scenes/model_test_support.h"
+
+namespace kinray {
+namespace {
+
+TEST(ModelRender, EmbreeHitsSkinnedMorphedAndSkeletonModels) {
+  const std::vector<std::filesystem::path> models = {
+      testing::kTestModels / "glTF2/simple_skin/simple_skin.gltf",
+      testing::kTestModels / "X/BCN_Epileptic.X",
+      testing::kTestModels / "BVH/01_01.bvh",
+      testing::kTestModels / "FBX/huesitos.fbx",  // the model's own camera
+      testing::kSharedModels / "glTF2/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf",
+  };
+  for (const std::filesystem::path& path : models) {
+    if (!std::filesystem::exists(path)) continue;
+    ::testing::internal::CaptureStderr();
+    const Scene scene = load_model(path.string());
+    ::testing::internal::GetCapturedStderr();
+    const CameraSpaceScene camera_space = CameraSpaceScene::build(scene);
+    BackendConfig config;
+    config.width = config.height = 64;
+    config.threads = 2;
+    auto backend = make_embree_backend(camera_space, config);
+    for (double t : {scene.time_begin, 0.5 * (scene.time_begin + scene.time_end), scene.time_end}) {
+      Frame frame;
+      backend->render(t, frame);
+      size_t hits = 0;
+      for (uint32_t object : frame.object) hits += object != kNoHit;
+      EXPECT_GT(hits, 0u) << path << " at t=" << t;
+      EXPECT_LT(hits, frame.pixel_count()) << path << " at t=" << t << ": framing leaves a margin";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kinray
