@@ -29,6 +29,7 @@
 #include "kinetic/kinetic_sort.h"
 #include "kinetic/kinetic_sorted_list.h"
 #include "kinetic/kinetic_tournament.h"
+#include "kinetic/root_finding.h"
 #include "kinetic/simulator.h"
 
 namespace {
@@ -155,7 +156,37 @@ void add(const std::string& structure, const std::string& workload, double span,
   }
 }
 
+// first_failure on degree-5 certificates (the per-pixel depth order's degree) over [0, 1]:
+// random products of five real or complex factors, split by whether a failure exists.
+void BM_FirstFailureDegree5(benchmark::State& state) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Polynomial> with_root, without_root;
+  while (with_root.size() < 4096 || without_root.size() < 4096) {
+    Polynomial p(1.0);
+    for (int k = 0; k < 5; ++k) p = p * Polynomial{u(rng) * 4, 1};  // roots in [-4, 4]
+    if (sign_after(p, 0) < 0) p = -p;
+    (first_failure(p, 0, 1) ? with_root : without_root).push_back(p);
+  }
+  const auto& set = state.range(0) ? with_root : without_root;
+  root_stats() = {};
+  size_t i = 0, found = 0;
+  for (auto _ : state) {
+    found += first_failure(set[i++ & 4095], 0, 1).has_value();
+  }
+  benchmark::DoNotOptimize(found);
+  const RootStats& st = root_stats();
+  state.counters["fast_path_share"] =
+      st.calls ? static_cast<double>(st.fast_path_no_root) / static_cast<double>(st.calls) : 0;
+  state.counters["subdivisions_per_call"] =
+      st.calls ? static_cast<double>(st.subdivisions) / static_cast<double>(st.calls) : 0;
+  state.counters["refinements_per_call"] =
+      st.calls ? static_cast<double>(st.refinements) / static_cast<double>(st.calls) : 0;
+  state.SetLabel(state.range(0) ? "with a failure in [0,1]" : "no failure in [0,1]");
+}
+
 void register_all() {
+  benchmark::RegisterBenchmark("FirstFailure/degree5", BM_FirstFailureDegree5)->Arg(0)->Arg(1);
   const std::vector<size_t> all{100, 1000, 10000, 100000, 1000000};
   add<KineticSortedList<LinearMotionKeys>>("SortedList", "window", kWindow, all);
   add<KineticTournament<LinearMotionKeys>>("Tournament", "full", kFull, all);

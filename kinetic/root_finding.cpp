@@ -144,6 +144,14 @@ Classification classify(const Bernstein& bz) {
 
 uint64_t bits_of(double x) { return std::bit_cast<uint64_t>(x); }
 
+// std::nextafter(x, +inf) / (x, -inf) for finite x, without the libm call.
+inline double next_up(double x) {
+  if (x == 0) return std::numeric_limits<double>::denorm_min();
+  const uint64_t b = bits_of(x);
+  return std::bit_cast<double>(x > 0 ? b + 1 : b - 1);
+}
+inline double next_down(double x) { return -next_up(-x); }
+
 // A point strictly between lo < hi (adjacent doubles excluded by the caller): bisection in the
 // ordered bit space, so that any bracket shrinks to adjacent doubles in at most 64 steps.
 double bit_midpoint(double lo, double hi) {
@@ -156,44 +164,56 @@ double bit_midpoint(double lo, double hi) {
 }
 
 // r in (lo, hi] with sign_after(f, r) == sigma, where sign_after(f, hi) == sigma is given and
-// sign_after(f, lo) is presumably -sigma. Illinois steps while they halve the bracket, else
-// bisection in bit space; ends on adjacent doubles.
+// sign_after(f, lo) is presumably -sigma. Illinois steps (regula falsi halving the function value
+// of an endpoint kept twice in a row); when three steps did not halve the bracket, one bisection
+// step, at the arithmetic midpoint, every fourth one in bit space (so that brackets spanning many
+// binades, e.g. [0, 1] around 1e-300, also end in O(64) steps). Ends on adjacent doubles.
 double refine(const Polynomial& f, double lo, double hi, int sigma) {
   double flo = f(lo), fhi = f(hi);
-  bool illinois = std::isfinite(flo) && std::isfinite(fhi) && sign_of(flo) == -sigma &&
-                  sign_of(fhi) == sigma;
-  int retained = 0;  // +1: lo kept last time, -1: hi kept last time
-  double width_before = hi - lo;
-  int step = 0;
-  while (std::nextafter(lo, kInf) < hi) {
+  int kept = 0;  // +1: lo kept by the last step, -1: hi kept
+  int steps_in_window = 0, bisections = 0;
+  double window_width = hi - lo;
+  while (next_up(lo) < hi) {
     ++t_stats.refinements;
-    double m;
-    const bool try_illinois = illinois && (step % 3 != 2 || (hi - lo) < 0.5 * width_before);
-    if (step % 3 == 2) width_before = hi - lo;
-    ++step;
-    if (try_illinois) {
-      m = hi - fhi * ((hi - lo) / (fhi - flo));
+    const double width = hi - lo;
+    const bool secant_ok = std::isfinite(flo) && std::isfinite(fhi) && sign_of(flo) == -sigma &&
+                           sign_of(fhi) == sigma;
+    double m = 0;
+    bool bisect = !secant_ok;
+    if (++steps_in_window > 3) {
+      steps_in_window = 0;
+      bisect |= width > 0.5 * window_width;
+      window_width = width;
+    }
+    if (!bisect) {
+      m = hi - fhi * (width / (fhi - flo));
+      // A secant point within two ulps of an end is moved to two ulps inside: once one end has
+      // converged, this closes the bracket from that side instead of bisecting the other.
+      const double in_lo = next_up(next_up(lo));
+      const double in_hi = next_down(next_down(hi));
+      if (in_lo < in_hi) m = std::clamp(m, in_lo, in_hi);
+      bisect = !(m > lo && m < hi);
+    }
+    if (bisect) {
+      m = (++bisections % 4 == 0) ? bit_midpoint(lo, hi) : lo + 0.5 * width;
       if (!(m > lo && m < hi)) m = bit_midpoint(lo, hi);
-    } else {
-      m = bit_midpoint(lo, hi);
     }
     const double fm = f(m);
     int sm = sign_of(fm);
     if (sm == 0) sm = sign_after(f, m);
+    // An exact zero keeps the secant usable with the smallest value of the side's sign.
+    const double fv = fm != 0 ? fm : sm * std::numeric_limits<double>::min();
     if (sm == sigma) {
       hi = m;
-      fhi = fm;
-      if (retained == 1) flo *= 0.5;
-      retained = 1;
+      fhi = fv;
+      if (kept == 1) flo *= 0.5;
+      kept = 1;
     } else {
       lo = m;
-      flo = fm;
-      if (retained == -1) fhi *= 0.5;
-      retained = -1;
+      flo = fv;
+      if (kept == -1) fhi *= 0.5;
+      kept = -1;
     }
-    illinois = illinois && std::isfinite(fm) && fm != 0 && sign_of(flo) == -sigma &&
-               sign_of(fhi) == sigma;
-    KINRAY_DCHECK(step < 2000);
   }
   return hi;
 }
@@ -324,8 +344,9 @@ Polynomial normalised(const Polynomial& f) {
 // Returns true when the fast path (one conversion, definitely of the current sign) decided.
 bool walk(const Polynomial& f, double s0, double s1, Walker& walker) {
   const Polynomial p = normalised(f);
-  const double bound = root_bound(p);
-  const double reach = std::min(s1, bound);
+  // A finite end within the direct range needs no root bound (saves the pow calls); otherwise
+  // Fujiwara's bound makes the search finite.
+  const double reach = std::isfinite(s1) && s1 <= kTailStart ? s1 : std::min(s1, root_bound(p));
   if (s0 >= reach) return false;
   const double main_end = std::min(reach, std::max(kTailStart, s0));
   if (s0 < main_end) {
@@ -358,13 +379,13 @@ std::optional<double> first_failure_linear(double c0, double c1, double s_now, d
   if (!neg(top)) return std::nullopt;
   // Start at the rounded root and gallop to a bracket [lo, hi] of adjacent or nearby doubles.
   double g = -c0 / c1;
-  if (!(g > s_now)) g = std::nextafter(s_now, kInf);
+  if (!(g > s_now)) g = next_up(s_now);
   if (!(g < top)) g = top;
   double lo, hi;
   double step = std::max(std::fabs(g), std::numeric_limits<double>::min()) * kUnitRoundoff;
   if (neg(g)) {
     hi = g;
-    lo = std::nextafter(g, -kInf);
+    lo = next_down(g);
     while (lo > s_now && neg(lo)) {
       hi = lo;
       lo = std::max(s_now, lo - step);
@@ -373,14 +394,14 @@ std::optional<double> first_failure_linear(double c0, double c1, double s_now, d
     lo = std::max(lo, s_now);
   } else {
     lo = g;
-    hi = std::nextafter(g, kInf);
+    hi = next_up(g);
     while (hi < top && !neg(hi)) {
       lo = hi;
       hi = std::min(top, hi + step);
       step *= 2;
     }
   }
-  while (std::nextafter(lo, kInf) < hi) {
+  while (next_up(lo) < hi) {
     ++t_stats.refinements;
     const double m = bit_midpoint(lo, hi);
     (neg(m) ? hi : lo) = m;
