@@ -164,6 +164,38 @@ TEST(ImageDiff, LeakThroughAClosedEdgeIsACrack) {
   EXPECT_EQ(diff.cracks, 1u);
 }
 
+TEST(ImageDiff, DuplicateAcrossAFoldIsNoCrack) {
+  // A fold: L rises towards the viewer on its side of the edge p q, R is flat at depth 3, and R2
+  // (another object) duplicates R. The edge runs 5e-5 left of the ray, so the ray misses L by a
+  // hair, hits R, and L's plane is nearer there than R by more than the depth tolerance. A
+  // backend reporting L and one reporting R2 disagree only by float rounding: a tie. A backend
+  // reporting what lies behind the fold, or the background, leaked: a crack.
+  const Vec3 shift(-5e-5, 0, 0);
+  const Vec3 p = 3 * kRay + Vec3(0, 0.5, 0) + shift, q = 3 * kRay - Vec3(0, 0.5, 0) + shift;
+  const Vec3 l = 3 * kRay + Vec3(-0.5, 0, 0.5), r = 3 * kRay + Vec3(0.5, 0, 0);
+  const Object fold = test::camera_space_object("fold", {{0, 1, 2}, {1, 0, 3}}, {{p, q, l, r}});
+  const Object copy = test::camera_space_object("copy", {{1, 0, 2}}, {{p, q, r}});
+  const Scene scene = test::analytic_scene({wall(), fold, copy});
+  CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  set_positions(cs, 1, {p, q, l, r});
+  set_positions(cs, 2, {p, q, r});
+  const double z_left = test::plane_depth(p, q, l, kRay), z_right = test::plane_depth(q, p, r, kRay);
+  ASSERT_LT(z_left, z_right - 1e-5 * z_right);  // beyond the depth tolerance (1/cos < 3 here)
+  ASSERT_LT(p.cross(q).dot(kRay) * p.dot(q.cross(l)), 0.0);  // the ray is outside L, on R's side
+
+  FrameComparator comparator(cs);
+  Frame tested = background_frame(), reference = background_frame();
+  set_pixel(tested, kI, kJ, 1, 0);     // L
+  set_pixel(reference, kI, kJ, 2, 0);  // R2
+  FrameDiff diff = comparator.compare(tested, reference);
+  EXPECT_EQ(diff.mismatch_tie, 1u);
+  EXPECT_EQ(diff.cracks, 0u);
+  set_pixel(reference, kI, kJ, 0, 0);  // the wall behind
+  diff = comparator.compare(tested, reference);
+  EXPECT_EQ(diff.mismatch_real, 1u);
+  EXPECT_EQ(diff.cracks, 1u);
+}
+
 TEST(ImageDiff, CoplanarTrianglesAreATie) {
   // Two objects with the same triangle: equal depth everywhere, no winner.
   const Vec3 a = on_ray(4, 4, 5, kSize, kSize), b = on_ray(28, 4, 5, kSize, kSize), c = on_ray(4, 28, 5, kSize, kSize);
