@@ -1,7 +1,10 @@
 #include "scenes/model_textures.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <system_error>
 
 #include <assimp/scene.h>
@@ -10,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "scenes/model_assimp.h"
+#include "scenes/model_tga.h"
 
 namespace kinray {
 
@@ -46,9 +50,11 @@ std::optional<Texture> from_embedded(const aiTexture& embedded, const std::strin
     warn_repair(where, "embedded texture '" + name + "' is empty; using the base colour alone");
     return std::nullopt;
   }
-  if (embedded.mHeight == 0) {  // a compressed file (png, jpg, ...) of mWidth bytes
-    const cv::Mat bytes(1, int(embedded.mWidth), CV_8UC1, const_cast<aiTexel*>(embedded.pcData));
-    return from_bgr(cv::imdecode(bytes, cv::IMREAD_COLOR), name, where);
+  if (embedded.mHeight == 0) {  // a compressed file (png, jpg, tga, ...) of mWidth bytes
+    const auto* data = reinterpret_cast<const uint8_t*>(embedded.pcData);
+    cv::Mat image = cv::imdecode(cv::Mat(1, int(embedded.mWidth), CV_8UC1, const_cast<uint8_t*>(data)), cv::IMREAD_COLOR);
+    if (image.empty()) image = decode_tga({data, embedded.mWidth});
+    return from_bgr(image, name, where);
   }
   if (size_t(embedded.mWidth) * size_t(embedded.mHeight) > kMaxTexels) return from_bgr(cv::Mat(), name, where);
   cv::Mat image(int(embedded.mHeight), int(embedded.mWidth), CV_8UC3);
@@ -108,6 +114,11 @@ std::optional<Texture> read_texture(const aiScene& scene, const std::string& ref
     image = cv::imread(path.string(), cv::IMREAD_COLOR);
   } catch (const cv::Exception&) {
     image = cv::Mat();
+  }
+  if (image.empty()) {  // OpenCV 4.6 reads no TGA
+    std::ifstream file(path, std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    image = decode_tga(bytes);
   }
   return from_bgr(image, path.string(), where);
 }

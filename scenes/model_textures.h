@@ -1,7 +1,7 @@
 #pragma once
-// Diffuse (base colour) textures of imported models, read with OpenCV imgcodecs into linear-RGB
-// kinray::Textures: files beside the model, or textures embedded in it ("*0", glb buffers, MDL
-// skins). A texture that is missing or cannot be decoded is a documented repair: a warning on
+// Diffuse (base colour) textures of imported models, read with OpenCV imgcodecs (and TGA, which it
+// lacks, with model_tga.h) into linear-RGB kinray::Textures: files beside the model, or textures
+// embedded in it ("*0", glb buffers, MDL skins). A texture that is missing or cannot be decoded is a documented repair: a warning on
 // stderr, and the material keeps its base colour alone.
 #include <filesystem>
 #include <optional>

@@ -12,6 +12,7 @@
 
 #include "scenes/model_import.h"
 #include "scenes/model_textures.h"
+#include "scenes/model_tga.h"
 #include "tests/scenes/model_test_support.h"
 
 namespace kinray {
@@ -134,6 +135,62 @@ TEST(ModelTextures, EmbeddedTexturesMatchTheFileTheyWereMadeFrom) {
       EXPECT_GE(scene.materials.at(object.material).texture, 0) << model;
     }
   }
+}
+
+/// The checker of write_checker as TGA bytes: uncompressed 24-bit rows from the bottom (the
+/// default origin), or run-length encoded 32-bit rows from the top.
+std::vector<uint8_t> checker_tga(bool run_length) {
+  std::vector<uint8_t> bytes = {0, 0, uint8_t(run_length ? 10 : 2), 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0,
+                                uint8_t(run_length ? 32 : 24), uint8_t(run_length ? 0x28 : 0)};
+  if (!run_length) {
+    // bottom row first: blue, grey; then red, green (BGR)
+    for (uint8_t v : {255, 0, 0, 128, 128, 128, 0, 0, 255, 0, 255, 0}) bytes.push_back(v);
+  } else {
+    // top row: a raw packet of red, green; bottom row: a raw packet of blue, then grey as a run of 1
+    for (uint8_t v : {1, 0, 0, 255, 255, 0, 255, 0, 255, 0, 255, 0, 0, 255, 0x80, 128, 128, 128, 255}) bytes.push_back(v);
+  }
+  return bytes;
+}
+
+TEST(ModelTextures, TgaWhichOpenCvLacksIsDecoded) {
+  for (bool run_length : {false, true}) {
+    const cv::Mat image = decode_tga(checker_tga(run_length));
+    ASSERT_EQ(image.rows, 2);
+    ASSERT_EQ(image.cols, 2);
+    EXPECT_EQ(image.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 255)) << run_length;
+    EXPECT_EQ(image.at<cv::Vec3b>(0, 1), cv::Vec3b(0, 255, 0)) << run_length;
+    EXPECT_EQ(image.at<cv::Vec3b>(1, 0), cv::Vec3b(255, 0, 0)) << run_length;
+    EXPECT_EQ(image.at<cv::Vec3b>(1, 1), cv::Vec3b(128, 128, 128)) << run_length;
+  }
+  std::vector<uint8_t> truncated = checker_tga(true);
+  truncated.resize(truncated.size() - 2);
+  EXPECT_TRUE(decode_tga(truncated).empty());
+  EXPECT_TRUE(decode_tga(std::vector<uint8_t>{1, 2, 3}).empty());
+
+  const std::filesystem::path obj = write_quad("checker.tga");
+  const std::vector<uint8_t> bytes = checker_tga(false);
+  std::ofstream(obj.parent_path() / "checker.tga", std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  const Scene scene = load_model(obj.string());
+  std::filesystem::remove_all(obj.parent_path());
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_TRUE(scene.textures[0].texels[0].isApprox(Color(1, 0, 0)));
+  EXPECT_NEAR(scene.textures[0].texels[3].x(), 0.2158605, 1e-6);
+}
+
+TEST(ModelTextures, TestModelsWithTgaAndEmbeddedSkins) {
+  const std::filesystem::path duck = kTestModels / "Collada/duck.dae";  // names duckCM.tga, 512 x 512
+  const std::filesystem::path mdl = kTestModels / "MDL/MDL (HL1)/alpha_test.mdl";  // raw texels inside
+  if (!std::filesystem::exists(duck) || !std::filesystem::exists(mdl)) GTEST_SKIP() << "assimp-testmodels not installed";
+  const Scene duck_scene = load_model(duck.string());
+  ASSERT_EQ(duck_scene.textures.size(), 1u);
+  EXPECT_EQ(duck_scene.textures[0].width, 512);
+  EXPECT_EQ(duck_scene.textures[0].height, 512);
+  EXPECT_EQ(duck_scene.objects.at(0).uvs.size(), duck_scene.objects[0].vertex_count());
+  const Scene mdl_scene = load_model(mdl.string());
+  ASSERT_EQ(mdl_scene.textures.size(), 1u);
+  EXPECT_GT(mdl_scene.textures[0].width, 0);
+  EXPECT_EQ(mdl_scene.textures[0].texels.size(), size_t(mdl_scene.textures[0].width) * size_t(mdl_scene.textures[0].height));
 }
 
 }  // namespace
