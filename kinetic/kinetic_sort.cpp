@@ -81,14 +81,17 @@ Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
     if (a > b) {
       s.time = now;
       s.failure = true;
-    } else if (c.end < kInf) {
-      s.time = std::max(c.end, now);
+    } else if (c.end < kInf && c.end > now) {
+      s.time = c.end;
     }
     return s;
   }
   const auto r = first_failure(c.f, s_now, c.end - c.origin);
   if (!r) {
-    if (c.end < kInf) s.time = std::max(c.end, now);
+    // Renewal at the end of validity. A certificate that ends at (or before) now is stale: the
+    // keys have not switched to the next motion yet, and renewing at now would loop; the owner
+    // calls replace_motion once the motion is updated.
+    if (c.end < kInf && c.end > now) s.time = c.end;
     return s;
   }
   s.failure = true;
@@ -104,7 +107,7 @@ Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
     // The dip below zero is not representable in absolute time: a touch within rounding.
     s.failure = false;
     s.degenerate = true;
-    if (c.end < kInf) s.time = std::max(c.end, now);
+    if (c.end < kInf && c.end > now) s.time = c.end;
   }
   return s;
 }
@@ -124,7 +127,7 @@ Schedule schedule_degenerate(const OrderCertificate& c, double now, uint32_t a, 
   }
   if (back == kInf) {
     s.broken_until = c.end;
-    if (c.end < kInf) s.time = std::max(c.end, now);
+    if (c.end < kInf && c.end > now) s.time = c.end;
     return s;
   }
   s.broken_until = c.origin + back;

@@ -335,6 +335,34 @@ void run_recentred() {
   EXPECT_GT(s.stats().events(), 10u);
 }
 
+// Keys whose certificates keep ending at t = 2 (the owner has not switched motions yet): one
+// renewal at 2, then no event loop at that instant.
+class StaleEndKeys {
+ public:
+  explicit StaleEndKeys(const PolynomialKeys& keys) : m_keys(&keys) {}
+  OrderCertificate order_certificate(uint32_t a, uint32_t b, double t) const {
+    OrderCertificate c = m_keys->order_certificate(a, b, t);
+    c.end = 2;
+    return c;
+  }
+  double value(uint32_t a, double t) const { return m_keys->value(a, t); }
+
+ private:
+  const PolynomialKeys* m_keys;
+};
+
+TEST(KineticSortStaleEnd, NoRenewalLoop) {
+  PolynomialKeys base;
+  StaleEndKeys keys(base);
+  Simulator sim;
+  KineticSortedList<StaleEndKeys> list(keys, sim.queue(), 0);
+  list.insert(base.add(Polynomial{0, 1}), 0);
+  list.insert(base.add(Polynomial{10}), 0);
+  sim.advance_to(5, [&](const EventKey&, uint64_t payload) { list.handle_event(payload, sim.now()); });
+  EXPECT_EQ(list.stats().events_renewal, 1u);
+  EXPECT_TRUE(sim.queue().empty());
+}
+
 TEST(KineticSortRecentred, AllStructures) {
   run_recentred<KineticSortedList<RecentredKeys>>();
   run_recentred<KineticTournament<RecentredKeys>>();
