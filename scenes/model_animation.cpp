@@ -1,13 +1,13 @@
 #include "scenes/model_animation.h"
 
+#include <assimp/anim.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <sstream>
 #include <unordered_set>
-
-#include <assimp/anim.h>
-#include <assimp/scene.h>
 
 #include "scenes/error.h"
 
@@ -17,14 +17,20 @@ namespace {
 
 Extrapolation extrapolation(aiAnimBehaviour behaviour) {
   switch (behaviour) {
-    case aiAnimBehaviour_LINEAR: return Extrapolation::linear;
-    case aiAnimBehaviour_REPEAT: return Extrapolation::repeat;
-    default: return Extrapolation::hold;  // DEFAULT and CONSTANT: see Extrapolation
+    case aiAnimBehaviour_LINEAR:
+      return Extrapolation::linear;
+    case aiAnimBehaviour_REPEAT:
+      return Extrapolation::repeat;
+    default:
+      return Extrapolation::hold;  // DEFAULT and CONSTANT: see Extrapolation
   }
 }
 
-Vec3 interpolate(const Vec3& a, const Vec3& b, double alpha) { return a + alpha * (b - a); }
-Eigen::Quaterniond interpolate(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b, double alpha) {
+Vec3 interpolate(const Vec3& a, const Vec3& b, double alpha) {
+  return a + alpha * (b - a);
+}
+Eigen::Quaterniond interpolate(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b,
+                               double alpha) {
   return a.slerp(alpha, b);  // Eigen takes the shorter arc, as assimp's aiQuaternion::Interpolate
 }
 
@@ -34,11 +40,14 @@ Value sample_track(const Track<Value>& track, double ticks) {
   const size_t n = times.size();
   if (n == 1) return track.values[0];
   const double first = times.front(), last = times.back();
-  auto wrap = [&](double t) { return first + std::fmod(std::fmod(t - first, last - first) + (last - first), last - first); };
+  auto wrap = [&](double t) {
+    return first + std::fmod(std::fmod(t - first, last - first) + (last - first), last - first);
+  };
   if (ticks < first) {
     if (track.before == Extrapolation::hold) return track.values.front();
     if (track.before == Extrapolation::linear)
-      return interpolate(track.values[0], track.values[1], (ticks - times[0]) / (times[1] - times[0]));
+      return interpolate(track.values[0], track.values[1],
+                         (ticks - times[0]) / (times[1] - times[0]));
     ticks = wrap(ticks);
   } else if (ticks > last) {
     if (track.after == Extrapolation::hold) return track.values.back();
@@ -50,12 +59,13 @@ Value sample_track(const Track<Value>& track, double ticks) {
   if (ticks >= last) return track.values.back();
   if (ticks <= first) return track.values.front();
   const size_t k = size_t(std::upper_bound(times.begin(), times.end(), ticks) - times.begin()) - 1;
-  return interpolate(track.values[k], track.values[k + 1], (ticks - times[k]) / (times[k + 1] - times[k]));
+  return interpolate(track.values[k], track.values[k + 1],
+                     (ticks - times[k]) / (times[k + 1] - times[k]));
 }
 
 template <class Key, class Value, class Convert>
-Track<Value> read_track(const Key* keys, unsigned count, const aiNodeAnim& channel, const std::string& where,
-                        Convert convert) {
+Track<Value> read_track(const Key* keys, unsigned count, const aiNodeAnim& channel,
+                        const std::string& where, Convert convert) {
   Track<Value> track;
   track.before = extrapolation(channel.mPreState);
   track.after = extrapolation(channel.mPostState);
@@ -70,8 +80,12 @@ Track<Value> read_track(const Key* keys, unsigned count, const aiNodeAnim& chann
 
 }  // namespace
 
-Vec3 sample(const VectorTrack& track, double ticks) { return sample_track(track, ticks); }
-Eigen::Quaterniond sample(const RotationTrack& track, double ticks) { return sample_track(track, ticks); }
+Vec3 sample(const VectorTrack& track, double ticks) {
+  return sample_track(track, ticks);
+}
+Eigen::Quaterniond sample(const RotationTrack& track, double ticks) {
+  return sample_track(track, ticks);
+}
 
 template <class Value>
 void clean_keys(std::vector<double>& times, std::vector<Value>& values, const std::string& where) {
@@ -81,7 +95,8 @@ void clean_keys(std::vector<double>& times, std::vector<Value>& values, const st
   if (!std::is_sorted(times.begin(), times.end())) {
     std::vector<size_t> order(times.size());
     std::iota(order.begin(), order.end(), size_t(0));
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return times[a] < times[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return times[a] < times[b]; });
     std::vector<double> sorted_times;
     std::vector<Value> sorted_values;
     for (size_t i : order) {
@@ -105,12 +120,15 @@ void clean_keys(std::vector<double>& times, std::vector<Value>& values, const st
   times.resize(kept);
   values.resize(kept);
   if (duplicates > 0)
-    warn_repair(where, std::to_string(duplicates) + " key(s) repeated an earlier key's time; kept the last of each");
+    warn_repair(where, std::to_string(duplicates) +
+                           " key(s) repeated an earlier key's time; kept the last of each");
 }
 
 template void clean_keys(std::vector<double>&, std::vector<Vec3>&, const std::string&);
-template void clean_keys(std::vector<double>&, std::vector<Eigen::Quaterniond>&, const std::string&);
-template void clean_keys(std::vector<double>&, std::vector<std::vector<double>>&, const std::string&);
+template void clean_keys(std::vector<double>&, std::vector<Eigen::Quaterniond>&,
+                         const std::string&);
+template void clean_keys(std::vector<double>&, std::vector<std::vector<double>>&,
+                         const std::string&);
 
 NodeChannel read_node_channel(const aiNodeAnim& channel, const std::string& where) {
   auto vector = [&](const std::string& what) {
@@ -125,16 +143,19 @@ NodeChannel read_node_channel(const aiNodeAnim& channel, const std::string& wher
     const Eigen::Quaterniond value = to_eigen(q);
     const double norm = value.norm();
     if (!std::isfinite(norm) || norm < 1e-12)
-      throw InputError(where, "rotation key " + std::to_string(k) + " is not a rotation (NaN, infinite or zero quaternion)");
+      throw InputError(where, "rotation key " + std::to_string(k) +
+                                  " is not a rotation (NaN, infinite or zero quaternion)");
     return value.normalized();
   };
   NodeChannel result;
-  result.translation = read_track<aiVectorKey, Vec3>(channel.mPositionKeys, channel.mNumPositionKeys, channel,
-                                                     where + " position keys", vector("position"));
-  result.rotation = read_track<aiQuatKey, Eigen::Quaterniond>(channel.mRotationKeys, channel.mNumRotationKeys,
-                                                              channel, where + " rotation keys", rotation);
-  result.scaling = read_track<aiVectorKey, Vec3>(channel.mScalingKeys, channel.mNumScalingKeys, channel,
-                                                 where + " scaling keys", vector("scaling"));
+  result.translation =
+      read_track<aiVectorKey, Vec3>(channel.mPositionKeys, channel.mNumPositionKeys, channel,
+                                    where + " position keys", vector("position"));
+  result.rotation = read_track<aiQuatKey, Eigen::Quaterniond>(
+      channel.mRotationKeys, channel.mNumRotationKeys, channel, where + " rotation keys", rotation);
+  result.scaling =
+      read_track<aiVectorKey, Vec3>(channel.mScalingKeys, channel.mNumScalingKeys, channel,
+                                    where + " scaling keys", vector("scaling"));
   return result;
 }
 
@@ -152,7 +173,8 @@ void NodeGraph::global_transforms(double ticks, std::vector<Mat4>& out) const {
       // An empty track keeps that part of the rest transform (decomposed as T * R * S).
       const Eigen::Matrix3d linear = rest[n].topLeftCorner<3, 3>();
       Vec3 rest_scale(linear.col(0).norm(), linear.col(1).norm(), linear.col(2).norm());
-      Vec3 translation = channel.translation.empty() ? Vec3(rest[n].topRightCorner<3, 1>()) : sample(channel.translation, ticks);
+      Vec3 translation = channel.translation.empty() ? Vec3(rest[n].topRightCorner<3, 1>())
+                                                     : sample(channel.translation, ticks);
       Vec3 scale = channel.scaling.empty() ? rest_scale : sample(channel.scaling, ticks);
       Eigen::Quaterniond rotation;
       if (channel.rotation.empty()) {
@@ -192,7 +214,8 @@ std::vector<double> NodeGraph::key_ticks() const {
   return ticks;
 }
 
-NodeGraph build_node_graph(const aiScene& scene, const aiAnimation* animation, const std::string& where) {
+NodeGraph build_node_graph(const aiScene& scene, const aiAnimation* animation,
+                           const std::string& where) {
   NodeGraph graph;
   if (scene.mRootNode == nullptr) throw InputError(where, "has no node hierarchy");
   // Iterative depth-first walk: a hostile file may nest nodes deeper than the call stack allows.
@@ -208,7 +231,8 @@ NodeGraph build_node_graph(const aiScene& scene, const aiAnimation* animation, c
     graph.parents.push_back(parent);
     graph.rest.push_back(to_eigen(node->mTransformation));
     if (!graph.rest.back().allFinite())
-      throw InputError(where, "node '" + std::string(node->mName.C_Str()) + "' has a NaN or infinite transformation");
+      throw InputError(where, "node '" + std::string(node->mName.C_Str()) +
+                                  "' has a NaN or infinite transformation");
     graph.channel_of.push_back(-1);
     graph.by_name.emplace(node->mName.C_Str(), index);
     for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], index);
@@ -227,7 +251,8 @@ NodeGraph build_node_graph(const aiScene& scene, const aiAnimation* animation, c
     }
     NodeChannel cleaned = read_node_channel(*channel, channel_where);
     if (graph.channel_of[size_t(node)] >= 0) {
-      warn_repair(channel_where, "animates a node that an earlier channel already animates; ignored");
+      warn_repair(channel_where,
+                  "animates a node that an earlier channel already animates; ignored");
       continue;
     }
     graph.channel_of[size_t(node)] = int(graph.channels.size());
@@ -236,7 +261,8 @@ NodeGraph build_node_graph(const aiScene& scene, const aiAnimation* animation, c
   return graph;
 }
 
-AnimationClip select_animation(const aiScene& scene, const std::string& request, const std::string& source) {
+AnimationClip select_animation(const aiScene& scene, const std::string& request,
+                               const std::string& source) {
   AnimationClip clip;
   if (scene.mNumAnimations == 0 || scene.mAnimations == nullptr) {
     if (!request.empty())
@@ -247,7 +273,8 @@ AnimationClip select_animation(const aiScene& scene, const std::string& request,
   size_t chosen = scene.mNumAnimations;
   if (request.empty()) {
     chosen = 0;
-  } else if (std::all_of(request.begin(), request.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+  } else if (std::all_of(request.begin(), request.end(),
+                         [](char c) { return c >= '0' && c <= '9'; }) &&
              request.size() < 10) {
     chosen = size_t(std::stoul(request));
   } else {
@@ -256,7 +283,8 @@ AnimationClip select_animation(const aiScene& scene, const std::string& request,
   }
   if (chosen >= scene.mNumAnimations) {
     std::ostringstream list;
-    for (size_t i = 0; i < scene.mNumAnimations; ++i) list << (i ? ", " : "") << i << " '" << name_of(i) << "'";
+    for (size_t i = 0; i < scene.mNumAnimations; ++i)
+      list << (i ? ", " : "") << i << " '" << name_of(i) << "'";
     throw InputError(source, "unknown animation '" + request + "'; available: " + list.str());
   }
   const aiAnimation& animation = *scene.mAnimations[chosen];
@@ -273,7 +301,8 @@ AnimationClip select_animation(const aiScene& scene, const std::string& request,
 void merge_key_times(std::vector<double>& times) {
   std::sort(times.begin(), times.end());
   if (times.empty()) return;
-  const double tolerance = 1e-6 * std::max(1.0, std::max(std::abs(times.front()), std::abs(times.back())));
+  const double tolerance =
+      1e-6 * std::max(1.0, std::max(std::abs(times.front()), std::abs(times.back())));
   size_t kept = 1;
   for (size_t k = 1; k < times.size(); ++k)
     if (times[k] - times[kept - 1] > tolerance) times[kept++] = times[k];

@@ -57,9 +57,9 @@ struct NodeChannel {
 /// of aiNode::FindNode), with the chosen animation's channels attached.
 struct NodeGraph {
   std::vector<const aiNode*> nodes;
-  std::vector<int> parents;           ///< -1 for the root
-  std::vector<Mat4> rest;             ///< aiNode::mTransformation
-  std::vector<int> channel_of;        ///< index into channels, or -1
+  std::vector<int> parents;     ///< -1 for the root
+  std::vector<Mat4> rest;       ///< aiNode::mTransformation
+  std::vector<int> channel_of;  ///< index into channels, or -1
   std::vector<NodeChannel> channels;
   std::unordered_map<std::string, int> by_name;  ///< the first node of each name
 

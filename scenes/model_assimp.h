@@ -1,13 +1,13 @@
 #pragma once
 // The boundary between assimp and kinray: assimp's math types in Eigen form, and the one way the
 // model importer reports a repair (a warning on stderr; stdout stays clean for the tools).
-#include <string>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <assimp/matrix4x4.h>
 #include <assimp/quaternion.h>
 #include <assimp/vector3.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
 
 #include "scenes/scene.h"
 
@@ -22,7 +22,9 @@ using Mat4 = Eigen::Matrix4d;
     for (int c = 0; c < 4; ++c) result(r, c) = double(m[r][c]);
   return result;
 }
-[[nodiscard]] inline Vec3 to_eigen(const aiVector3D& v) { return {double(v.x), double(v.y), double(v.z)}; }
+[[nodiscard]] inline Vec3 to_eigen(const aiVector3D& v) {
+  return {double(v.x), double(v.y), double(v.z)};
+}
 [[nodiscard]] inline Eigen::Quaterniond to_eigen(const aiQuaternion& q) {
   return {double(q.w), double(q.x), double(q.y), double(q.z)};
 }

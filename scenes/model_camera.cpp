@@ -1,15 +1,16 @@
 #include "scenes/model_camera.h"
 
-#include <cmath>
-
 #include <assimp/camera.h>
 #include <assimp/scene.h>
+
+#include <cmath>
 
 #include "scenes/error.h"
 
 namespace kinray {
 
-std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph, std::span<const double> key_seconds,
+std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
+                                   std::span<const double> key_seconds,
                                    std::span<const double> key_ticks, const std::string& where) {
   for (unsigned c = 0; c < scene.mNumCameras && scene.mCameras != nullptr; ++c) {
     const aiCamera* camera = scene.mCameras[c];
@@ -22,17 +23,22 @@ std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
       warn_repair(camera_where, "is orthographic, which kinray does not render; skipped");
       continue;
     }
-    const Vec3 position = to_eigen(camera->mPosition), look = to_eigen(camera->mLookAt), up = to_eigen(camera->mUp);
-    if (!position.allFinite() || !look.allFinite() || !up.allFinite() || look.norm() == 0 || up.norm() == 0)
+    const Vec3 position = to_eigen(camera->mPosition), look = to_eigen(camera->mLookAt),
+               up = to_eigen(camera->mUp);
+    if (!position.allFinite() || !look.allFinite() || !up.allFinite() || look.norm() == 0 ||
+        up.norm() == 0)
       throw InputError(camera_where, "has a NaN, infinite or zero position or direction");
     double horizontal = camera->mHorizontalFOV;
     if (!std::isfinite(horizontal) || horizontal <= 0 || horizontal >= M_PI) {
-      warn_repair(camera_where, "has no usable field of view; using " + std::to_string(int(kFramingFovDegrees)) +
+      warn_repair(camera_where, "has no usable field of view; using " +
+                                    std::to_string(int(kFramingFovDegrees)) +
                                     " degrees vertically");
       horizontal = 2 * std::atan(std::tan(kFramingFovDegrees * M_PI / 360));
     }
-    const double aspect = std::isfinite(camera->mAspect) && camera->mAspect > 0 ? double(camera->mAspect) : 1.0;
-    const double fov_y = std::clamp(2 * std::atan(std::tan(horizontal / 2) / aspect) * 180 / M_PI, 1.0, 179.0);
+    const double aspect =
+        std::isfinite(camera->mAspect) && camera->mAspect > 0 ? double(camera->mAspect) : 1.0;
+    const double fov_y =
+        std::clamp(2 * std::atan(std::tan(horizontal / 2) / aspect) * 180 / M_PI, 1.0, 179.0);
 
     Camera result;
     result.keys.clear();
@@ -46,7 +52,8 @@ std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
       const Vec3 forward = linear * look, world_up = linear * up;
       if (!eye.allFinite() || !forward.allFinite() || forward.norm() < 1e-300)
         throw InputError(camera_where, "its node places it at a NaN or degenerate position");
-      result.keys.push_back(Camera::look_at(key_seconds[k], eye, eye + forward.normalized(), world_up, fov_y));
+      result.keys.push_back(
+          Camera::look_at(key_seconds[k], eye, eye + forward.normalized(), world_up, fov_y));
     }
     return result;
   }
@@ -55,13 +62,15 @@ std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
 
 bool camera_sees(const Camera& camera, const Scene& scene) {
   for (const CameraKey& key : camera.keys) {
-    const Eigen::Matrix3d world_to_camera = key.orientation.normalized().toRotationMatrix().transpose();
+    const Eigen::Matrix3d world_to_camera =
+        key.orientation.normalized().toRotationMatrix().transpose();
     const double slope = std::tan(key.fov_y_degrees * M_PI / 360);
     for (const Object& object : scene.objects)
       for (uint32_t v = 0; v < object.vertex_count(); ++v) {
         const Vec3 p = world_to_camera * (object.position(v, key.time) - key.position);
         const double depth = -p.z();  // the stored camera frame looks down -z
-        if (depth > 0 && std::abs(p.x()) <= slope * depth && std::abs(p.y()) <= slope * depth) return true;
+        if (depth > 0 && std::abs(p.x()) <= slope * depth && std::abs(p.y()) <= slope * depth)
+          return true;
       }
   }
   return false;
@@ -76,7 +85,8 @@ Camera frame_bounds(const Eigen::AlignedBox3d& bounds, double time) {
   const double elevation = 20 * M_PI / 180;
   const Vec3 direction(0, std::sin(elevation), std::cos(elevation));
   Camera camera;
-  camera.keys = {Camera::look_at(time, center + distance * direction, center, Vec3::UnitY(), kFramingFovDegrees)};
+  camera.keys = {Camera::look_at(time, center + distance * direction, center, Vec3::UnitY(),
+                                 kFramingFovDegrees)};
   return camera;
 }
 

@@ -19,7 +19,8 @@ namespace kinray {
 /// warning). Throws InputError (at `where`) for a camera whose position or directions are NaN.
 [[nodiscard]] std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
                                                  std::span<const double> key_seconds,
-                                                 std::span<const double> key_ticks, const std::string& where);
+                                                 std::span<const double> key_ticks,
+                                                 const std::string& where);
 
 /// True when some vertex of `scene` lies in the view of `camera` (in front of it and inside its
 /// field of view on a square image) at one of the camera's key times. assimp 5.2 places some

@@ -1,5 +1,12 @@
 #include "scenes/model_guard.h"
 
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -7,13 +14,6 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace kinray {
 
@@ -26,8 +26,8 @@ size_t reader_address_space() {
   return used_pages * size_t(page) + budget;
 }
 
-std::optional<std::string> run_in_child(const std::function<std::string()>& work, double timeout_seconds,
-                                        size_t address_space_bytes) {
+std::optional<std::string> run_in_child(const std::function<std::string()>& work,
+                                        double timeout_seconds, size_t address_space_bytes) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) return std::nullopt;
   // Pending output would otherwise be copied into the child and written twice.
@@ -67,9 +67,11 @@ std::optional<std::string> run_in_child(const std::function<std::string()>& work
   close(fds[1]);
   std::string message;
   bool timed_out = false;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       timed_out = true;
       break;
@@ -89,12 +91,14 @@ std::optional<std::string> run_in_child(const std::function<std::string()>& work
   int status = 0;
   while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-  if (timed_out) return "did not finish within " + std::to_string(int(timeout_seconds)) + " s (a hang on malformed input?)";
+  if (timed_out)
+    return "did not finish within " + std::to_string(int(timeout_seconds)) +
+           " s (a hang on malformed input?)";
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     const char* name = strsignal(signal);
-    return "crashed the reader with signal " + std::to_string(signal) + " (" + (name ? name : "unknown") +
-           "): malformed input";
+    return "crashed the reader with signal " + std::to_string(signal) + " (" +
+           (name ? name : "unknown") + "): malformed input";
   }
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return std::nullopt;
   return message.empty() ? std::string("failed") : message;

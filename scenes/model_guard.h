@@ -17,7 +17,8 @@ namespace kinray {
 /// signal that killed it, or that it ran longer than `timeout_seconds` (it is then killed). When
 /// no child can be started, runs nothing and returns nothing: the caller's own attempt decides.
 [[nodiscard]] std::optional<std::string> run_in_child(const std::function<std::string()>& work,
-                                                      double timeout_seconds, size_t address_space_bytes = 0);
+                                                      double timeout_seconds,
+                                                      size_t address_space_bytes = 0);
 
 /// The address space a reading child gets: what this process already uses plus half of the
 /// machine's physical memory, at most 8 GiB (a model whose reading needs more is refused).

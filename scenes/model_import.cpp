@@ -1,16 +1,16 @@
 #include "scenes/model_import.h"
 
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <mutex>
-
-#include <assimp/Importer.hpp>
-#include <assimp/material.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 #include "kinetic/parallel.h"
 #include "scenes/error.h"
@@ -32,7 +32,8 @@ void warn_repair(const std::string& where, const std::string& what) {
 
 namespace {
 
-// Past this many keyframe positions (about 3.6 GB) a model is refused rather than exhausting memory.
+// Past this many keyframe positions (about 3.6 GB) a model is refused rather than exhausting
+// memory.
 constexpr size_t kMaxKeyPositions = 150'000'000;
 // Past this many keys a --keyrate is surely a typo.
 constexpr double kMaxResampledKeys = 1e7;
@@ -63,9 +64,11 @@ struct MaterialReader {
     if (in == nullptr) return material;
     aiString name;
     if (in->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
-    const std::string where = source + ": material " + std::to_string(index) + " '" + material.name + "'";
+    const std::string where =
+        source + ": material " + std::to_string(index) + " '" + material.name + "'";
     aiColor4D color;
-    if (in->Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS || in->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) {
+    if (in->Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS ||
+        in->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) {
       const Color base(color.r, color.g, color.b);
       if (base.allFinite() && (base.array() >= 0).all())
         material.base_color = base.cwiseMin(1.0f);
@@ -93,12 +96,14 @@ struct MaterialReader {
 };
 
 /// The key grid in ticks: the union of the clip's key times, or a resampling at `keyrate`.
-std::vector<double> key_grid(const NodeGraph& graph, const std::map<std::pair<int, unsigned>, MorphWeightTrack>& morphs,
+std::vector<double> key_grid(const NodeGraph& graph,
+                             const std::map<std::pair<int, unsigned>, MorphWeightTrack>& morphs,
                              const AnimationClip& clip, double keyrate, const std::string& source) {
   if (clip.animation == nullptr) return {0.0};
   const std::string where = source + ": animation '" + clip.name + "'";
   std::vector<double> ticks = graph.key_ticks();
-  for (const auto& [target, track] : morphs) ticks.insert(ticks.end(), track.times.begin(), track.times.end());
+  for (const auto& [target, track] : morphs)
+    ticks.insert(ticks.end(), track.times.begin(), track.times.end());
   merge_key_times(ticks);
   if (ticks.empty()) {
     warn_repair(where, "has no keys; showing the model still");
@@ -109,9 +114,11 @@ std::vector<double> key_grid(const NodeGraph& graph, const std::map<std::pair<in
     return ticks;
   }
   if (keyrate > 0) {
-    const double begin = ticks.front() / clip.ticks_per_second, end = ticks.back() / clip.ticks_per_second;
+    const double begin = ticks.front() / clip.ticks_per_second,
+                 end = ticks.back() / clip.ticks_per_second;
     if ((end - begin) * keyrate > kMaxResampledKeys)
-      throw InputError(where, "resampling " + std::to_string(end - begin) + " s at " + std::to_string(keyrate) +
+      throw InputError(where, "resampling " + std::to_string(end - begin) + " s at " +
+                                  std::to_string(keyrate) +
                                   " keys per second would make more than 1e7 keys");
     std::vector<double> seconds;
     for (size_t i = 0;; ++i) {
@@ -141,18 +148,22 @@ bool is_model_file(const std::string& path) {
 
 Scene convert_model(const aiScene& model, const std::string& source, const ModelOptions& options) {
   if (!std::isfinite(options.keyrate) || options.keyrate < 0)
-    throw InputError(source, "the key rate must be a finite number >= 0, got " + std::to_string(options.keyrate));
+    throw InputError(source, "the key rate must be a finite number >= 0, got " +
+                                 std::to_string(options.keyrate));
   const AnimationClip clip = select_animation(model, options.animation, source);
   const NodeGraph graph = build_node_graph(model, clip.animation, source);
   const std::string animation_where = source + ": animation '" + clip.name + "'";
 
   // Morph weight channels name a node (glTF: all its meshes) or else a mesh.
-  std::map<std::pair<int, unsigned>, MorphWeightTrack> morphs;  // (node or -1 for any, mesh) -> weights
+  std::map<std::pair<int, unsigned>, MorphWeightTrack>
+      morphs;  // (node or -1 for any, mesh) -> weights
   if (clip.animation != nullptr) {
     const aiAnimation& animation = *clip.animation;
     if (animation.mNumMeshChannels > 0)
-      warn_repair(animation_where, "has vertex-animation (aiMeshAnim) channels, which are not supported; ignored");
-    for (unsigned c = 0; c < animation.mNumMorphMeshChannels && animation.mMorphMeshChannels != nullptr; ++c) {
+      warn_repair(animation_where,
+                  "has vertex-animation (aiMeshAnim) channels, which are not supported; ignored");
+    for (unsigned c = 0;
+         c < animation.mNumMorphMeshChannels && animation.mMorphMeshChannels != nullptr; ++c) {
       const aiMeshMorphAnim* channel = animation.mMorphMeshChannels[c];
       if (channel == nullptr) continue;
       const std::string name = channel->mName.C_Str();
@@ -167,12 +178,14 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
       }
       bool used = false;
       for (const auto& target : targets) {
-        if (target.second >= model.mNumMeshes || model.mMeshes[target.second]->mNumAnimMeshes == 0) continue;
+        if (target.second >= model.mNumMeshes || model.mMeshes[target.second]->mNumAnimMeshes == 0)
+          continue;
         if (morphs.count(target)) {
           warn_repair(where, "weighs a mesh that an earlier channel already weighs; ignored");
           continue;
         }
-        morphs.emplace(target, read_morph_track(*channel, model.mMeshes[target.second]->mNumAnimMeshes, where));
+        morphs.emplace(target, read_morph_track(
+                                   *channel, model.mMeshes[target.second]->mNumAnimMeshes, where));
         used = true;
       }
       if (!used) warn_repair(where, "names no mesh with morph targets; ignored");
@@ -206,8 +219,8 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
       const unsigned index = node->mMeshes[i];
       if (index >= model.mNumMeshes || model.mMeshes[index] == nullptr)
-        throw InputError(source, "node '" + std::string(node->mName.C_Str()) + "' names mesh " + std::to_string(index) +
-                                     ", which does not exist");
+        throw InputError(source, "node '" + std::string(node->mName.C_Str()) + "' names mesh " +
+                                     std::to_string(index) + ", which does not exist");
       const aiMesh& mesh = *model.mMeshes[index];
       const std::string mesh_name = mesh.mName.C_Str();
       const std::string where = source + ": mesh " + std::to_string(index) + " '" + mesh_name + "'";
@@ -226,15 +239,17 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
         Triangle triangle;
         for (int c = 0; c < 3; ++c) {
           if (face.mIndices[c] >= nv)
-            throw InputError(where, "face " + std::to_string(f) + " has vertex index " + std::to_string(face.mIndices[c]) +
-                                        " out of range (" + std::to_string(nv) + " vertices)");
+            throw InputError(where, "face " + std::to_string(f) + " has vertex index " +
+                                        std::to_string(face.mIndices[c]) + " out of range (" +
+                                        std::to_string(nv) + " vertices)");
           triangle[size_t(c)] = face.mIndices[c];
           referenced[face.mIndices[c]] = 1;
         }
         object.triangles.push_back(triangle);
       }
       if (skipped > 0)
-        warn_repair(where, std::to_string(skipped) + " point or line primitive(s) are not rendered; skipped");
+        warn_repair(where, std::to_string(skipped) +
+                               " point or line primitive(s) are not rendered; skipped");
       if (object.triangles.empty()) continue;
 
       MeshInstance instance;
@@ -254,21 +269,24 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
         if (!instance.base[v].allFinite())
           throw InputError(where, "vertex " + std::to_string(v) + " is NaN or infinite");
       instance.morph = read_morph_targets(mesh, where);
-      for (const auto& key : {std::pair<int, unsigned>(int(n), index), std::pair<int, unsigned>(-1, index)})
+      for (const auto& key :
+           {std::pair<int, unsigned>(int(n), index), std::pair<int, unsigned>(-1, index)})
         if (!instance.weights && morphs.count(key)) instance.weights = &morphs.at(key);
       instance.skin = read_skin(mesh, graph, where);
 
       object.material = mesh.mMaterialIndex < scene.materials.size() ? mesh.mMaterialIndex : 0;
       if (mesh.mMaterialIndex >= scene.materials.size())
-        warn_repair(where, "names material " + std::to_string(mesh.mMaterialIndex) + ", which does not exist; using material 0");
+        warn_repair(where, "names material " + std::to_string(mesh.mMaterialIndex) +
+                               ", which does not exist; using material 0");
       const unsigned channel = uv_channels[object.material];
-      if (scene.materials[object.material].texture >= 0 && channel < AI_MAX_NUMBER_OF_TEXTURECOORDS &&
-          mesh.mTextureCoords[channel] != nullptr) {
+      if (scene.materials[object.material].texture >= 0 &&
+          channel < AI_MAX_NUMBER_OF_TEXTURECOORDS && mesh.mTextureCoords[channel] != nullptr) {
         for (uint32_t v : instance.used) {
           const aiVector3D& uv = mesh.mTextureCoords[channel][v];
           object.uvs.emplace_back(uv.x, uv.y);
         }
-        if (!std::all_of(object.uvs.begin(), object.uvs.end(), [](const Vec2f& uv) { return uv.allFinite(); })) {
+        if (!std::all_of(object.uvs.begin(), object.uvs.end(),
+                         [](const Vec2f& uv) { return uv.allFinite(); })) {
           warn_repair(where, "has NaN or infinite texture coordinates; shown without its texture");
           object.uvs.clear();
         }
@@ -282,11 +300,14 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
   size_t vertices = 0;
   for (const MeshInstance& instance : instances) vertices += instance.used.size();
   if (double(vertices) * double(ticks.size()) > double(kMaxKeyPositions))
-    throw InputError(animation_where, std::to_string(ticks.size()) + " keys of " + std::to_string(vertices) +
-                                          " vertices are more keyframe positions than kinray holds; resample with a lower key rate");
+    throw InputError(animation_where, std::to_string(ticks.size()) + " keys of " +
+                                          std::to_string(vertices) +
+                                          " vertices are more keyframe positions than kinray "
+                                          "holds; resample with a lower key rate");
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     scene.objects[o].key_times = seconds;
-    scene.objects[o].key_positions.assign(ticks.size(), std::vector<Vec3>(instances[o].used.size()));
+    scene.objects[o].key_positions.assign(ticks.size(),
+                                          std::vector<Vec3>(instances[o].used.size()));
   }
 
   // Each key is independent: node transforms, then per instance morph (mesh space), then skin or
@@ -323,15 +344,17 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
       for (size_t v = 0; v < scene.objects[o].key_positions[k].size(); ++v)
         if (!scene.objects[o].key_positions[k][v].allFinite())
           throw InputError(source + ": object '" + scene.objects[o].name + "'",
-                           "vertex " + std::to_string(instances[o].used[v]) + " becomes NaN or infinite at t=" +
-                               std::to_string(seconds[k]) + " s (bad transforms, bones or morph targets)");
+                           "vertex " + std::to_string(instances[o].used[v]) +
+                               " becomes NaN or infinite at t=" + std::to_string(seconds[k]) +
+                               " s (bad transforms, bones or morph targets)");
 
   scene.time_begin = seconds.front();
   scene.time_end = seconds.size() > 1 ? seconds.back() : seconds.front() + 1.0;
   std::optional<Camera> camera;
   if (options.load_camera) camera = model_camera(model, graph, seconds, ticks, source);
   if (camera && !camera_sees(*camera, scene)) {
-    warn_repair(source, "the model's own camera sees none of the model; framing it automatically instead");
+    warn_repair(source,
+                "the model's own camera sees none of the model; framing it automatically instead");
     camera.reset();
   }
   scene.camera = camera ? *camera : frame_bounds(scene.bounds(), seconds.front());
@@ -346,7 +369,9 @@ Scene load_model(const std::string& path, const ModelOptions& options) {
   if (!std::isfinite(options.import_timeout) || options.import_timeout <= 0)
     throw InputError(path, "the import timeout must be a positive number of seconds");
   check_x_skin_weights(path);
-  auto read = [&](Assimp::Importer& importer) { return importer.ReadFile(path, model_import_flags()); };
+  auto read = [&](Assimp::Importer& importer) {
+    return importer.ReadFile(path, model_import_flags());
+  };
   if (options.isolate_import) {
     const std::optional<std::string> failure = run_in_child(
         [&] {
@@ -366,7 +391,8 @@ Scene load_model(const std::string& path, const ModelOptions& options) {
   }
   if (model == nullptr) {
     const std::string message = importer.GetErrorString();
-    throw InputError(path, "assimp cannot read it: " + (message.empty() ? std::string("unknown error") : message));
+    throw InputError(path, "assimp cannot read it: " +
+                               (message.empty() ? std::string("unknown error") : message));
   }
   Scene scene = convert_model(*model, path, options);
   scene.validate(path);

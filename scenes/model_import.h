@@ -11,11 +11,11 @@ struct aiScene;
 namespace kinray {
 
 struct ModelOptions {
-  std::string animation;   ///< name or index; empty = the first animation
-  double keyrate = 0;      ///< > 0: resample at this many keys per second; 0: union of the key times
-  bool load_camera = true; ///< use the model's own camera if it has one, else frame automatically
-  bool isolate_import = true;    ///< read the file in a child process first (see model_guard.h)
-  double import_timeout = 300;   ///< seconds that child may take before the file counts as hostile
+  std::string animation;  ///< name or index; empty = the first animation
+  double keyrate = 0;     ///< > 0: resample at this many keys per second; 0: union of the key times
+  bool load_camera = true;  ///< use the model's own camera if it has one, else frame automatically
+  bool isolate_import = true;   ///< read the file in a child process first (see model_guard.h)
+  double import_timeout = 300;  ///< seconds that child may take before the file counts as hostile
 };
 
 /// True when `path` has an extension assimp can import.
@@ -29,8 +29,10 @@ struct ModelOptions {
 /// vertices, validate the data structure; never pre-transform vertices (that loses animation).
 [[nodiscard]] unsigned model_import_flags();
 
-/// Turns an imported (or hand-built) aiScene into a scene; `source` names it in errors and warnings,
-/// and textures are looked up beside it. Does not call Scene::validate. Throws InputError.
-[[nodiscard]] Scene convert_model(const aiScene& model, const std::string& source, const ModelOptions& options = {});
+/// Turns an imported (or hand-built) aiScene into a scene; `source` names it in errors and
+/// warnings, and textures are looked up beside it. Does not call Scene::validate. Throws
+/// InputError.
+[[nodiscard]] Scene convert_model(const aiScene& model, const std::string& source,
+                                  const ModelOptions& options = {});
 
 }  // namespace kinray

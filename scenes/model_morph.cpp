@@ -1,10 +1,10 @@
 #include "scenes/model_morph.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <assimp/anim.h>
 #include <assimp/mesh.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "scenes/error.h"
 #include "scenes/model_animation.h"
@@ -21,7 +21,8 @@ MorphTargets read_morph_targets(const aiMesh& mesh, const std::string& where) {
     std::vector<Vec3> displacement(mesh.mNumVertices, Vec3::Zero());
     if (target != nullptr && target->mVertices != nullptr) {
       if (target->mNumVertices != mesh.mNumVertices)
-        throw InputError(target_where, "has " + std::to_string(target->mNumVertices) + " vertices, the mesh has " +
+        throw InputError(target_where, "has " + std::to_string(target->mNumVertices) +
+                                           " vertices, the mesh has " +
                                            std::to_string(mesh.mNumVertices));
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
         const Vec3 position = to_eigen(target->mVertices[v]);
@@ -38,9 +39,11 @@ MorphTargets read_morph_targets(const aiMesh& mesh, const std::string& where) {
   return targets;
 }
 
-MorphWeightTrack read_morph_track(const aiMeshMorphAnim& animation, size_t target_count, const std::string& where) {
+MorphWeightTrack read_morph_track(const aiMeshMorphAnim& animation, size_t target_count,
+                                  const std::string& where) {
   MorphWeightTrack track;
-  if (animation.mNumKeys > 0 && animation.mKeys == nullptr) throw InputError(where, "has a key count but no keys");
+  if (animation.mNumKeys > 0 && animation.mKeys == nullptr)
+    throw InputError(where, "has a key count but no keys");
   for (unsigned k = 0; k < animation.mNumKeys; ++k) {
     const aiMeshMorphKey& key = animation.mKeys[k];
     std::vector<double> weights(target_count, 0.0);
@@ -48,8 +51,9 @@ MorphWeightTrack read_morph_track(const aiMeshMorphAnim& animation, size_t targe
       throw InputError(where, "key " + std::to_string(k) + " has a weight count but no weights");
     for (unsigned j = 0; j < key.mNumValuesAndWeights; ++j) {
       if (key.mValues[j] >= target_count)
-        throw InputError(where, "key " + std::to_string(k) + " weighs morph target " + std::to_string(key.mValues[j]) +
-                                    ", but the mesh has " + std::to_string(target_count));
+        throw InputError(where, "key " + std::to_string(k) + " weighs morph target " +
+                                    std::to_string(key.mValues[j]) + ", but the mesh has " +
+                                    std::to_string(target_count));
       if (!std::isfinite(key.mWeights[j]))
         throw InputError(where, "key " + std::to_string(k) + " has a NaN or infinite weight");
       weights[key.mValues[j]] = key.mWeights[j];
@@ -73,8 +77,8 @@ std::vector<double> sample(const MorphWeightTrack& track, double ticks) {
   return weights;
 }
 
-void apply_morph(std::span<const Vec3> base, const MorphTargets& targets, std::span<const double> weights,
-                 std::span<Vec3> out) {
+void apply_morph(std::span<const Vec3> base, const MorphTargets& targets,
+                 std::span<const double> weights, std::span<Vec3> out) {
   for (size_t v = 0; v < base.size(); ++v) {
     Vec3 position = base[v];
     for (size_t i = 0; i < targets.displacements.size() && i < weights.size(); ++i)

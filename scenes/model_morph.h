@@ -33,16 +33,16 @@ struct MorphWeightTrack {
   std::vector<std::vector<double>> weights;  ///< [key][target]
 };
 
-/// Reads and cleans an aiMeshMorphAnim for a mesh with `target_count` targets. Throws InputError (at
-/// `where`) on NaN times or weights and on a key naming a target that does not exist.
-[[nodiscard]] MorphWeightTrack read_morph_track(const aiMeshMorphAnim& animation, size_t target_count,
-                                                const std::string& where);
+/// Reads and cleans an aiMeshMorphAnim for a mesh with `target_count` targets. Throws InputError
+/// (at `where`) on NaN times or weights and on a key naming a target that does not exist.
+[[nodiscard]] MorphWeightTrack read_morph_track(const aiMeshMorphAnim& animation,
+                                                size_t target_count, const std::string& where);
 
 /// The weights of every target at `ticks`. The track must not be empty.
 [[nodiscard]] std::vector<double> sample(const MorphWeightTrack& track, double ticks);
 
 /// out[v] = base[v] + sum_i weights[i] * targets.displacements[i][v] (out may alias base).
-void apply_morph(std::span<const Vec3> base, const MorphTargets& targets, std::span<const double> weights,
-                 std::span<Vec3> out);
+void apply_morph(std::span<const Vec3> base, const MorphTargets& targets,
+                 std::span<const double> weights, std::span<Vec3> out);
 
 }  // namespace kinray

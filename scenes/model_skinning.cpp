@@ -1,8 +1,8 @@
 #include "scenes/model_skinning.h"
 
-#include <cmath>
-
 #include <assimp/mesh.h>
+
+#include <cmath>
 
 #include "scenes/error.h"
 
@@ -20,18 +20,21 @@ Skin read_skin(const aiMesh& mesh, const NodeGraph& graph, const std::string& wh
     const std::string bone_where = where + " bone '" + name + "'";
     const int node = graph.find(name);
     if (node < 0)
-      warn_repair(bone_where, "has no node of that name in the hierarchy; it keeps its bind pose (its share of "
-                              "each vertex follows the mesh's node)");
+      warn_repair(bone_where,
+                  "has no node of that name in the hierarchy; it keeps its bind pose (its share of "
+                  "each vertex follows the mesh's node)");
     const Mat4 offset = to_eigen(bone->mOffsetMatrix);
     if (!offset.allFinite()) throw InputError(bone_where, "has a NaN or infinite offset matrix");
-    if (bone->mNumWeights > 0 && bone->mWeights == nullptr) throw InputError(bone_where, "has a weight count but no weights");
+    if (bone->mNumWeights > 0 && bone->mWeights == nullptr)
+      throw InputError(bone_where, "has a weight count but no weights");
     for (unsigned w = 0; w < bone->mNumWeights; ++w) {
       const aiVertexWeight& weight = bone->mWeights[w];
       if (weight.mVertexId >= nv)
-        throw InputError(bone_where, "weighs vertex " + std::to_string(weight.mVertexId) + ", but the mesh has " +
-                                         std::to_string(nv) + " vertices");
+        throw InputError(bone_where, "weighs vertex " + std::to_string(weight.mVertexId) +
+                                         ", but the mesh has " + std::to_string(nv) + " vertices");
       if (!std::isfinite(weight.mWeight) || weight.mWeight < 0)
-        throw InputError(bone_where, "has a negative, NaN or infinite weight on vertex " + std::to_string(weight.mVertexId));
+        throw InputError(bone_where, "has a negative, NaN or infinite weight on vertex " +
+                                         std::to_string(weight.mVertexId));
       if (weight.mWeight > 0) influences[weight.mVertexId].emplace_back(b, double(weight.mWeight));
     }
     skin.bone_nodes.push_back(node);
@@ -60,7 +63,9 @@ void apply_skin(const Skin& skin, std::span<const Vec3> positions, std::span<con
                 const Mat4& mesh_node, std::span<Vec3> out) {
   std::vector<Mat4> bone_matrices(skin.bone_nodes.size());
   for (size_t b = 0; b < bone_matrices.size(); ++b)
-    bone_matrices[b] = skin.bone_nodes[b] < 0 ? mesh_node : Mat4(globals[size_t(skin.bone_nodes[b])] * skin.offsets[b]);
+    bone_matrices[b] = skin.bone_nodes[b] < 0
+                           ? mesh_node
+                           : Mat4(globals[size_t(skin.bone_nodes[b])] * skin.offsets[b]);
   for (size_t v = 0; v < positions.size(); ++v) {
     const uint32_t begin = skin.first[v], end = skin.first[v + 1];
     if (begin == end) {
@@ -68,7 +73,8 @@ void apply_skin(const Skin& skin, std::span<const Vec3> positions, std::span<con
       continue;
     }
     Vec3 sum = Vec3::Zero();
-    for (uint32_t i = begin; i < end; ++i) sum += skin.weights[i] * transform_point(bone_matrices[skin.bones[i]], positions[v]);
+    for (uint32_t i = begin; i < end; ++i)
+      sum += skin.weights[i] * transform_point(bone_matrices[skin.bones[i]], positions[v]);
     out[v] = sum;
   }
 }

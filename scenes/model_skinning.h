@@ -16,11 +16,11 @@ namespace kinray {
 
 /// The bones of one mesh and, per vertex, the bones that weigh it (weights summing to 1).
 struct Skin {
-  std::vector<int> bone_nodes;      ///< node of each bone, index into NodeGraph::nodes, or -1
-  std::vector<Mat4> offsets;        ///< aiBone::mOffsetMatrix of each bone
-  std::vector<uint32_t> first;      ///< influences of vertex v: [first[v], first[v + 1])
-  std::vector<uint32_t> bones;      ///< bone of each influence
-  std::vector<double> weights;      ///< weight of each influence
+  std::vector<int> bone_nodes;  ///< node of each bone, index into NodeGraph::nodes, or -1
+  std::vector<Mat4> offsets;    ///< aiBone::mOffsetMatrix of each bone
+  std::vector<uint32_t> first;  ///< influences of vertex v: [first[v], first[v + 1])
+  std::vector<uint32_t> bones;  ///< bone of each influence
+  std::vector<double> weights;  ///< weight of each influence
   [[nodiscard]] bool empty() const { return bone_nodes.empty(); }
 };
 

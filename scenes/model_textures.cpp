@@ -1,16 +1,16 @@
 #include "scenes/model_textures.h"
 
+#include <assimp/scene.h>
+#include <assimp/texture.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
-#include <system_error>
-
-#include <assimp/scene.h>
-#include <assimp/texture.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <system_error>
 
 #include "scenes/model_assimp.h"
 #include "scenes/model_tga.h"
@@ -22,13 +22,15 @@ namespace {
 // 8192 x 8192: past this a texture costs more memory than the whole model is worth.
 constexpr size_t kMaxTexels = size_t(8192) * 8192;
 
-std::optional<Texture> from_bgr(const cv::Mat& image, const std::string& name, const std::string& where) {
+std::optional<Texture> from_bgr(const cv::Mat& image, const std::string& name,
+                                const std::string& where) {
   if (image.empty() || image.type() != CV_8UC3) {
     warn_repair(where, "texture '" + name + "' could not be decoded; using the base colour alone");
     return std::nullopt;
   }
   if (size_t(image.cols) * size_t(image.rows) > kMaxTexels) {
-    warn_repair(where, "texture '" + name + "' is larger than 8192 x 8192 texels; using the base colour alone");
+    warn_repair(where, "texture '" + name +
+                           "' is larger than 8192 x 8192 texels; using the base colour alone");
     return std::nullopt;
   }
   Texture texture;
@@ -45,18 +47,21 @@ std::optional<Texture> from_bgr(const cv::Mat& image, const std::string& name, c
   return texture;
 }
 
-std::optional<Texture> from_embedded(const aiTexture& embedded, const std::string& name, const std::string& where) {
+std::optional<Texture> from_embedded(const aiTexture& embedded, const std::string& name,
+                                     const std::string& where) {
   if (embedded.pcData == nullptr || embedded.mWidth == 0) {
     warn_repair(where, "embedded texture '" + name + "' is empty; using the base colour alone");
     return std::nullopt;
   }
   if (embedded.mHeight == 0) {  // a compressed file (png, jpg, tga, ...) of mWidth bytes
     const auto* data = reinterpret_cast<const uint8_t*>(embedded.pcData);
-    cv::Mat image = cv::imdecode(cv::Mat(1, int(embedded.mWidth), CV_8UC1, const_cast<uint8_t*>(data)), cv::IMREAD_COLOR);
+    cv::Mat image = cv::imdecode(
+        cv::Mat(1, int(embedded.mWidth), CV_8UC1, const_cast<uint8_t*>(data)), cv::IMREAD_COLOR);
     if (image.empty()) image = decode_tga({data, embedded.mWidth});
     return from_bgr(image, name, where);
   }
-  if (size_t(embedded.mWidth) * size_t(embedded.mHeight) > kMaxTexels) return from_bgr(cv::Mat(), name, where);
+  if (size_t(embedded.mWidth) * size_t(embedded.mHeight) > kMaxTexels)
+    return from_bgr(cv::Mat(), name, where);
   cv::Mat image(int(embedded.mHeight), int(embedded.mWidth), CV_8UC3);
   for (unsigned y = 0; y < embedded.mHeight; ++y)
     for (unsigned x = 0; x < embedded.mWidth; ++x) {
@@ -86,12 +91,14 @@ float srgb_to_linear(uint8_t value) {
 }
 
 std::optional<Texture> read_texture(const aiScene& scene, const std::string& reference,
-                                    const std::filesystem::path& model_directory, const std::string& where) {
+                                    const std::filesystem::path& model_directory,
+                                    const std::string& where) {
   if (reference.empty()) return std::nullopt;
   if (reference[0] == '*' || scene.GetEmbeddedTexture(reference.c_str()) != nullptr) {
     const aiTexture* embedded = scene.GetEmbeddedTexture(reference.c_str());
     if (embedded == nullptr) {
-      warn_repair(where, "names embedded texture '" + reference + "', which the file does not hold; using the base colour alone");
+      warn_repair(where, "names embedded texture '" + reference +
+                             "', which the file does not hold; using the base colour alone");
       return std::nullopt;
     }
     return from_embedded(*embedded, reference, where);
@@ -101,10 +108,11 @@ std::optional<Texture> read_texture(const aiScene& scene, const std::string& ref
     if (c == '\\') c = '/';
   std::filesystem::path path = model_directory / std::filesystem::path(written);
   if (!is_file(path)) {
-    const std::filesystem::path beside = model_directory / std::filesystem::path(written).filename();
+    const std::filesystem::path beside =
+        model_directory / std::filesystem::path(written).filename();
     if (!is_file(beside)) {
-      warn_repair(where, "texture file '" + reference + "' not found (looked for " + path.string() + " and " +
-                             beside.string() + "); using the base colour alone");
+      warn_repair(where, "texture file '" + reference + "' not found (looked for " + path.string() +
+                             " and " + beside.string() + "); using the base colour alone");
       return std::nullopt;
     }
     path = beside;
@@ -117,7 +125,8 @@ std::optional<Texture> read_texture(const aiScene& scene, const std::string& ref
   }
   if (image.empty()) {  // OpenCV 4.6 reads no TGA
     std::ifstream file(path, std::ios::binary);
-    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)),
+                                     std::istreambuf_iterator<char>());
     image = decode_tga(bytes);
   }
   return from_bgr(image, path.string(), where);

@@ -18,7 +18,8 @@ cv::Mat decode_tga(std::span<const uint8_t> bytes) {
   std::vector<uint8_t> data(pixels * pixel_bytes);
   if (!run_length) {
     if (bytes.size() < at + data.size()) return {};
-    std::copy(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(at + data.size()), data.begin());
+    std::copy(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(at + data.size()),
+              data.begin());
   } else {
     // Packets: a header byte, then one pixel repeated (high bit set) or raw pixels, 1..128 each.
     for (size_t done = 0; done < pixels;) {
@@ -30,7 +31,8 @@ cv::Mat decode_tga(std::span<const uint8_t> bytes) {
       if (at + stored > bytes.size()) return {};
       for (size_t i = 0; i < count; ++i)
         for (size_t b = 0; b < pixel_bytes; ++b)
-          data[(done + i) * pixel_bytes + b] = bytes[at + ((header & 0x80) ? b : i * pixel_bytes + b)];
+          data[(done + i) * pixel_bytes + b] =
+              bytes[at + ((header & 0x80) ? b : i * pixel_bytes + b)];
       at += stored;
       done += count;
     }
@@ -43,7 +45,8 @@ cv::Mat decode_tga(std::span<const uint8_t> bytes) {
     for (int x = 0; x < width; ++x) {
       const int column = right_to_left ? width - 1 - x : x;
       const uint8_t* p = &data[(size_t(y) * size_t(width) + size_t(x)) * pixel_bytes];
-      image.at<cv::Vec3b>(row, column) = grey ? cv::Vec3b(p[0], p[0], p[0]) : cv::Vec3b(p[0], p[1], p[2]);
+      image.at<cv::Vec3b>(row, column) =
+          grey ? cv::Vec3b(p[0], p[0], p[0]) : cv::Vec3b(p[0], p[1], p[2]);
     }
   }
   return image;

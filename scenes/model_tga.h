@@ -3,9 +3,8 @@
 // which OpenCV 4.6's imgcodecs cannot read: uncompressed and run-length encoded true-colour
 // (24 or 32 bits) and grey (8 bits) images.
 #include <cstdint>
-#include <span>
-
 #include <opencv2/core.hpp>
+#include <span>
 
 namespace kinray {
 

@@ -35,7 +35,9 @@ void check_x_skin_weights(const std::string& path) {
   if (!file) return;  // assimp reports unreadable files
   char header[16] = {};
   file.read(header, sizeof header);
-  if (file.gcount() < 16 || std::string(header, 4) != "xof " || std::string(header + 8, 4) != "txt ") return;
+  if (file.gcount() < 16 || std::string(header, 4) != "xof " ||
+      std::string(header + 8, 4) != "txt ")
+    return;
   std::ostringstream buffer;
   buffer << file.rdbuf();
   const std::string text = buffer.str();
@@ -64,16 +66,19 @@ void check_x_skin_weights(const std::string& path) {
     if (mesh == nullptr) return;  // assimp ignores weights outside a mesh
     unsigned long long count = 0;
     const std::string bone = skin.values.empty() ? "" : skin.values[0];
-    if (skin.values.size() < 2 || !parse_count(skin.values[1], count) || skin.values.size() < 2 + count)
-      throw InputError(path, "SkinWeights of bone " + bone + " in mesh '" + mesh->name + "' has an unreadable weight count");
+    if (skin.values.size() < 2 || !parse_count(skin.values[1], count) ||
+        skin.values.size() < 2 + count)
+      throw InputError(path, "SkinWeights of bone " + bone + " in mesh '" + mesh->name +
+                                 "' has an unreadable weight count");
     for (unsigned long long i = 0; i < count; ++i) {
       unsigned long long vertex = 0;
       if (!parse_count(skin.values[2 + i], vertex))
-        throw InputError(path, "SkinWeights of bone " + bone + " in mesh '" + mesh->name + "' has an unreadable vertex index '" +
-                                   skin.values[2 + i] + "'");
+        throw InputError(path, "SkinWeights of bone " + bone + " in mesh '" + mesh->name +
+                                   "' has an unreadable vertex index '" + skin.values[2 + i] + "'");
       if (vertex >= mesh->vertex_count)
-        throw InputError(path, "SkinWeights of bone " + bone + " in mesh '" + mesh->name + "' weighs vertex " +
-                                   std::to_string(vertex) + ", but the mesh has " + std::to_string(mesh->vertex_count) +
+        throw InputError(path, "SkinWeights of bone " + bone + " in mesh '" + mesh->name +
+                                   "' weighs vertex " + std::to_string(vertex) +
+                                   ", but the mesh has " + std::to_string(mesh->vertex_count) +
                                    " vertices");
     }
   };
@@ -103,7 +108,8 @@ void check_x_skin_weights(const std::string& path) {
     } else if (c == '}') {
       flush_values();
       if (stack.size() > 1) {
-        if (stack.back().type == "SkinWeights" && !stack.back().is_template) check_skin(stack.back());
+        if (stack.back().type == "SkinWeights" && !stack.back().is_template)
+          check_skin(stack.back());
         stack.pop_back();
       }
       ++i;

@@ -16,7 +16,8 @@ namespace kinray::testing {
 /// Debian's assimp-testmodels.
 inline const std::filesystem::path kTestModels = "/usr/share/assimp/models";
 /// Models of the shared folder that Debian does not carry.
-inline const std::filesystem::path kSharedModels = std::filesystem::path(KINRAY_SHARED_DIR) / "data" / "models";
+inline const std::filesystem::path kSharedModels =
+    std::filesystem::path(KINRAY_SHARED_DIR) / "data" / "models";
 
 /// Largest distance any vertex moves between its first key and any other key.
 inline double largest_motion(const Scene& scene) {
@@ -24,7 +25,8 @@ inline double largest_motion(const Scene& scene) {
   for (const Object& object : scene.objects)
     for (size_t k = 1; k < object.key_count(); ++k)
       for (size_t v = 0; v < object.vertex_count(); ++v)
-        largest = std::max(largest, (object.key_positions[k][v] - object.key_positions[0][v]).norm());
+        largest =
+            std::max(largest, (object.key_positions[k][v] - object.key_positions[0][v]).norm());
   return largest;
 }
 

@@ -1,18 +1,18 @@
 // Bad models never crash or hang kinray: each is one InputError naming the file and the problem,
 // or a documented repair (docs/models.md). The table says which, file by file.
-#include <chrono>
-#include <cmath>
-#include <csignal>
-#include <memory>
-#include <optional>
-#include <filesystem>
-#include <fstream>
-#include <string>
-#include <vector>
-
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "scenes/error.h"
 #include "scenes/model_guard.h"
@@ -26,13 +26,15 @@ using testing::kSharedModels;
 using testing::kTestModels;
 
 struct BadModel {
-  const char* path;     ///< under kTestModels, or kSharedModels when `shared`
-  const char* problem;  ///< a piece of the InputError's message, or nullptr: repaired, it loads
-  size_t triangles = 0; ///< when repaired
+  const char* path;      ///< under kTestModels, or kSharedModels when `shared`
+  const char* problem;   ///< a piece of the InputError's message, or nullptr: repaired, it loads
+  size_t triangles = 0;  ///< when repaired
   bool shared = false;
 };
 
-void PrintTo(const BadModel& model, std::ostream* out) { *out << model.path; }
+void PrintTo(const BadModel& model, std::ostream* out) {
+  *out << model.path;
+}
 
 const std::vector<BadModel> kBadModels = {
     // invalid/readme.txt: "OutOfMemory.off - the number of faces is invalid", "empty.<x> -
@@ -57,7 +59,8 @@ const std::vector<BadModel> kBadModels = {
     {"invalid/readme.txt", "No suitable reader"},
     // Elsewhere in the test set: infinite vertices, indices out of range, broken structure.
     {"glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "NaN or infinite"},
-    {"glTF2/IndexOutOfRange/IndexOutOfRange.gltf", nullptr, 11},  // assimp drops the one bad face of 12
+    {"glTF2/IndexOutOfRange/IndexOutOfRange.gltf", nullptr,
+     11},  // assimp drops the one bad face of 12
     {"glTF2/IndexOutOfRange/AllIndicesOutOfRange.gltf", "no faces"},
     {"glTF2/MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
     {"glTF2/RecursiveNodes/RecursiveNodes.gltf", "recursive"},
@@ -70,8 +73,10 @@ const std::vector<BadModel> kBadModels = {
     {"OBJ/point_cloud.obj", "no faces"},
     {"OpenGEX/empty_camera.ogex", "nullptr"},  // its loader also prints to stdout: sent to stderr
     // assimp 5.2's X reader writes out of bounds on skin weights past the vertices (a SIGSEGV, or
-    // silent corruption, depending on the heap): text .x files are checked before assimp reads them.
-    {"X/malformed_skinweights_oob.x", "weighs vertex 1000000, but the mesh has 24 vertices", 0, true},
+    // silent corruption, depending on the heap): text .x files are checked before assimp reads
+    // them.
+    {"X/malformed_skinweights_oob.x", "weighs vertex 1000000, but the mesh has 24 vertices", 0,
+     true},
 };
 
 class BadModels : public ::testing::TestWithParam<BadModel> {};
@@ -104,7 +109,8 @@ TEST_P(BadModels, FailWithOneInputErrorOrLoadRepaired) {
 
 INSTANTIATE_TEST_SUITE_P(Model, BadModels, ::testing::ValuesIn(kBadModels),
                          [](const ::testing::TestParamInfo<BadModel>& param) {
-                           std::string name = std::filesystem::path(param.param.path).filename().string();
+                           std::string name =
+                               std::filesystem::path(param.param.path).filename().string();
                            for (char& c : name)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;
@@ -141,7 +147,7 @@ std::unique_ptr<aiScene> triangle_scene() {
   scene->mRootNode->mNumMeshes = 1;
   scene->mRootNode->mMeshes = new unsigned[1]{0};
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   aiMesh* mesh = new aiMesh();
   mesh->mNumVertices = 3;
   mesh->mVertices = new aiVector3D[3]{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
@@ -150,7 +156,7 @@ std::unique_ptr<aiScene> triangle_scene() {
   mesh->mFaces[0].mNumIndices = 3;
   mesh->mFaces[0].mIndices = new unsigned[3]{0, 1, 2};
   scene->mNumMeshes = 1;
-  scene->mMeshes = new aiMesh*[1]{mesh};
+  scene->mMeshes = new aiMesh* [1] { mesh };
   return scene;
 }
 
@@ -163,7 +169,8 @@ TEST(ModelBadData, NanVerticesAndIndicesOutOfRangeAreInputErrors) {
       (void)convert_model(*model, "nan.obj");
       FAIL();
     } catch (const InputError& error) {
-      EXPECT_NE(std::string(error.what()).find("vertex 1 is NaN or infinite"), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find("vertex 1 is NaN or infinite"), std::string::npos)
+          << error.what();
     }
   }
   {
@@ -180,7 +187,8 @@ TEST(ModelBadData, NanVerticesAndIndicesOutOfRangeAreInputErrors) {
     // A NaN in a vertex no triangle uses is harmless: unreferenced vertices are dropped.
     auto model = triangle_scene();
     aiMesh* mesh = model->mMeshes[0];
-    aiVector3D* vertices = new aiVector3D[4]{mesh->mVertices[0], mesh->mVertices[1], mesh->mVertices[2], {NAN, 0, 0}};
+    aiVector3D* vertices =
+        new aiVector3D[4]{mesh->mVertices[0], mesh->mVertices[1], mesh->mVertices[2], {NAN, 0, 0}};
     delete[] mesh->mVertices;
     mesh->mVertices = vertices;
     mesh->mNumVertices = 4;
@@ -202,12 +210,13 @@ TEST(ModelBadData, NanVerticesAndIndicesOutOfRangeAreInputErrors) {
 std::filesystem::path write_x(const std::string& name, unsigned vertex) {
   const std::filesystem::path path = scratch(name);
   const char* identity = "1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0;;\n";
-  std::ofstream(path) << "xof 0303txt 0032\n"
-                      << "Frame Root {\n FrameTransformMatrix {\n  " << identity << " }\n"
-                      << " Frame Bone {\n  FrameTransformMatrix {\n   " << identity << "  }\n }\n"
-                      << " Mesh Tri {\n  3;\n  0.0;0.0;0.0;,\n  1.0;0.0;0.0;,\n  0.0;1.0;0.0;;\n  1;\n  3;0,1,2;;\n"
-                      << "  SkinWeights {\n   \"Bone\";\n   2;\n   0,\n   " << vertex << ";\n   1.0,\n   1.0;\n   "
-                      << identity << "  }\n }\n}\n";
+  std::ofstream(path)
+      << "xof 0303txt 0032\n"
+      << "Frame Root {\n FrameTransformMatrix {\n  " << identity << " }\n"
+      << " Frame Bone {\n  FrameTransformMatrix {\n   " << identity << "  }\n }\n"
+      << " Mesh Tri {\n  3;\n  0.0;0.0;0.0;,\n  1.0;0.0;0.0;,\n  0.0;1.0;0.0;;\n  1;\n  3;0,1,2;;\n"
+      << "  SkinWeights {\n   \"Bone\";\n   2;\n   0,\n   " << vertex << ";\n   1.0,\n   1.0;\n   "
+      << identity << "  }\n }\n}\n";
   return path;
 }
 
@@ -220,7 +229,8 @@ TEST(ModelBadFiles, TextXSkinWeightsPastTheMeshAreCaughtBeforeAssimp) {
     FAIL() << "a weight on vertex 3 of 3 must be an InputError";
   } catch (const InputError& error) {
     EXPECT_EQ(error.where(), bad.string());
-    EXPECT_NE(std::string(error.what()).find("weighs vertex 3, but the mesh has 3 vertices"), std::string::npos)
+    EXPECT_NE(std::string(error.what()).find("weighs vertex 3, but the mesh has 3 vertices"),
+              std::string::npos)
         << error.what();
   }
   std::filesystem::remove_all(good.parent_path());
@@ -228,12 +238,22 @@ TEST(ModelBadFiles, TextXSkinWeightsPastTheMeshAreCaughtBeforeAssimp) {
 
 TEST(ModelGuard, ChildCrashesAndHangsBecomeMessages) {
   EXPECT_EQ(run_in_child([] { return std::string(); }, 10), std::nullopt);
-  EXPECT_EQ(run_in_child([] { return std::string("bad header"); }, 10), std::optional<std::string>("bad header"));
-  const auto crash = run_in_child([]() -> std::string { std::raise(SIGSEGV); return {}; }, 10);
+  EXPECT_EQ(run_in_child([] { return std::string("bad header"); }, 10),
+            std::optional<std::string>("bad header"));
+  const auto crash = run_in_child(
+      []() -> std::string {
+        std::raise(SIGSEGV);
+        return {};
+      },
+      10);
   ASSERT_TRUE(crash.has_value());
   EXPECT_NE(crash->find("signal"), std::string::npos) << *crash;
   const auto start = std::chrono::steady_clock::now();
-  const auto hang = run_in_child([]() -> std::string { for (;;) pause(); }, 0.3);
+  const auto hang = run_in_child(
+      []() -> std::string {
+        for (;;) pause();
+      },
+      0.3);
   ASSERT_TRUE(hang.has_value());
   EXPECT_NE(hang->find("did not finish"), std::string::npos) << *hang;
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));

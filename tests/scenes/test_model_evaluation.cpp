@@ -1,13 +1,13 @@
 // Node animation, skinning and morph targets against values computed by hand, on tiny aiScenes
 // built in memory (so every number is known) and on Khronos' SimpleMorph.
+#include <assimp/scene.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <assimp/scene.h>
-#include <gtest/gtest.h>
 
 #include "scenes/error.h"
 #include "scenes/model_animation.h"
@@ -46,7 +46,8 @@ void attach_mesh(aiNode* node, unsigned mesh) {
 }
 
 /// A mesh of the given vertices and triangles (mesh space).
-aiMesh* make_mesh(const char* name, const std::vector<aiVector3D>& vertices, const std::vector<std::array<unsigned, 3>>& faces) {
+aiMesh* make_mesh(const char* name, const std::vector<aiVector3D>& vertices,
+                  const std::vector<std::array<unsigned, 3>>& faces) {
   aiMesh* mesh = new aiMesh();
   mesh->mName = name;
   mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
@@ -62,7 +63,8 @@ aiMesh* make_mesh(const char* name, const std::vector<aiVector3D>& vertices, con
   return mesh;
 }
 
-aiBone* make_bone(const char* name, const aiMatrix4x4& offset, const std::vector<aiVertexWeight>& weights) {
+aiBone* make_bone(const char* name, const aiMatrix4x4& offset,
+                  const std::vector<aiVertexWeight>& weights) {
   aiBone* bone = new aiBone();
   bone->mName = name;
   bone->mOffsetMatrix = offset;
@@ -77,7 +79,7 @@ std::unique_ptr<aiScene> make_scene(std::vector<aiMesh*> meshes) {
   auto scene = std::make_unique<aiScene>();
   scene->mRootNode = new aiNode("root");
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene->mNumMeshes = unsigned(meshes.size());
   scene->mMeshes = new aiMesh*[meshes.size()];
   std::copy(meshes.begin(), meshes.end(), scene->mMeshes);
@@ -109,16 +111,20 @@ aiNodeAnim* add_channel(aiAnimation& animation, const char* node) {
   return channel;
 }
 
-void set_rotation_keys(aiNodeAnim& channel, const std::vector<std::pair<double, aiQuaternion>>& keys) {
+void set_rotation_keys(aiNodeAnim& channel,
+                       const std::vector<std::pair<double, aiQuaternion>>& keys) {
   channel.mNumRotationKeys = unsigned(keys.size());
   channel.mRotationKeys = new aiQuatKey[keys.size()];
-  for (size_t k = 0; k < keys.size(); ++k) channel.mRotationKeys[k] = aiQuatKey(keys[k].first, keys[k].second);
+  for (size_t k = 0; k < keys.size(); ++k)
+    channel.mRotationKeys[k] = aiQuatKey(keys[k].first, keys[k].second);
 }
 
-void set_position_keys(aiNodeAnim& channel, const std::vector<std::pair<double, aiVector3D>>& keys) {
+void set_position_keys(aiNodeAnim& channel,
+                       const std::vector<std::pair<double, aiVector3D>>& keys) {
   channel.mNumPositionKeys = unsigned(keys.size());
   channel.mPositionKeys = new aiVectorKey[keys.size()];
-  for (size_t k = 0; k < keys.size(); ++k) channel.mPositionKeys[k] = aiVectorKey(keys[k].first, keys[k].second);
+  for (size_t k = 0; k < keys.size(); ++k)
+    channel.mPositionKeys[k] = aiVectorKey(keys[k].first, keys[k].second);
 }
 
 aiQuaternion about_z(double degrees) {
@@ -126,18 +132,20 @@ aiQuaternion about_z(double degrees) {
 }
 
 void expect_near(const Vec3& actual, const Vec3& expected, double tolerance = 1e-6) {
-  EXPECT_LT((actual - expected).norm(), tolerance) << "actual " << actual.transpose() << ", expected " << expected.transpose();
+  EXPECT_LT((actual - expected).norm(), tolerance)
+      << "actual " << actual.transpose() << ", expected " << expected.transpose();
 }
 
 // The skinned scene of the hand computation: a mesh node at (0, 0, 5), a bone node at (1, 0, 0)
 // that turns 90 degrees about z over 10 ticks at 10 ticks per second, and a static anchor bone.
 // Offset matrices map mesh space to bone space in the bind pose: O = inverse(G_bone) * G_mesh.
 std::unique_ptr<aiScene> skinned_scene() {
-  aiMesh* mesh = make_mesh("skin", {{2, 0, 0}, {2, 0, 1}, {1, 0, 0}, {0, 0, 0}}, {{0, 1, 2}, {0, 2, 3}});
+  aiMesh* mesh =
+      make_mesh("skin", {{2, 0, 0}, {2, 0, 1}, {1, 0, 0}, {0, 0, 0}}, {{0, 1, 2}, {0, 2, 3}});
   mesh->mNumBones = 2;
-  mesh->mBones = new aiBone*[2]{
-      make_bone("bone", translation(-1, 0, 5), {{0, 1.0f}, {1, 0.5f}, {2, 1.0f}}),
-      make_bone("anchor", translation(0, 0, 5), {{1, 0.5f}}),
+  mesh->mBones = new aiBone* [2] {
+    make_bone("bone", translation(-1, 0, 5), {{0, 1.0f}, {1, 0.5f}, {2, 1.0f}}),
+        make_bone("anchor", translation(0, 0, 5), {{1, 0.5f}}),
   };  // vertex 3 has no weights: it follows the mesh node rigidly
   auto scene = make_scene({mesh});
   attach_mesh(add_child(scene->mRootNode, "body", translation(0, 0, 5)), 0);
@@ -228,11 +236,12 @@ std::unique_ptr<aiScene> morph_scene(unsigned method, double default_weight) {
   target->mNumVertices = 3;
   target->mVertices = new aiVector3D[3];
   const bool relative = method == aiMorphingMethod_MORPH_RELATIVE;
-  for (unsigned v = 0; v < 3; ++v) target->mVertices[v] = relative ? aiVector3D(0, 0, 0) : mesh->mVertices[v];
+  for (unsigned v = 0; v < 3; ++v)
+    target->mVertices[v] = relative ? aiVector3D(0, 0, 0) : mesh->mVertices[v];
   target->mVertices[2] += aiVector3D(0, 2, 0);
   target->mWeight = float(default_weight);
   mesh->mNumAnimMeshes = 1;
-  mesh->mAnimMeshes = new aiAnimMesh*[1]{target};
+  mesh->mAnimMeshes = new aiAnimMesh* [1] { target };
   auto scene = make_scene({mesh});
   attach_mesh(add_child(scene->mRootNode, "blob_node", translation(10, 0, 0)), 0);
   return scene;
@@ -240,11 +249,13 @@ std::unique_ptr<aiScene> morph_scene(unsigned method, double default_weight) {
 
 TEST(ModelMorph, TargetAtWeightHalfMovesTheVertexHalfway) {
   // assimp's usual absolute targets (glTF, FBX) and MORPH_RELATIVE displacements agree.
-  for (unsigned method : {0u, unsigned(aiMorphingMethod_MORPH_NORMALIZED), unsigned(aiMorphingMethod_MORPH_RELATIVE)}) {
+  for (unsigned method : {0u, unsigned(aiMorphingMethod_MORPH_NORMALIZED),
+                          unsigned(aiMorphingMethod_MORPH_RELATIVE)}) {
     const auto model = morph_scene(method, 0.5);
     const Scene scene = convert_model(*model, "morph");
     ASSERT_EQ(scene.objects.size(), 1u);
-    expect_near(scene.objects[0].key_positions[0][2], {10, 2, 0});  // (0,1,0) + 0.5 (0,2,0), then +(10,0,0)
+    expect_near(scene.objects[0].key_positions[0][2],
+                {10, 2, 0});  // (0,1,0) + 0.5 (0,2,0), then +(10,0,0)
     expect_near(scene.objects[0].key_positions[0][1], {11, 0, 0});
   }
 }
@@ -263,7 +274,7 @@ TEST(ModelMorph, AnimatedWeightsComeFromTheMorphChannel) {
     channel->mKeys[k].mWeights = new double[1]{double(k)};
   }
   animation->mNumMorphMeshChannels = 1;
-  animation->mMorphMeshChannels = new aiMeshMorphAnim*[1]{channel};
+  animation->mMorphMeshChannels = new aiMeshMorphAnim* [1] { channel };
   const Scene scene = convert_model(*model, "swell");
   const Object& object = scene.objects.at(0);
   ASSERT_EQ(object.key_times, (std::vector<double>{0, 2}));
@@ -287,8 +298,10 @@ TEST(ModelMorph, SimpleMorphMatchesHandValues) {
   uint32_t top = 0;
   for (uint32_t v = 0; v < object.vertex_count(); ++v)
     if ((object.key_positions[0][v] - Vec3(0.5, 0.5, 0)).norm() < 1e-6) top = v;
-  const std::vector<Vec3> expected = {{0.5, 0.5, 0}, {1.5, 1.5, 0}, {0.5, 2.5, 0}, {-0.5, 1.5, 0}, {0.5, 0.5, 0}};
-  for (size_t k = 0; k < expected.size(); ++k) expect_near(object.key_positions[k][top], expected[k], 1e-6);
+  const std::vector<Vec3> expected = {
+      {0.5, 0.5, 0}, {1.5, 1.5, 0}, {0.5, 2.5, 0}, {-0.5, 1.5, 0}, {0.5, 0.5, 0}};
+  for (size_t k = 0; k < expected.size(); ++k)
+    expect_near(object.key_positions[k][top], expected[k], 1e-6);
   expect_near(object.position(top, 1.5), {1.0, 2.0, 0}, 1e-6);  // weights (0.5, 1)
 }
 
@@ -308,9 +321,11 @@ TEST(ModelAnimation, TracksInterpolateAndExtrapolateByState) {
 
   RotationTrack rotation;
   rotation.times = {0, 1};
-  rotation.values = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()))};
+  rotation.values = {Eigen::Quaterniond::Identity(),
+                     Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()))};
   const Eigen::Quaterniond half = sample(rotation, 0.5);
-  EXPECT_NEAR(half.angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()))), 0, kEps);
+  EXPECT_NEAR(half.angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()))),
+              0, kEps);
 }
 
 TEST(ModelAnimation, KeyTimesAreTheUnionOfEveryChannelsKeys) {
@@ -394,17 +409,20 @@ TEST(ModelCamera, OwnCameraFollowsItsAnimatedNode) {
   camera->mName = "eye";
   camera->mLookAt = aiVector3D(0, 0, -1);
   camera->mUp = aiVector3D(0, 1, 0);
-  camera->mHorizontalFOV = ai_real(M_PI / 2);  // full horizontal angle, aspect 2: fov_y = 2 atan(0.5)
+  camera->mHorizontalFOV =
+      ai_real(M_PI / 2);  // full horizontal angle, aspect 2: fov_y = 2 atan(0.5)
   camera->mAspect = 2;
   model->mNumCameras = 1;
-  model->mCameras = new aiCamera*[1]{camera};
-  set_position_keys(*add_channel(*model->mAnimations[0], "eye"), {{0, {0, 0, 20}}, {10, {1, 0, 20}}});
+  model->mCameras = new aiCamera* [1] { camera };
+  set_position_keys(*add_channel(*model->mAnimations[0], "eye"),
+                    {{0, {0, 0, 20}}, {10, {1, 0, 20}}});
   const Scene scene = convert_model(*model, "camera");
   ASSERT_EQ(scene.camera.keys.size(), 2u);
   expect_near(scene.camera.keys[0].position, {0, 0, 20});
   expect_near(scene.camera.keys[1].position, {1, 0, 20});
   EXPECT_NEAR(scene.camera.keys[1].time, 1.0, kEps);
-  EXPECT_NEAR(scene.camera.keys[0].fov_y_degrees, 2 * std::atan(0.5) * 180 / M_PI, 1e-5);  // float angle
+  EXPECT_NEAR(scene.camera.keys[0].fov_y_degrees, 2 * std::atan(0.5) * 180 / M_PI,
+              1e-5);  // float angle
   // It looks down world -z: the mesh (around z = 5) is straight ahead.
   EXPECT_GT(testing::fraction_in_view(scene, 0), 0.99);
 

@@ -2,6 +2,9 @@
 // triangle count and shot that its file says, moves when its animation moves it, and is seen by
 // its camera. The expected figures were read off the files, as the comments say; a BVH test
 // re-derives its figures from the file's text.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,9 +12,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "scenes/error.h"
 #include "scenes/model_import.h"
@@ -39,7 +39,7 @@ struct AnimatedModel {
   size_t triangles;
   double first_key, last_key;  ///< the shot, in seconds
   Motion motion;
-  bool own_camera = false;     ///< the model's own camera is kept (else automatic framing)
+  bool own_camera = false;  ///< the model's own camera is kept (else automatic framing)
   bool shared = false;
 };
 
@@ -49,7 +49,8 @@ struct AnimatedModel {
 const std::vector<AnimatedModel> kModels = {
     // 3DS: boxes of 12 triangles; keys in frames at 25 per second.
     {"3DS/CameraRollAnim.3ds", "", 12, 0, 120 / 25.0, Motion::camera_only},
-    {"3DS/CameraRollAnimWithChildObject.3ds", "", 24, 0, 120 / 25.0, Motion::moves},  // child box rides the camera
+    {"3DS/CameraRollAnimWithChildObject.3ds", "", 24, 0, 120 / 25.0,
+     Motion::moves},  // child box rides the camera
     {"3DS/RotatingCube.3DS", "", 12, 0, 181 / 25.0, Motion::moves},
     {"3DS/TargetCameraAnim.3ds", "", 12, 0, 90 / 25.0, Motion::camera_only},
     // ASE: the same scenes exported from 3ds Max as text; keys in ticks of 1/4800 s.
@@ -65,17 +66,20 @@ const std::vector<AnimatedModel> kModels = {
     {"BVH/01_01.bvh", "", 164, 0, 2751 * 0.0083333, Motion::moves},
     {"BVH/01_03.bvh", "", 164, 0, 4510 * 0.0083333, Motion::moves},
     {"BVH/Boxing_Toes.bvh", "", 140, 0, 3068 * 0.01, Motion::moves},
-    // CSM: 44 markers, each an octahedron (8 triangles); $FirstFrame 1 .. $LastFrame 2439 at $Rate 120.
+    // CSM: 44 markers, each an octahedron (8 triangles); $FirstFrame 1 .. $LastFrame 2439 at $Rate
+    // 120.
     {"CSM/ThomasFechten.csm", "", 44 * 8, 0, 2439 / 120.0, Motion::moves},
     // COLLADA: 64 cubes keyed at frames 1..359 of 30 fps; one cube keyed at frames 1..40 of 24 fps.
-    {"Collada/anims_with_full_rotations_between_keys.DAE", "", 64 * 12, 1 / 30.0, 359 / 30.0, Motion::moves},
+    {"Collada/anims_with_full_rotations_between_keys.DAE", "", 64 * 12, 1 / 30.0, 359 / 30.0,
+     Motion::moves},
     {"Collada/box_nested_animation.dae", "", 12, 1 / 24.0, 40 / 24.0, Motion::moves},
     // FBX from Blender at 24 and 25 fps, each with the camera Blender exported.
     {"FBX/animation_with_skeleton.fbx", "", 2112, 0, 20 / 24.0, Motion::moves, true},
     {"FBX/huesitos.fbx", "", 120, 0, 39 / 25.0, Motion::moves, true},
     // LWS: a LightWave cube (12 triangles) moved by keys at 30 fps.
     {"LWS/move_x.lws", "", 12, 0, 40 / 30.0, Motion::moves},
-    {"LWS/move_x_oldformat_56.lws", "", 12, -1.2 / 30, 0, Motion::holds_still},  // both keys at y = -0.04
+    {"LWS/move_x_oldformat_56.lws", "", 12, -1.2 / 30, 0,
+     Motion::holds_still},  // both keys at y = -0.04
     {"LWS/move_x_oldformat_6.lws", "", 12, 0, 40 / 30.0, Motion::moves},
     {"LWS/move_x_post_constant.lws", "", 12, 0, 39 / 30.0, Motion::moves},
     {"LWS/move_x_post_linear.lws", "", 12, 0, 39 / 30.0, Motion::moves},
@@ -94,14 +98,16 @@ const std::vector<AnimatedModel> kModels = {
     {"MDL/MDL (HL1)/blend_additive.mdl", "", 2, 0, 2 / 25.0, Motion::holds_still},
     {"MDL/MDL (HL1)/chrome_sphere.mdl", "", 480, 0, 220 / 25.0, Motion::moves},
     {"MDL/MDL (HL1)/duplicate_bodyparts.mdl", "", 9, 0, 2 / 25.0, Motion::holds_still},
-    {"MDL/MDL (HL1)/duplicate_sequence_groups/duplicate_sequence_groups.mdl", "", 1, 0, 2 / 25.0, Motion::holds_still},
+    {"MDL/MDL (HL1)/duplicate_sequence_groups/duplicate_sequence_groups.mdl", "", 1, 0, 2 / 25.0,
+     Motion::holds_still},
     {"MDL/MDL (HL1)/duplicate_sequences.mdl", "", 1, 0, 2 / 25.0, Motion::holds_still},
     {"MDL/MDL (HL1)/duplicate_submodels.mdl", "", 6, 0, 2 / 25.0, Motion::holds_still},
     {"MDL/MDL (HL1)/man.mdl", "walk", 190, 0, 25 / 30.0, Motion::moves},
     {"MDL/MDL (HL1)/sequence_transitions.mdl", "", 1, 0, 2 / 30.0, Motion::holds_still},
     {"MDL/MDL (HL1)/unnamed_bodyparts.mdl", "", 9, 0, 2 / 25.0, Motion::holds_still},
     {"MDL/MDL (HL1)/unnamed_bones.mdl", "", 96, 0, 2 / 25.0, Motion::holds_still},
-    {"MDL/MDL (HL1)/unnamed_sequence_groups/unnamed_sequence_groups.mdl", "", 1, 0, 2 / 25.0, Motion::holds_still},
+    {"MDL/MDL (HL1)/unnamed_sequence_groups/unnamed_sequence_groups.mdl", "", 1, 0, 2 / 25.0,
+     Motion::holds_still},
     {"MDL/MDL (HL1)/unnamed_sequences.mdl", "", 1, 0, 2 / 25.0, Motion::holds_still},
     // SMD reference poses: an "animation" of one key.
     {"SMD/WusonSMD.smd", "", 3732, 0, 1, Motion::single_key},
@@ -109,17 +115,24 @@ const std::vector<AnimatedModel> kModels = {
     {"SMD/triangle.smd", "", 1, 0, 1, Motion::single_key},
     // DirectX: AnimTicksPerSecond 4800 (BCN, Wuson) and 24 (anim_test, keys at frames 1..24).
     {"X/BCN_Epileptic.X", "", 5126, 0, 15840 / 4800.0, Motion::moves},
-    {"X/Testwuson.X", "", 3732, 0, 4640 / 4800.0, Motion::moves},  // first of 3 animations: Wuson_Run
-    {"X/anim_test.x", "", 840, 1 / 24.0, 24 / 24.0, Motion::moves},  // two of its four bones have no node
-    // glTF 2: morph cube (127 keys over 4.2 s) and the two-bone skin of the glTF tutorial (0 .. 5.5 s).
-    {"glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf", "", 12, 0, 4.2, Motion::moves},
+    {"X/Testwuson.X", "", 3732, 0, 4640 / 4800.0,
+     Motion::moves},  // first of 3 animations: Wuson_Run
+    {"X/anim_test.x", "", 840, 1 / 24.0, 24 / 24.0,
+     Motion::moves},  // two of its four bones have no node
+    // glTF 2: morph cube (127 keys over 4.2 s) and the two-bone skin of the glTF tutorial (0 .. 5.5
+    // s).
+    {"glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf", "", 12, 0, 4.2,
+     Motion::moves},
     {"glTF2/simple_skin/simple_skin.gltf", "", 8, 0, 5.5, Motion::moves},
     // Shared: README.md lists 960 and 1 triangles; inputs run 0 .. 7.2 s (30 fps) and 0 .. 4 s.
-    {"glTF2/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf", "", 960, 0, 7.2, Motion::moves, false, true},
+    {"glTF2/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf", "", 960, 0, 7.2, Motion::moves,
+     false, true},
     {"glTF2/SimpleMorph/glTF/SimpleMorph.gltf", "", 1, 0, 4, Motion::moves, false, true},
 };
 
-void PrintTo(const AnimatedModel& model, std::ostream* out) { *out << model.path; }
+void PrintTo(const AnimatedModel& model, std::ostream* out) {
+  *out << model.path;
+}
 
 std::string test_name(const ::testing::TestParamInfo<AnimatedModel>& info) {
   std::string name = std::filesystem::path(info.param.path).stem().string() + "_" +
@@ -157,7 +170,8 @@ TEST_P(AnimatedModels, LoadsWithItsTrianglesShotMotionAndCamera) {
       for (const Object& object : scene.objects)
         for (size_t k = 1; k < object.key_count(); ++k)
           for (uint32_t v = 0; v < object.vertex_count(); ++v)
-            step = std::max(step, (object.key_positions[k][v] - object.key_positions[k - 1][v]).norm());
+            step = std::max(step,
+                            (object.key_positions[k][v] - object.key_positions[k - 1][v]).norm());
       EXPECT_GT(step, 0.0);
       break;
     }
@@ -221,7 +235,9 @@ TEST(ModelBvh, FiguresFollowFromTheFile) {
     const Scene scene = load_model(path.string());
     EXPECT_EQ(scene.triangle_count(), 4 * (links - zero_links) + 8 * leaves) << name;
     // assimp keeps 1 / Frame Time as its tick rate in single precision.
-    EXPECT_NEAR(scene.time_end - scene.time_begin, double(frames - 1) * frame_time, 1e-6 * frames * frame_time) << name;
+    EXPECT_NEAR(scene.time_end - scene.time_begin, double(frames - 1) * frame_time,
+                1e-6 * frames * frame_time)
+        << name;
     EXPECT_EQ(scene.objects.at(0).key_count(), frames) << name;
   }
 }
@@ -234,7 +250,8 @@ TEST(ModelMd5, MeshWithItsAnimationFileMoves) {
   const std::filesystem::path directory =
       std::filesystem::temp_directory_path() / ("kinray_model_md5_" + std::to_string(getpid()));
   std::filesystem::create_directories(directory);
-  std::filesystem::copy_file(mesh, directory / "SimpleCube.md5mesh", std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(mesh, directory / "SimpleCube.md5mesh",
+                             std::filesystem::copy_options::overwrite_existing);
   std::ofstream(directory / "SimpleCube.md5anim") << R"(MD5Version 10
 commandline ""
 

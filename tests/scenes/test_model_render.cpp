@@ -1,9 +1,9 @@
 // Imported models through the Embree reference backend: one 64 x 64 frame of a few models at the
 // start, middle and end of their shot, and the centre rays hit them.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "renderer/backend.h"
 #include "renderer/embree_backend.h"

@@ -1,14 +1,14 @@
 // Materials of imported models: base colours, diffuse textures read with OpenCV beside the model or
 // embedded in it (sRGB decoded to linear), per-vertex uvs, and the documented repair for a texture
 // that cannot be found: a warning and the base colour alone.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
-#include <string>
-
-#include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <unistd.h>
+#include <string>
 
 #include "scenes/model_import.h"
 #include "scenes/model_textures.h"
@@ -117,8 +117,9 @@ TEST(ModelTextures, EmbeddedTexturesMatchTheFileTheyWereMadeFrom) {
   if (!std::filesystem::exists(png)) GTEST_SKIP() << png << " is not installed";
   const cv::Mat reference = cv::imread(png.string(), cv::IMREAD_COLOR);
   ASSERT_FALSE(reference.empty());
-  for (const char* model : {"glTF2/BoxTextured-glTF/BoxTextured.gltf", "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
-                            "glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+  for (const char* model :
+       {"glTF2/BoxTextured-glTF/BoxTextured.gltf", "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+        "glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
     const Scene scene = load_model((kTestModels / model).string());
     ASSERT_EQ(scene.textures.size(), 1u) << model;
     const Texture& texture = scene.textures[0];
@@ -127,8 +128,11 @@ TEST(ModelTextures, EmbeddedTexturesMatchTheFileTheyWereMadeFrom) {
     for (int y = 0; y < reference.rows; y += 37)
       for (int x = 0; x < reference.cols; x += 41) {
         const cv::Vec3b bgr = reference.at<cv::Vec3b>(y, x);
-        const Color expected(srgb_to_linear(bgr[2]), srgb_to_linear(bgr[1]), srgb_to_linear(bgr[0]));
-        EXPECT_TRUE(texture.texels[size_t(y) * size_t(texture.width) + size_t(x)].isApprox(expected, 1e-6f)) << model;
+        const Color expected(srgb_to_linear(bgr[2]), srgb_to_linear(bgr[1]),
+                             srgb_to_linear(bgr[0]));
+        EXPECT_TRUE(
+            texture.texels[size_t(y) * size_t(texture.width) + size_t(x)].isApprox(expected, 1e-6f))
+            << model;
       }
     for (const Object& object : scene.objects) {
       EXPECT_EQ(object.uvs.size(), object.vertex_count()) << model;
@@ -140,14 +144,33 @@ TEST(ModelTextures, EmbeddedTexturesMatchTheFileTheyWereMadeFrom) {
 /// The checker of write_checker as TGA bytes: uncompressed 24-bit rows from the bottom (the
 /// default origin), or run-length encoded 32-bit rows from the top.
 std::vector<uint8_t> checker_tga(bool run_length) {
-  std::vector<uint8_t> bytes = {0, 0, uint8_t(run_length ? 10 : 2), 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0,
-                                uint8_t(run_length ? 32 : 24), uint8_t(run_length ? 0x28 : 0)};
+  std::vector<uint8_t> bytes = {0,
+                                0,
+                                uint8_t(run_length ? 10 : 2),
+                                0,
+                                0,
+                                0,
+                                0,
+                                0,
+                                0,
+                                0,
+                                0,
+                                0,
+                                2,
+                                0,
+                                2,
+                                0,
+                                uint8_t(run_length ? 32 : 24),
+                                uint8_t(run_length ? 0x28 : 0)};
   if (!run_length) {
     // bottom row first: blue, grey; then red, green (BGR)
     for (uint8_t v : {255, 0, 0, 128, 128, 128, 0, 0, 255, 0, 255, 0}) bytes.push_back(v);
   } else {
-    // top row: a raw packet of red, green; bottom row: a raw packet of blue, then grey as a run of 1
-    for (uint8_t v : {1, 0, 0, 255, 255, 0, 255, 0, 255, 0, 255, 0, 0, 255, 0x80, 128, 128, 128, 255}) bytes.push_back(v);
+    // top row: a raw packet of red, green; bottom row: a raw packet of blue, then grey as a run of
+    // 1
+    for (uint8_t v :
+         {1, 0, 0, 255, 255, 0, 255, 0, 255, 0, 255, 0, 0, 255, 0x80, 128, 128, 128, 255})
+      bytes.push_back(v);
   }
   return bytes;
 }
@@ -179,9 +202,12 @@ TEST(ModelTextures, TgaWhichOpenCvLacksIsDecoded) {
 }
 
 TEST(ModelTextures, TestModelsWithTgaAndEmbeddedSkins) {
-  const std::filesystem::path duck = kTestModels / "Collada/duck.dae";  // names duckCM.tga, 512 x 512
-  const std::filesystem::path mdl = kTestModels / "MDL/MDL (HL1)/alpha_test.mdl";  // raw texels inside
-  if (!std::filesystem::exists(duck) || !std::filesystem::exists(mdl)) GTEST_SKIP() << "assimp-testmodels not installed";
+  const std::filesystem::path duck =
+      kTestModels / "Collada/duck.dae";  // names duckCM.tga, 512 x 512
+  const std::filesystem::path mdl =
+      kTestModels / "MDL/MDL (HL1)/alpha_test.mdl";  // raw texels inside
+  if (!std::filesystem::exists(duck) || !std::filesystem::exists(mdl))
+    GTEST_SKIP() << "assimp-testmodels not installed";
   const Scene duck_scene = load_model(duck.string());
   ASSERT_EQ(duck_scene.textures.size(), 1u);
   EXPECT_EQ(duck_scene.textures[0].width, 512);
@@ -190,7 +216,8 @@ TEST(ModelTextures, TestModelsWithTgaAndEmbeddedSkins) {
   const Scene mdl_scene = load_model(mdl.string());
   ASSERT_EQ(mdl_scene.textures.size(), 1u);
   EXPECT_GT(mdl_scene.textures[0].width, 0);
-  EXPECT_EQ(mdl_scene.textures[0].texels.size(), size_t(mdl_scene.textures[0].width) * size_t(mdl_scene.textures[0].height));
+  EXPECT_EQ(mdl_scene.textures[0].texels.size(),
+            size_t(mdl_scene.textures[0].width) * size_t(mdl_scene.textures[0].height));
 }
 
 }  // namespace
