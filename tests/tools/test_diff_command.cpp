@@ -89,6 +89,18 @@ TEST(DiffCommand, OsmesaAgainstEmbreeWithinBudgetWritesTableAndJson) {
   }
 }
 
+TEST(DiffCommand, DefaultsToTheKineticBackendAgainstEmbree) {
+  const fs::path folder = scratch("default");
+  const CommandRun run = kinray_diff("static-moving:triangles=1000 --size 64x48 --frames 3 -q --json " +
+                                     (folder / "summary.json").string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json json = read_json(folder / "summary.json");
+  EXPECT_EQ(json["tested"], "kinetic");
+  EXPECT_EQ(json["reference"], "embree");
+  EXPECT_EQ(json["frames"], 3);
+  EXPECT_EQ(json["mismatch_real"], 0);
+}
+
 TEST(DiffCommand, PrintsTheTable) {
   const CommandRun run = kinray_diff("static-moving:triangles=2000 --backend embree --against embree --size 48x32 --frames 2");
   ASSERT_EQ(run.status, 0) << run.err;
