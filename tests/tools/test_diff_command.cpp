@@ -68,6 +68,9 @@ std::string fill_rule_scene(const fs::path& folder) {
 }
 
 TEST(DiffCommand, OsmesaAgainstEmbreeWithinBudgetWritesTableAndJson) {
+#ifndef KINRAY_WITH_OSMESA
+  GTEST_SKIP() << "built without OSMesa (KINRAY_WITH_OSMESA=OFF)";
+#endif
   const fs::path folder = scratch("within");
   const CommandRun run = kinray_diff("static-moving:triangles=2000 --backend osmesa --against embree --size 96x64 "
                               "--frames 3 -q --json " + (folder / "summary.json").string() + " --report " +
@@ -110,6 +113,9 @@ TEST(DiffCommand, PrintsTheTable) {
 }
 
 TEST(DiffCommand, ExceededBudgetFailsAndLeavesTheEvidence) {
+#ifndef KINRAY_WITH_OSMESA
+  GTEST_SKIP() << "built without OSMesa (KINRAY_WITH_OSMESA=OFF)";
+#endif
   const fs::path folder = scratch("exceeded");
   const std::string scene = fill_rule_scene(folder);
   const std::string common = scene + " --backend embree --against osmesa --size 64x64 --frames 2 -q";
