@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -15,6 +16,8 @@
 #include <opencv2/videoio.hpp>
 
 #include "renderer/image_io.h"
+#include "renderer/render_job.h"
+#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 
 namespace kinray {
@@ -189,6 +192,65 @@ TEST_F(Cli, InfoPrintsTheTriangleCount) {
   const nlohmann::json info = nlohmann::json::parse(run.out);
   EXPECT_EQ(info["triangles"], triangles);
   EXPECT_EQ(info["objects"], 1);
+}
+
+TEST(RenderParams, ParseTheFlagsThatAreNotPlainNumbers) {
+  EXPECT_EQ(parse_size("640x480"), std::make_pair(640, 480));
+  EXPECT_EQ(parse_size("1x16384"), std::make_pair(1, 16384));
+  for (const char* bad : {"0x0", "10", "x10", "10x", "-4x4", "4x-4", "4.5x4", "16385x1", "4x4x4", "", "axb", " 4x4"})
+    EXPECT_THROW((void)parse_size(bad), InputError) << bad;
+  EXPECT_EQ(parse_aov("id"), std::vector<std::string>{"id"});
+  EXPECT_EQ(parse_aov("depth,id"), (std::vector<std::string>{"depth", "id"}));
+  for (const char* bad : {"", "id,", "normal", "id,id", "ID"}) EXPECT_THROW((void)parse_aov(bad), InputError) << bad;
+}
+
+TEST(RenderParams, DefaultOutputFolderIsNamedAfterTheScene) {
+  EXPECT_EQ(scene_stem("wavy-sphere"), "wavy-sphere");
+  EXPECT_EQ(scene_stem("cloth:triangles=2000,duration=1.5"), "cloth");
+  EXPECT_EQ(scene_stem("scenes/examples/orbit.json"), "orbit");
+  RenderParams params;
+  params.scene = "orbit:triangles=100";
+  EXPECT_EQ(output_folder(params), "out/orbit");
+  params.out = "elsewhere";
+  EXPECT_EQ(output_folder(params), "elsewhere");
+}
+
+TEST(RenderParams, ValidationNamesTheFlag) {
+  RenderParams params;
+  params.scene = "wavy-sphere";
+  EXPECT_NO_THROW(validate(params));
+  auto where = [](RenderParams p) {
+    try {
+      validate(p);
+    } catch (const InputError& e) {
+      return e.where();
+    }
+    return std::string("(accepted)");
+  };
+  RenderParams p = params;
+  p.width = 0;
+  EXPECT_EQ(where(p), "--size");
+  p = params;
+  p.threads = -1;
+  EXPECT_EQ(where(p), "--threads");
+  p = params;
+  p.packet = 2;
+  EXPECT_EQ(where(p), "--packet");
+  p = params;
+  p.embree_mode = "fast";
+  EXPECT_EQ(where(p), "--embree-mode");
+  p = params;
+  p.sort = "bubble";
+  EXPECT_EQ(where(p), "--sort");
+  p = params;
+  p.fps = -1;
+  EXPECT_EQ(where(p), "--fps");
+  p = params;
+  p.keyrate = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(where(p), "--keyrate");
+  p = params;
+  p.video = "clip.gif";
+  EXPECT_EQ(where(p), "--video");
 }
 
 TEST_F(Cli, EverySubcommandHasHelp) {
