@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 #include "scenes/error.h"
@@ -18,7 +17,8 @@ TriangleIds::TriangleIds(const CameraSpaceScene& scene) {
     next += scene.triangles(o).size();
     // 0xFFFFFFFF stays unused so that "one past the last" fits in 32 bits as well.
     if (next > 0xFFFFFFFFull)
-      throw InputError(scene.scene->name, "the scene has " + std::to_string(scene.triangle_count()) +
+      throw InputError(scene.scene->name, "the scene has " +
+                                              std::to_string(scene.triangle_count()) +
                                               " triangles; the rasterizing reference names at most "
                                               "2^32 - 2 with its 32-bit IDs");
   }
@@ -37,11 +37,13 @@ RasterBackend::RasterBackend(const CameraSpaceScene& scene, const BackendConfig&
     : m_scene(scene), m_config(config), m_rasterizer(std::move(rasterizer)), m_ids(scene) {
   if (config.width <= 0 || config.height <= 0)
     throw InputError("--size", "the image size must be positive, not " +
-                                   std::to_string(config.width) + "x" + std::to_string(config.height));
+                                   std::to_string(config.width) + "x" +
+                                   std::to_string(config.height));
   if (config.width > m_rasterizer->max_size() || config.height > m_rasterizer->max_size())
     throw InputError("--size", "the " + m_rasterizer->name() + " backend renders at most " +
-                                   std::to_string(m_rasterizer->max_size()) + " pixels per side, not " +
-                                   std::to_string(config.width) + "x" + std::to_string(config.height));
+                                   std::to_string(m_rasterizer->max_size()) +
+                                   " pixels per side, not " + std::to_string(config.width) + "x" +
+                                   std::to_string(config.height));
   m_positions.resize(scene.objects.size());
 }
 
@@ -82,7 +84,8 @@ void RasterBackend::render(double t, Frame& frame) {
   m_triangles_sent += m_batch_ids.size();
   ++m_frames;
   if (!m_batch_ids.empty()) {
-    m_rasterizer->rasterize(RasterBatch{m_config.width, m_config.height, m_clip, m_batch_ids}, m_image);
+    m_rasterizer->rasterize(RasterBatch{m_config.width, m_config.height, m_clip, m_batch_ids},
+                            m_image);
     for (size_t i = 0; i < frame.pixel_count(); ++i) {
       if (m_image.id[i] == 0) continue;
       m_ids.decode(m_image.id[i], frame.object[i], frame.prim[i]);
@@ -93,9 +96,8 @@ void RasterBackend::render(double t, Frame& frame) {
 }
 
 void RasterBackend::write_stats(nlohmann::json& stats) const {
-  stats[name()] = {{"frames", m_frames},
-                   {"triangles_rasterized", m_triangles_sent},
-                   {"seconds", m_seconds}};
+  stats[name()] = {
+      {"frames", m_frames}, {"triangles_rasterized", m_triangles_sent}, {"seconds", m_seconds}};
 }
 
 }  // namespace kinray

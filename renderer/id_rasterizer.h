@@ -17,13 +17,12 @@
 // The only clipping in depth is GL's near plane z = near: triangles crossing the eye plane lose
 // the sliver nearer than `near` (DESIGN.md's sign rule needs no clipping; this is the one
 // expected geometric difference, part of the fill-rule budget of `kinray diff --against osmesa`).
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "renderer/backend.h"
 
@@ -38,8 +37,8 @@ struct RasterBatch {
 
 /// What a rasterizer returns, in image order (row 0 at the top, i.e. GL's last row).
 struct RasterImage {
-  std::vector<uint32_t> id;    ///< ID of the nearest fragment whose pixel centre is covered; 0 = none
-  std::vector<float> depth;    ///< window depth near / z of that fragment; 0 = none
+  std::vector<uint32_t> id;  ///< ID of the nearest fragment whose pixel centre is covered; 0 = none
+  std::vector<float> depth;  ///< window depth near / z of that fragment; 0 = none
 };
 
 /// An off-screen rasterizer of flat-coloured ID triangles: no lighting, blending, dithering or

@@ -7,13 +7,12 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <ostream>
-#include <stdexcept>
-#include <unordered_map>
-
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <ostream>
+#include <stdexcept>
+#include <unordered_map>
 
 #include "scenes/error.h"
 
@@ -40,9 +39,9 @@ constexpr double kMaxGrazing = 1e3;
 
 /// The exact hit of a pixel ray on one triangle at time t.
 struct ExactHit {
-  bool valid = false;  ///< the ray pierces the triangle, up to the edge tolerance
-  double z = 0;        ///< depth (the ray parameter)
-  double cos = 1;      ///< |cos| of the angle between the ray and the normal
+  bool valid = false;              ///< the ray pierces the triangle, up to the edge tolerance
+  double z = 0;                    ///< depth (the ray parameter)
+  double cos = 1;                  ///< |cos| of the angle between the ray and the normal
   std::array<double, 3> margin{};  ///< signed distance from edges (v0 v1), (v1 v2), (v2 v0)
   unsigned near_edges = 0;         ///< bit k: |margin[k]| <= the edge tolerance
 };
@@ -69,7 +68,8 @@ ExactHit evaluate(const std::array<Vec3, 3>& v, const Vec3& d, double edge_toler
   }
   hit.z = o / sum;
   hit.valid = std::isfinite(hit.z) && hit.z > 0 &&
-              std::all_of(hit.margin.begin(), hit.margin.end(), [&](double m) { return m >= -edge_tolerance; });
+              std::all_of(hit.margin.begin(), hit.margin.end(),
+                          [&](double m) { return m >= -edge_tolerance; });
   const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
   const double scale = n.norm() * d.norm();
   hit.cos = scale > 0 ? std::abs(n.dot(d)) / scale : 0.0;
@@ -116,7 +116,8 @@ const FrameComparator::Adjacency& FrameComparator::adjacency(uint32_t object) {
   const std::vector<Triangle>& triangles = m_scene.triangles(object);
   for (uint32_t prim = 0; prim < triangles.size(); ++prim)
     for (int k = 0; k < 3; ++k)
-      slot->edges[slot->key(triangles[prim][size_t(k)], triangles[prim][size_t((k + 1) % 3)])].push_back(prim);
+      slot->edges[slot->key(triangles[prim][size_t(k)], triangles[prim][size_t((k + 1) % 3)])]
+          .push_back(prim);
   return *slot;
 }
 
@@ -124,7 +125,8 @@ FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) 
   if (tested.width != reference.width || tested.height != reference.height ||
       tested.pixel_count() != reference.pixel_count())
     throw std::invalid_argument("image diff: the frames differ in size");
-  if (tested.time != reference.time) throw std::invalid_argument("image diff: the frames differ in time");
+  if (tested.time != reference.time)
+    throw std::invalid_argument("image diff: the frames differ in time");
   FrameDiff diff;
   diff.width = tested.width;
   diff.height = tested.height;
@@ -183,14 +185,16 @@ FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) 
       for (uint32_t w : across)
         if (adj.weld[w] != adj.weld[a] && adj.weld[w] != adj.weld[b]) third = w;
       if (third == kNoHit || adj.weld[c] == adj.weld[third]) continue;
-      if (!(side * edge_normal.dot(cs.position(third, t)) < 0)) continue;  // folds back: a silhouette
+      if (!(side * edge_normal.dot(cs.position(third, t)) < 0))
+        continue;  // folds back: a silhouette
       std::array<Vec3, 3> v;
       for (size_t m = 0; m < 3; ++m) v[m] = cs.position(across[m], t);
       const ExactHit hit = evaluate(v, d, edge_tolerance);
       if (!hit.valid || std::popcount(hit.near_edges) > 1) continue;
       // Something at the depth of either side (a duplicate of the neighbour, say) is no leak.
       if (other.object == kNoHit ||
-          (other.hit.z > std::max(near.hit.z, hit.z) && !same_depth(other.hit, hit) && !same_depth(other.hit, near.hit)))
+          (other.hit.z > std::max(near.hit.z, hit.z) && !same_depth(other.hit, hit) &&
+           !same_depth(other.hit, near.hit)))
         return true;
     }
     return false;
@@ -205,7 +209,8 @@ FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) 
         result = PixelClass::kBackground;
         continue;
       }
-      if (a_hit && b_hit && tested.object[px] == reference.object[px] && tested.prim[px] == reference.prim[px]) {
+      if (a_hit && b_hit && tested.object[px] == reference.object[px] &&
+          tested.prim[px] == reference.prim[px]) {
         result = PixelClass::kEqual;
         continue;
       }
@@ -256,7 +261,8 @@ ColorError compare_colors(const Frame& a, const Frame& b) {
 }
 
 void write_heat_map(const FrameDiff& diff, const std::string& path, const Frame* context) {
-  if (context && (context->width != diff.width || context->height != diff.height)) context = nullptr;
+  if (context && (context->width != diff.width || context->height != diff.height))
+    context = nullptr;
   cv::Mat image(diff.height, diff.width, CV_8UC3);
   for (int j = 0; j < diff.height; ++j)
     for (int i = 0; i < diff.width; ++i) {
@@ -266,15 +272,24 @@ void write_heat_map(const FrameDiff& diff, const std::string& path, const Frame*
       const auto underlay = [&](uint8_t plain) -> cv::Vec3b {
         if (!context) return {plain, plain, plain};
         const Color& c = context->color[p];
-        const float luminance = std::clamp(0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z(), 0.0f, 1.0f);
+        const float luminance =
+            std::clamp(0.2126f * c.x() + 0.7152f * c.y() + 0.0722f * c.z(), 0.0f, 1.0f);
         const auto grey = uint8_t(std::lround(20.0f + 80.0f * std::sqrt(luminance)));
         return {grey, grey, grey};
       };
       switch (diff.pixels[p]) {
-        case PixelClass::kBackground: bgr = underlay(48); break;
-        case PixelClass::kEqual: bgr = underlay(0); break;
-        case PixelClass::kTie: bgr = {0, 255, 255}; break;
-        case PixelClass::kReal: bgr = {0, 0, 255}; break;
+        case PixelClass::kBackground:
+          bgr = underlay(48);
+          break;
+        case PixelClass::kEqual:
+          bgr = underlay(0);
+          break;
+        case PixelClass::kTie:
+          bgr = {0, 255, 255};
+          break;
+        case PixelClass::kReal:
+          bgr = {0, 0, 255};
+          break;
       }
       image.at<cv::Vec3b>(j, i) = bgr;
     }
@@ -316,8 +331,8 @@ size_t DiffSummary::max_frame_real() const {
 void DiffSummary::print(std::ostream& out) const {
   char buffer[256];
   out << "diff " << scene << ": " << tested << " against " << reference << "\n";
-  std::snprintf(buffer, sizeof buffer, "%6s %10s %9s %9s %7s %9s %9s  %s\n", "frame", "time", "real", "tie",
-                "cracks", "psnr_dB", "max_err", "heat map");
+  std::snprintf(buffer, sizeof buffer, "%6s %10s %9s %9s %7s %9s %9s  %s\n", "frame", "time",
+                "real", "tie", "cracks", "psnr_dB", "max_err", "heat map");
   out << buffer;
   for (const FrameDiffSummary& line : per_frame) {
     std::string psnr = "-", max_error = "-";
@@ -328,30 +343,33 @@ void DiffSummary::print(std::ostream& out) const {
       std::snprintf(buffer, sizeof buffer, "%.4f", line.color->max_error);
       max_error = buffer;
     }
-    std::snprintf(buffer, sizeof buffer, "%6zu %10.5f %9zu %9zu %7zu %9s %9s  %s\n", line.frame, line.time,
-                  line.mismatch_real, line.mismatch_tie, line.cracks, psnr.c_str(), max_error.c_str(),
-                  line.heat_map.empty() ? "-" : line.heat_map.c_str());
+    std::snprintf(buffer, sizeof buffer, "%6zu %10.5f %9zu %9zu %7zu %9s %9s  %s\n", line.frame,
+                  line.time, line.mismatch_real, line.mismatch_tie, line.cracks, psnr.c_str(),
+                  max_error.c_str(), line.heat_map.empty() ? "-" : line.heat_map.c_str());
     out << buffer;
   }
   std::snprintf(buffer, sizeof buffer,
-                "total: %zu frames, %zu pixels, %zu real mismatches (%.4f%%), %zu ties (%.4f%%), %zu cracks\n",
-                frames, pixels, mismatch_real, pixels ? 100.0 * double(mismatch_real) / double(pixels) : 0.0,
-                mismatch_tie, pixels ? 100.0 * double(mismatch_tie) / double(pixels) : 0.0, cracks);
+                "total: %zu frames, %zu pixels, %zu real mismatches (%.4f%%), %zu ties (%.4f%%), "
+                "%zu cracks\n",
+                frames, pixels, mismatch_real,
+                pixels ? 100.0 * double(mismatch_real) / double(pixels) : 0.0, mismatch_tie,
+                pixels ? 100.0 * double(mismatch_tie) / double(pixels) : 0.0, cracks);
   out << buffer;
 }
 
 std::string DiffSummary::to_json() const {
   nlohmann::json lines = nlohmann::json::array();
   for (const FrameDiffSummary& line : per_frame) {
-    nlohmann::json entry = {{"frame", line.frame},
-                            {"time", line.time},
-                            {"pixels", line.pixels},
-                            {"mismatch_real", line.mismatch_real},
-                            {"mismatch_tie", line.mismatch_tie},
-                            {"cracks", line.cracks},
-                            {"psnr", nullptr},
-                            {"max_error", nullptr},
-                            {"heat_map", line.heat_map.empty() ? nlohmann::json() : nlohmann::json(line.heat_map)}};
+    nlohmann::json entry = {
+        {"frame", line.frame},
+        {"time", line.time},
+        {"pixels", line.pixels},
+        {"mismatch_real", line.mismatch_real},
+        {"mismatch_tie", line.mismatch_tie},
+        {"cracks", line.cracks},
+        {"psnr", nullptr},
+        {"max_error", nullptr},
+        {"heat_map", line.heat_map.empty() ? nlohmann::json() : nlohmann::json(line.heat_map)}};
     if (line.color) {
       if (const std::optional<double> psnr = line.color->psnr()) entry["psnr"] = *psnr;
       entry["max_error"] = line.color->max_error;

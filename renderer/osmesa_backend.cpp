@@ -1,8 +1,8 @@
 #include "renderer/osmesa_backend.h"
 
-#include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <GL/osmesa.h>
 
 #include <algorithm>
 #include <array>
@@ -26,9 +26,17 @@ namespace {
 class OsmesaRasterizer : public IdRasterizer {
  public:
   OsmesaRasterizer() {
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                              OSMESA_STENCIL_BITS, 0, OSMESA_ACCUM_BITS, 0,
-                              OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              0,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_ACCUM_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_COMPAT_PROFILE,
+                              0};
     m_context.reset(OSMesaCreateContextAttribs(attributes, nullptr));
     if (!m_context) throw InputError("--backend osmesa", "cannot create an OSMesa context");
     make_current();
@@ -97,7 +105,8 @@ class OsmesaRasterizer : public IdRasterizer {
     m_colors.resize(batch.clip.size());
     for (size_t tri = 0; tri < batch.ids.size(); ++tri) {
       const uint32_t id = batch.ids[tri];
-      const std::array<uint8_t, 4> bytes = {uint8_t(id), uint8_t(id >> 8), uint8_t(id >> 16), uint8_t(id >> 24)};
+      const std::array<uint8_t, 4> bytes = {uint8_t(id), uint8_t(id >> 8), uint8_t(id >> 16),
+                                            uint8_t(id >> 24)};
       for (int k = 0; k < 3; ++k) m_colors[3 * tri + k] = bytes;
     }
     glVertexPointer(4, GL_FLOAT, 0, batch.clip.data());
@@ -105,7 +114,8 @@ class OsmesaRasterizer : public IdRasterizer {
     // glDrawArrays counts in GLsizei; draw in chunks of whole triangles.
     constexpr size_t kChunk = size_t(3) << 24;
     for (size_t first = 0; first < batch.clip.size(); first += kChunk)
-      glDrawArrays(GL_TRIANGLES, GLint(first), GLsizei(std::min(kChunk, batch.clip.size() - first)));
+      glDrawArrays(GL_TRIANGLES, GLint(first),
+                   GLsizei(std::min(kChunk, batch.clip.size() - first)));
 
     const size_t w = size_t(batch.width), h = size_t(batch.height);
     m_bytes.resize(4 * w * h);
@@ -122,7 +132,8 @@ class OsmesaRasterizer : public IdRasterizer {
       const uint8_t* bytes = m_bytes.data() + 4 * gl_row * w;
       for (size_t i = 0; i < w; ++i) {
         const uint8_t* b = bytes + 4 * i;
-        out.id[row * w + i] = uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
+        out.id[row * w + i] =
+            uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
       }
       std::memcpy(out.depth.data() + row * w, m_depth.data() + gl_row * w, w * sizeof(float));
     }
@@ -150,8 +161,10 @@ class OsmesaRasterizer : public IdRasterizer {
     m_renderbuffer_storage(GL_RENDERBUFFER, GL_RGBA8, width, height);
     m_bind_renderbuffer(GL_RENDERBUFFER, m_renderbuffers[1]);
     m_renderbuffer_storage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
-    m_framebuffer_renderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m_renderbuffers[0]);
-    m_framebuffer_renderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m_renderbuffers[1]);
+    m_framebuffer_renderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                               m_renderbuffers[0]);
+    m_framebuffer_renderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                               m_renderbuffers[1]);
     if (m_check_framebuffer_status(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("osmesa: the RGBA8 + float depth framebuffer is incomplete");
     GLint bits[2] = {0, 0};
@@ -171,7 +184,8 @@ class OsmesaRasterizer : public IdRasterizer {
 
   std::unique_ptr<std::remove_pointer_t<OSMesaContext>, decltype(&OSMesaDestroyContext)> m_context{
       nullptr, &OSMesaDestroyContext};
-  uint32_t m_dummy[1] = {0};  ///< OSMesa needs a bound buffer; drawing goes to the framebuffer object
+  uint32_t m_dummy[1] = {
+      0};  ///< OSMesa needs a bound buffer; drawing goes to the framebuffer object
   GLint m_max_size = 0;
   int m_width = 0, m_height = 0;
   GLuint m_framebuffer = 0, m_renderbuffers[2] = {0, 0};
@@ -193,9 +207,12 @@ class OsmesaRasterizer : public IdRasterizer {
 
 }  // namespace
 
-std::unique_ptr<IdRasterizer> make_osmesa_rasterizer() { return std::make_unique<OsmesaRasterizer>(); }
+std::unique_ptr<IdRasterizer> make_osmesa_rasterizer() {
+  return std::make_unique<OsmesaRasterizer>();
+}
 
-std::unique_ptr<Backend> make_osmesa_backend(const CameraSpaceScene& scene, const BackendConfig& config) {
+std::unique_ptr<Backend> make_osmesa_backend(const CameraSpaceScene& scene,
+                                             const BackendConfig& config) {
   return std::make_unique<RasterBackend>(scene, config, make_osmesa_rasterizer());
 }
 

@@ -61,8 +61,9 @@ Budget parse_budget(const std::string& text) {
   const bool whole = percent || value == std::floor(value);
   if (number.empty() || used != number.size() || !std::isfinite(value) || value < 0 || !whole ||
       (percent && value > 100))
-    throw InputError("--budget", "expected a pixel count N >= 0 or a percentage P% (0..100) per frame, not '" +
-                                     text + "'");
+    throw InputError(
+        "--budget",
+        "expected a pixel count N >= 0 or a percentage P% (0..100) per frame, not '" + text + "'");
   return percent ? Budget{value / 100, true} : Budget{value, false};
 }
 
@@ -84,20 +85,24 @@ void create_folder(const fs::path& folder, const char* flag) {
   if (folder.empty()) return;
   std::error_code error;
   fs::create_directories(folder, error);
-  if (error) throw InputError(flag, "cannot create the folder '" + folder.string() + "': " + error.message());
+  if (error)
+    throw InputError(flag,
+                     "cannot create the folder '" + folder.string() + "': " + error.message());
 }
 
 void run_diff(const DiffOptions& options) {
   const RenderParams params = options.render.resolve();
   if (options.against != "embree" && options.against != "osmesa")
-    throw InputError("--against", "the reference must be embree or osmesa, not '" + options.against + "'");
+    throw InputError("--against",
+                     "the reference must be embree or osmesa, not '" + options.against + "'");
   // OSMesa's fill rule differs by design, whichever side it is on.
   const bool rasterized = options.against == "osmesa" || params.backend == "osmesa";
   const Budget budget = options.budget.empty()
                             ? (rasterized ? Budget{kOsmesaBudgetFraction, true} : Budget{0, false})
                             : parse_budget(options.budget);
   std::error_code error;
-  if (!options.report.empty() && fs::exists(options.report, error) && !fs::is_directory(options.report, error))
+  if (!options.report.empty() && fs::exists(options.report, error) &&
+      !fs::is_directory(options.report, error))
     throw InputError("--report", "'" + options.report + "' exists and is not a folder");
   if (!options.json.empty() && fs::is_directory(options.json, error))
     throw InputError("--json", "'" + options.json + "' is a folder");
@@ -143,33 +148,38 @@ void run_diff(const DiffOptions& options) {
     if (double(line.mismatch_real) > budget.allowed(line.pixels)) ++over;
   if (!params.quiet) {
     summary.print(std::cout);
-    std::cout << "budget: " << budget.describe() << (over ? ", exceeded in " + std::to_string(over) + " frame(s)" : ", met")
-              << "\n";
+    std::cout << "budget: " << budget.describe()
+              << (over ? ", exceeded in " + std::to_string(over) + " frame(s)" : ", met") << "\n";
     std::cout.flush();
   }
   if (over > 0)
-    throw std::runtime_error("diff: " + std::to_string(summary.mismatch_real) + " real mismatches; " +
-                             std::to_string(over) + " of " + std::to_string(summary.frames) +
-                             " frames exceed the budget of " + budget.describe());
+    throw std::runtime_error("diff: " + std::to_string(summary.mismatch_real) +
+                             " real mismatches; " + std::to_string(over) + " of " +
+                             std::to_string(summary.frames) + " frames exceed the budget of " +
+                             budget.describe());
 }
 
 }  // namespace
 
 void register_diff_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
-      "diff", "Render each frame with a backend and a reference, classify differing pixels as ties or real "
-              "mismatches, and fail when real mismatches exceed the budget");
+      "diff",
+      "Render each frame with a backend and a reference, classify differing pixels as ties or real "
+      "mismatches, and fail when real mismatches exceed the budget");
   auto options = std::make_shared<DiffOptions>();
   options->render.params.backend = "kinetic";  // the backend under test
   add_scene_options(*command, options->render);
   add_frame_options(*command, options->render);
   add_backend_options(*command, options->render);
-  command->add_option("--against", options->against, "The reference: embree | osmesa")->capture_default_str();
-  command->add_option("--budget", options->budget,
-                      "Real mismatches allowed per frame: N pixels or P% of the pixels (default 0; 0.1% "
-                      "when osmesa is either side)");
+  command->add_option("--against", options->against, "The reference: embree | osmesa")
+      ->capture_default_str();
+  command->add_option(
+      "--budget", options->budget,
+      "Real mismatches allowed per frame: N pixels or P% of the pixels (default 0; 0.1% "
+      "when osmesa is either side)");
   command->add_option("--report", options->report,
-                      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the reference in dim grey), "
+                      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the "
+                      "reference in dim grey), "
                       "both shaded frames where a frame has real mismatches, and summary.json");
   command->add_option("--json", options->json, "Write the summary as JSON to FILE");
   command->add_flag("-q,--quiet", options->render.params.quiet, "No progress bar and no table");

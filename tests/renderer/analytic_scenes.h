@@ -69,10 +69,13 @@ inline Frame exact_frame(const CameraSpaceScene& scene, int width, int height, d
         const std::vector<Triangle>& triangles = scene.triangles(o);
         for (size_t prim = 0; prim < triangles.size(); ++prim) {
           Vec3 v[3];
-          for (int k = 0; k < 3; ++k) v[k] = scene.objects[o].position(triangles[prim][size_t(k)], t);
+          for (int k = 0; k < 3; ++k)
+            v[k] = scene.objects[o].position(triangles[prim][size_t(k)], t);
           const double det = v[0].dot(v[1].cross(v[2]));
-          const double e01 = v[0].cross(v[1]).dot(d), e12 = v[1].cross(v[2]).dot(d), e20 = v[2].cross(v[0]).dot(d);
-          const bool pierced = det > 0 ? (e01 > 0 && e12 > 0 && e20 > 0) : det < 0 && (e01 < 0 && e12 < 0 && e20 < 0);
+          const double e01 = v[0].cross(v[1]).dot(d), e12 = v[1].cross(v[2]).dot(d),
+                       e20 = v[2].cross(v[0]).dot(d);
+          const bool pierced = det > 0 ? (e01 > 0 && e12 > 0 && e20 > 0)
+                                       : det < 0 && (e01 < 0 && e12 < 0 && e20 < 0);
           if (!pierced) continue;
           const double z = det / (e01 + e12 + e20);
           if (z < nearest) {

@@ -1,15 +1,14 @@
 // The image diff: ties and real mismatches on frames whose geometry is known exactly.
-#include "renderer/image_diff.h"
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
+#include "renderer/image_diff.h"
 #include "scenes/error.h"
 #include "tests/renderer/analytic_scenes.h"
 
@@ -32,9 +31,10 @@ void set_positions(CameraSpaceScene& cs, size_t object, const std::vector<Vec3>&
 
 // A wall at depth 10 covering the whole image.
 Object wall() {
-  return test::camera_space_object("wall", {{0, 1, 2}},
-                                   {{on_ray(-kSize, -kSize, 10, kSize, kSize), on_ray(3 * kSize, -kSize, 10, kSize, kSize),
-                                     on_ray(-kSize, 3 * kSize, 10, kSize, kSize)}});
+  return test::camera_space_object(
+      "wall", {{0, 1, 2}},
+      {{on_ray(-kSize, -kSize, 10, kSize, kSize), on_ray(3 * kSize, -kSize, 10, kSize, kSize),
+        on_ray(-kSize, 3 * kSize, 10, kSize, kSize)}});
 }
 
 // Two triangles at depth ~3 sharing the edge p q, which passes exactly through the ray of pixel
@@ -103,9 +103,10 @@ TEST(ImageDiff, CorruptedFrameIsCaughtAndItsHeatMapWritten) {
   ASSERT_FALSE(image.empty());
   ASSERT_EQ(image.cols, kSize);
   ASSERT_EQ(image.rows, kSize);
-  for (const auto& ij : corrupted) EXPECT_EQ(image.at<cv::Vec3b>(ij[1], ij[0]), cv::Vec3b(0, 0, 255));  // red
-  EXPECT_EQ(image.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 0));    // equal: the wall on both sides
-  EXPECT_EQ(image.at<cv::Vec3b>(3, 10), cv::Vec3b(0, 0, 0));   // equal: the quad on both sides
+  for (const auto& ij : corrupted)
+    EXPECT_EQ(image.at<cv::Vec3b>(ij[1], ij[0]), cv::Vec3b(0, 0, 255));  // red
+  EXPECT_EQ(image.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 0));   // equal: the wall on both sides
+  EXPECT_EQ(image.at<cv::Vec3b>(3, 10), cv::Vec3b(0, 0, 0));  // equal: the quad on both sides
 }
 
 TEST(ImageDiff, SharedEdgeThroughPixelCentreIsATie) {
@@ -179,7 +180,8 @@ TEST(ImageDiff, DuplicateAcrossAFoldIsNoCrack) {
   CameraSpaceScene cs = CameraSpaceScene::build(scene);
   set_positions(cs, 1, {p, q, l, r});
   set_positions(cs, 2, {p, q, r});
-  const double z_left = test::plane_depth(p, q, l, kRay), z_right = test::plane_depth(q, p, r, kRay);
+  const double z_left = test::plane_depth(p, q, l, kRay),
+               z_right = test::plane_depth(q, p, r, kRay);
   ASSERT_LT(z_left, z_right - 1e-5 * z_right);  // beyond the depth tolerance (1/cos < 3 here)
   ASSERT_LT(p.cross(q).dot(kRay) * p.dot(q.cross(l)), 0.0);  // the ray is outside L, on R's side
 
@@ -198,7 +200,8 @@ TEST(ImageDiff, DuplicateAcrossAFoldIsNoCrack) {
 
 TEST(ImageDiff, CoplanarTrianglesAreATie) {
   // Two objects with the same triangle: equal depth everywhere, no winner.
-  const Vec3 a = on_ray(4, 4, 5, kSize, kSize), b = on_ray(28, 4, 5, kSize, kSize), c = on_ray(4, 28, 5, kSize, kSize);
+  const Vec3 a = on_ray(4, 4, 5, kSize, kSize), b = on_ray(28, 4, 5, kSize, kSize),
+             c = on_ray(4, 28, 5, kSize, kSize);
   const Object one = test::camera_space_object("one", {{0, 1, 2}}, {{a, b, c}});
   const Object two = test::camera_space_object("two", {{0, 1, 2}}, {{a, c, b}});
   const Scene scene = test::analytic_scene({one, two});
@@ -222,8 +225,10 @@ TEST(ImageDiff, CoplanarTrianglesAreATie) {
 TEST(ImageDiff, MissingTheInteriorOfANearerTriangleIsReal) {
   // The ray runs exactly along an edge of a far triangle (depth 10) but through the middle of a
   // near one (depth 3): reporting the far one is wrong, however close it is to its own edge.
-  const Vec3 near_a = 3 * kRay + Vec3(-1, -1, 0), near_b = 3 * kRay + Vec3(1, -1, 0), near_c = 3 * kRay + Vec3(0, 1, 0);
-  const Vec3 far_p = 10 * kRay + Vec3(0, 1, 0), far_q = 10 * kRay - Vec3(0, 1, 0), far_r = 10 * kRay + Vec3(-1, 0, 0);
+  const Vec3 near_a = 3 * kRay + Vec3(-1, -1, 0), near_b = 3 * kRay + Vec3(1, -1, 0),
+             near_c = 3 * kRay + Vec3(0, 1, 0);
+  const Vec3 far_p = 10 * kRay + Vec3(0, 1, 0), far_q = 10 * kRay - Vec3(0, 1, 0),
+             far_r = 10 * kRay + Vec3(-1, 0, 0);
   const Object near = test::camera_space_object("near", {{0, 1, 2}}, {{near_a, near_b, near_c}});
   const Object far = test::camera_space_object("far", {{0, 1, 2}}, {{far_p, far_q, far_r}});
   const Scene scene = test::analytic_scene({near, far});
@@ -262,7 +267,8 @@ TEST(ImageDiff, FramesMustMatchInSizeAndTime) {
   Frame small;
   small.resize(8, 8);
   EXPECT_THROW((void)comparator.compare(background_frame(), small), std::invalid_argument);
-  EXPECT_THROW((void)comparator.compare(background_frame(0), background_frame(0.5)), std::invalid_argument);
+  EXPECT_THROW((void)comparator.compare(background_frame(0), background_frame(0.5)),
+               std::invalid_argument);
   EXPECT_THROW((void)compare_colors(background_frame(), small), std::invalid_argument);
 }
 
@@ -281,10 +287,12 @@ TEST(ImageDiff, SummaryTotalsPrintsAndWritesJson) {
   summary.scene = "analytic";
   summary.tested = "kinetic";
   summary.reference = "embree";
-  FrameDiffSummary first{.frame = 0, .time = 0, .pixels = 1024, .mismatch_real = 2, .mismatch_tie = 5};
+  FrameDiffSummary first{
+      .frame = 0, .time = 0, .pixels = 1024, .mismatch_real = 2, .mismatch_tie = 5};
   first.heat_map = "report/frame_0000.png";
   first.color = ColorError{.max_error = 0.25, .mse = 1e-4};
-  FrameDiffSummary second{.frame = 1, .time = 0.5, .pixels = 1024, .mismatch_real = 0, .mismatch_tie = 3};
+  FrameDiffSummary second{
+      .frame = 1, .time = 0.5, .pixels = 1024, .mismatch_real = 0, .mismatch_tie = 3};
   second.color = ColorError{};
   summary.add(first);
   summary.add(second);

@@ -1,15 +1,14 @@
 // The OSMesa reference backend on scenes whose ID and depth buffers are known exactly.
 #ifdef KINRAY_WITH_OSMESA
 
-#include "renderer/osmesa_backend.h"
+#include <gtest/gtest.h>
 
 #include <cmath>
-
-#include <gtest/gtest.h>
 
 #include "renderer/embree_backend.h"
 #include "renderer/id_rasterizer.h"
 #include "renderer/image_diff.h"
+#include "renderer/osmesa_backend.h"
 #include "renderer/shading.h"
 #include "scenes/error.h"
 #include "scenes/procedural.h"
@@ -32,7 +31,9 @@ Object tilted_quad() {
   return test::camera_space_object("quad", {{0, 1, 2}, {0, 2, 3}}, {{tl, tr, br, bl}});
 }
 
-bool in_quad(int i, int j) { return i >= 8 && i < 24 && j >= 2 && j < 14; }
+bool in_quad(int i, int j) {
+  return i >= 8 && i < 24 && j >= 2 && j < 14;
+}
 uint32_t quad_prim(int i, int j) {
   const double u = i + 0.5, v = j + 0.5;
   return (v - 2) < (u - 8) * 12.0 / 16.0 ? 0u : 1u;
@@ -60,8 +61,9 @@ TEST(OsmesaBackend, QuadInTopHalfHasExactIdsAndDepths) {
       ASSERT_EQ(frame.object[p], 0u) << i << "," << j;
       ASSERT_EQ(frame.prim[p], quad_prim(i, j)) << i << "," << j;
       const Triangle& tri = triangles[frame.prim[p]];
-      const double z = test::plane_depth(cs.objects[0].position(tri[0], 0), cs.objects[0].position(tri[1], 0),
-                                         cs.objects[0].position(tri[2], 0), image.direction(i, j));
+      const double z =
+          test::plane_depth(cs.objects[0].position(tri[0], 0), cs.objects[0].position(tri[1], 0),
+                            cs.objects[0].position(tri[2], 0), image.direction(i, j));
       EXPECT_NEAR(frame.depth[p], z, 2e-6 * z) << i << "," << j;
     }
 }
@@ -87,8 +89,9 @@ TEST(OsmesaBackend, NearerObjectWinsAndEveryObjectDecodes) {
       bool quad_in_front = false;
       if (in_quad(i, j)) {
         const Triangle& tri = scene.objects[1].triangles[quad_prim(i, j)];
-        const double z = test::plane_depth(cs.objects[1].position(tri[0], 0), cs.objects[1].position(tri[1], 0),
-                                           cs.objects[1].position(tri[2], 0), image.direction(i, j));
+        const double z =
+            test::plane_depth(cs.objects[1].position(tri[0], 0), cs.objects[1].position(tri[1], 0),
+                              cs.objects[1].position(tri[2], 0), image.direction(i, j));
         // Pixels within a float ulp of the crossing could go either way; the test keeps away.
         if (std::abs(z - 3.0) < 1e-4) continue;
         quad_in_front = z < 3.0;
@@ -115,7 +118,8 @@ TEST(OsmesaBackend, RendersTheMotionAtFrameTime) {
     return std::vector<Vec3>{on_ray(u0, 20, 5, kSize, kSize), on_ray(u0 + 4, 20, 5, kSize, kSize),
                              on_ray(u0 + 4, 24, 5, kSize, kSize), on_ray(u0, 24, 5, kSize, kSize)};
   };
-  Object object = test::camera_space_object("slider", {{0, 1, 2}, {0, 2, 3}}, {square(2), square(18)}, {0.0, 1.0});
+  Object object = test::camera_space_object("slider", {{0, 1, 2}, {0, 2, 3}},
+                                            {square(2), square(18)}, {0.0, 1.0});
   object.disappear = 0.75;
   const Scene scene = test::analytic_scene({object});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
@@ -136,7 +140,8 @@ TEST(OsmesaBackend, TriangleCrossingTheEyePlaneIsClippedOnlyAtTheNearPlane) {
   // A floor y = -1 that runs from behind the eye (z = -4) to z = 8: the sign rule covers every
   // pixel whose ray goes down and meets the floor before z = 8; GL must agree away from its edges.
   Object floor = test::camera_space_object(
-      "floor", {{0, 1, 2}, {0, 2, 3}}, {{Vec3(-8, -1, -4), Vec3(8, -1, -4), Vec3(8, -1, 8), Vec3(-8, -1, 8)}});
+      "floor", {{0, 1, 2}, {0, 2, 3}},
+      {{Vec3(-8, -1, -4), Vec3(8, -1, -4), Vec3(8, -1, 8), Vec3(-8, -1, 8)}});
   const Scene scene = test::analytic_scene({floor});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   auto backend = make_osmesa_backend(cs, BackendConfig{.width = kSize, .height = kSize});
@@ -244,7 +249,8 @@ TEST(OsmesaBackend, AgreesWithEmbreeOnABuiltInSceneUpToTies) {
     for (uint32_t o : b.object) hits += o != kNoHit;
     // Where the IDs agree, so do the depths (both are the camera-space z of the same triangle).
     for (size_t p = 0; p < a.pixel_count(); ++p)
-      if (diff.pixels[p] == PixelClass::kEqual) ASSERT_NEAR(a.depth[p], b.depth[p], 2e-6 * b.depth[p]);
+      if (diff.pixels[p] == PixelClass::kEqual)
+        ASSERT_NEAR(a.depth[p], b.depth[p], 2e-6 * b.depth[p]);
   }
   EXPECT_GT(hits, 3 * 160 * 120 / 4);
   EXPECT_LT(ties, 3 * 160 * 120 / 100);
@@ -254,7 +260,8 @@ TEST(OsmesaBackend, RejectsImpossibleSizes) {
   const Scene scene = test::analytic_scene({tilted_quad()});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   EXPECT_THROW((void)make_osmesa_backend(cs, BackendConfig{.width = 0, .height = 8}), InputError);
-  EXPECT_THROW((void)make_osmesa_backend(cs, BackendConfig{.width = 1 << 20, .height = 4}), InputError);
+  EXPECT_THROW((void)make_osmesa_backend(cs, BackendConfig{.width = 1 << 20, .height = 4}),
+               InputError);
 }
 
 }  // namespace

@@ -1,15 +1,14 @@
 // `kinray diff` as a user runs it: exit status, table, JSON summary, report folder, bad flags.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "scenes/scene_file.h"
 #include "tests/renderer/analytic_scenes.h"
@@ -29,7 +28,8 @@ CommandRun kinray_diff(const std::string& args) {
   const fs::path folder = fs::path(::testing::TempDir()) / "kinray_diff_command";
   fs::create_directories(folder);
   const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
-  const std::string command = std::string(KINRAY_BINARY) + " diff " + args + " > " + out + " 2> " + err;
+  const std::string command =
+      std::string(KINRAY_BINARY) + " diff " + args + " > " + out + " 2> " + err;
   const int status = std::system(command.c_str());
   auto read = [](const std::string& path) {
     std::ifstream file(path);
@@ -61,7 +61,8 @@ nlohmann::json read_json(const fs::path& path) {
 std::string fill_rule_scene(const fs::path& folder) {
   const double edge_y = 2.0 * (40 + 0.5 + 1.9 / 1024) / 64 - 1, z = 2;
   const Object sliver = test::camera_space_object(
-      "sliver", {{0, 1, 2}}, {{Vec3(-1.5 * z, edge_y * z, z), Vec3(1.5 * z, edge_y * z, z), Vec3(0, 3 * z, z)}});
+      "sliver", {{0, 1, 2}},
+      {{Vec3(-1.5 * z, edge_y * z, z), Vec3(1.5 * z, edge_y * z, z), Vec3(0, 3 * z, z)}});
   const std::string path = (folder / "fill_rule.json").string();
   save_scene_file(test::analytic_scene({sliver}), path);
   return path;
@@ -72,9 +73,10 @@ TEST(DiffCommand, OsmesaAgainstEmbreeWithinBudgetWritesTableAndJson) {
   GTEST_SKIP() << "built without OSMesa (KINRAY_WITH_OSMESA=OFF)";
 #endif
   const fs::path folder = scratch("within");
-  const CommandRun run = kinray_diff("static-moving:triangles=2000 --backend osmesa --against embree --size 96x64 "
-                              "--frames 3 -q --json " + (folder / "summary.json").string() + " --report " +
-                              (folder / "report").string());
+  const CommandRun run = kinray_diff(
+      "static-moving:triangles=2000 --backend osmesa --against embree --size 96x64 "
+      "--frames 3 -q --json " +
+      (folder / "summary.json").string() + " --report " + (folder / "report").string());
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json json = read_json(folder / "summary.json");
   EXPECT_EQ(json["frames"], 3);
@@ -94,8 +96,9 @@ TEST(DiffCommand, OsmesaAgainstEmbreeWithinBudgetWritesTableAndJson) {
 
 TEST(DiffCommand, DefaultsToTheKineticBackendAgainstEmbree) {
   const fs::path folder = scratch("default");
-  const CommandRun run = kinray_diff("static-moving:triangles=1000 --size 64x48 --frames 3 -q --json " +
-                                     (folder / "summary.json").string());
+  const CommandRun run =
+      kinray_diff("static-moving:triangles=1000 --size 64x48 --frames 3 -q --json " +
+                  (folder / "summary.json").string());
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json json = read_json(folder / "summary.json");
   EXPECT_EQ(json["tested"], "kinetic");
@@ -105,10 +108,12 @@ TEST(DiffCommand, DefaultsToTheKineticBackendAgainstEmbree) {
 }
 
 TEST(DiffCommand, PrintsTheTable) {
-  const CommandRun run = kinray_diff("static-moving:triangles=2000 --backend embree --against embree --size 48x32 --frames 2");
+  const CommandRun run = kinray_diff(
+      "static-moving:triangles=2000 --backend embree --against embree --size 48x32 --frames 2");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("embree against embree"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("total: 2 frames, 3072 pixels, 0 real mismatches"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("total: 2 frames, 3072 pixels, 0 real mismatches"), std::string::npos)
+      << run.out;
   EXPECT_NE(run.out.find("budget: 0 per frame, met"), std::string::npos) << run.out;
 }
 
@@ -118,9 +123,10 @@ TEST(DiffCommand, ExceededBudgetFailsAndLeavesTheEvidence) {
 #endif
   const fs::path folder = scratch("exceeded");
   const std::string scene = fill_rule_scene(folder);
-  const std::string common = scene + " --backend embree --against osmesa --size 64x64 --frames 2 -q";
-  const CommandRun run = kinray_diff(common + " --json " + (folder / "summary.json").string() + " --report " +
-                              (folder / "report").string());
+  const std::string common =
+      scene + " --backend embree --against osmesa --size 64x64 --frames 2 -q";
+  const CommandRun run = kinray_diff(common + " --json " + (folder / "summary.json").string() +
+                                     " --report " + (folder / "report").string());
   EXPECT_EQ(run.status, 1) << run.err;
   EXPECT_NE(run.err.find("exceed the budget"), std::string::npos) << run.err;
   const nlohmann::json json = read_json(folder / "summary.json");
@@ -131,7 +137,8 @@ TEST(DiffCommand, ExceededBudgetFailsAndLeavesTheEvidence) {
   // A budget that covers the row (2% of 4096 = 81 pixels per frame) passes; an explicit 0 fails.
   EXPECT_EQ(kinray_diff(common + " --budget 2%").status, 0);
   EXPECT_EQ(kinray_diff(common + " --budget 0").status, 1);
-  EXPECT_EQ(kinray_diff(common + " --budget 64").status, json["per_frame"][0]["mismatch_real"].get<int>() <= 64 ? 0 : 1);
+  EXPECT_EQ(kinray_diff(common + " --budget 64").status,
+            json["per_frame"][0]["mismatch_real"].get<int>() <= 64 ? 0 : 1);
 }
 
 TEST(DiffCommand, BadFlagsFailWithOneLineAndWriteNothing) {
@@ -139,8 +146,10 @@ TEST(DiffCommand, BadFlagsFailWithOneLineAndWriteNothing) {
   const std::string outputs =
       " --json " + (folder / "summary.json").string() + " --report " + (folder / "report").string();
   for (const char* args :
-       {"static-moving --backend embree --against osmesa --budget -1", "static-moving --backend embree --budget 1.5",
-        "static-moving --backend embree --budget 101%", "static-moving --backend embree --budget lots",
+       {"static-moving --backend embree --against osmesa --budget -1",
+        "static-moving --backend embree --budget 1.5",
+        "static-moving --backend embree --budget 101%",
+        "static-moving --backend embree --budget lots",
         "static-moving --backend embree --against kinetic", "static-moving --backend nonsense",
         "no-such-scene --backend embree", "static-moving --backend embree --size 0x5",
         "static-moving --backend embree --frames 3 --fps 2"}) {
