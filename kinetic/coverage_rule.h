@@ -32,6 +32,11 @@ class CoverageRule {
     for (int e = 0; e < 3; ++e) m_edges[e] = m.edge(e);
     m_orientation = sign_after(m.orientation(), s);
   }
+  /// The same with the sign of O just after s already known (the band keeps it per triangle).
+  CoverageRule(const TriangleMotion& m, double s, int orientation_sign)
+      : m_orientation(orientation_sign), m_s(s) {
+    for (int e = 0; e < 3; ++e) m_edges[e] = m.edge(e);
+  }
   /// Sign of O just after s (0 when O vanishes identically).
   [[nodiscard]] int orientation_sign() const { return m_orientation; }
   [[nodiscard]] const EdgeNormal& edge(int e) const { return m_edges[e]; }

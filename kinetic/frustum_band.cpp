@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "kinetic/certificate_time.h"
 #include "kinetic/check.h"
 #include "kinetic/kinetic_heap.h"
 #include "kinetic/kinetic_sorted_list.h"
@@ -40,10 +41,9 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
       m_row_end(row_end),
       m_width(scene.width()),
       m_columns{scene.width()},
-      m_rows{row_end - row_begin} {
+      m_rows{row_end - row_begin},
+      m_motion(scene) {
   KINRAY_CHECK(row_begin >= 0 && row_begin < row_end && row_end <= scene.height());
-  m_segments.resize(scene.mesh_count());
-  m_depth_source = DepthSource{&m_scene, &m_segments};
   m_meshes.resize(scene.mesh_count());
   m_triangles.resize(scene.triangle_count());
   m_vertices.resize(scene.vertex_count());
@@ -55,7 +55,7 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
   m_pixels.reserve(pixels);
   for (int j = row_begin; j < row_end; ++j)
     for (int i = 0; i < m_width; ++i)
-      m_pixels.emplace_back(&m_depth_source, i, j, m_queue,
+      m_pixels.emplace_back(&m_motion, i, j, m_queue,
                             uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
 }
 
@@ -66,8 +66,8 @@ template <class Sort>
 typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t tri) const {
   TriangleNow tn;
   const uint32_t m = m_scene.mesh_of_triangle(tri);
-  tn.segment = m_segments[m];
-  tn.motion = m_scene.triangle_motion(tri, tn.segment);
+  tn.segment = m_motion.segment(m);
+  tn.motion = m_motion.triangle(tri);
   tn.s = m_now - tn.segment.origin;
   tn.moving = !m_scene.mesh(m).is_static;
   return tn;
@@ -75,10 +75,8 @@ typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t
 
 template <class Sort>
 PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const {
-  const uint32_t m = m_scene.mesh_of_vertex(v);
-  const MeshSegment& seg = m_segments[m];
-  s = m_now - seg.origin;
-  return m_scene.vertex_motion(m, v - m_scene.vertex_begin(m), seg);
+  s = m_now - m_motion.segment(m_scene.mesh_of_vertex(v)).origin;
+  return m_motion.vertex(v);
 }
 
 template <class Sort>
@@ -158,12 +156,7 @@ template <class Sort>
 double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const {
   if (sign == 0) return f.is_zero() ? kInf : m_now;
   if (f.is_zero()) return sign > 0 ? kInf : m_now;  // a zero edge function reads as positive
-  OrderCertificate c;
-  c.f = sign > 0 ? f : -f;
-  c.origin = seg.origin;
-  c.end = seg.end;
-  const detail::Schedule s = detail::schedule_certificate(c, m_now, 0, 0);
-  return s.failure ? s.time : kInf;
+  return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_now, seg.end);
 }
 
 template <class Sort>
@@ -204,7 +197,7 @@ void FrustumBand<Sort>::schedule_vertex(uint32_t v) {
   SlotTracker& st = m_vertices[v];
   double s = 0;
   const PointMotion p = vertex_now(v, s);
-  const MeshSegment& seg = m_segments[m_scene.mesh_of_vertex(v)];
+  const MeshSegment& seg = m_motion.segment(m_scene.mesh_of_vertex(v));
   const auto [lo, hi] = m_rows.watched(st.slot);
   double t = failure_time(st.sign_lo, row_side(p, m_scene.row_y(m_row_begin + lo)), seg);
   if (hi != lo) t = std::min(t, failure_time(st.sign_hi, row_side(p, m_scene.row_y(m_row_begin + hi)), seg));
@@ -308,7 +301,8 @@ uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int
   for (SlotTracker& b : r.boundary) locate_boundary(b, tn.motion.edge(b.edge), row, tn.s);
   ++m_stats.records_born;
   if (tn.moving) m_live_boundaries += 2;
-  const CoverageRule rule(tn.motion, tn.s);
+  const CoverageRule rule = first ? CoverageRule(tn.motion, tn.s)
+                                  : CoverageRule(tn.motion, tn.s, ts.orientation);
   if (first) {
     ts.orientation = int8_t(rule.orientation_sign());
     if (tn.moving) ++m_live_orientations;
@@ -387,7 +381,9 @@ void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool
 template <class Sort>
 void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
   RowRecord& r = m_records[rec];
-  const CoverageRule rule(tn.motion, tn.s);
+  // The triangle's orientation sign is kept up to date by its orientation events (a change at
+  // this very instant is still pending and rebuilds the record when processed).
+  const CoverageRule rule(tn.motion, tn.s, m_triangles[r.triangle].orientation);
   const bool covered = rule.covers(m_scene.column_x(column), m_scene.row_y(r.row));
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
@@ -498,7 +494,7 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m) {
   MeshState& ms = m_meshes[m];
   if (ms.present) return;
   ms.present = true;
-  m_segments[m] = m_scene.segment_at(m, m_now);
+  m_motion.set_segment(m, m_scene.segment_at(m, m_now));
   const uint32_t vb = m_scene.vertex_begin(m), ve = m_scene.vertex_end(m);
   std::vector<RowPattern> patterns(ve - vb);
   for (uint32_t v = vb; v < ve; ++v) {
@@ -555,7 +551,7 @@ void FrustumBand<Sort>::start(double t0) {
   m_now = t0;
   for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
     const GridMesh& mesh = m_scene.mesh(m);
-    m_segments[m] = m_scene.segment_at(m, t0);
+    m_motion.set_segment(m, m_scene.segment_at(m, t0));
     if (mesh.present(t0)) {
       insert_mesh(m);
     } else if (mesh.appear > t0 && mesh.disappear > mesh.appear) {
@@ -636,7 +632,7 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
   }
   for (uint32_t m : meshes) {
     m_meshes[m].flightplan = kNoEvent;
-    m_segments[m] = m_scene.segment_at(m, m_now);
+    m_motion.set_segment(m, m_scene.segment_at(m, m_now));
     schedule_flightplan(m);
     if (m_config.counts_meshes) ++m_stats.events.flightplan;
   }
@@ -809,13 +805,14 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
     if (m_meshes[m].present != mesh.present(t)) report("mesh presence differs from its interval");
     if (!m_meshes[m].present) continue;
     const MeshSegment seg = m_scene.segment_at(m, t);
-    if (seg.index != m_segments[m].index) report("mesh on the wrong flightplan segment");
+    const MeshSegment& current = m_motion.segment(m);
+    if (seg.index != current.index) report("mesh on the wrong flightplan segment");
     const uint32_t vb = m_scene.vertex_begin(m), ve = m_scene.vertex_end(m);
     std::vector<RowPattern> patterns(ve - vb);
     for (uint32_t v = vb; v < ve; ++v) {
       if (m_scene.triangles_of_vertex(v).empty()) continue;
-      const PointMotion p = m_scene.vertex_motion(m, v - vb, m_segments[m]);
-      const double s = t - m_segments[m].origin;
+      const PointMotion p = m_scene.vertex_motion(m, v - vb, current);
+      const double s = t - current.origin;
       patterns[v - vb] = locate_vertex(p, s);
       if (mesh.is_static) continue;
       const SlotTracker& st = m_vertices[v];
@@ -826,9 +823,8 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
         report("vertex " + std::to_string(v) + " has a wrong row slot");
     }
     for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
-      const MeshSegment& ts_seg = m_segments[m];
-      const TriangleMotion motion = m_scene.triangle_motion(tri, ts_seg);
-      const double s = t - ts_seg.origin;
+      const TriangleMotion motion = m_scene.triangle_motion(tri, current);
+      const double s = t - current.origin;
       const CoverageRule rule(motion, s);
       // The rows the triangle meets, from the vertex patterns.
       std::vector<int> rows;
@@ -909,7 +905,7 @@ GridStats FrustumBand<Sort>::stats() const {
                    m_free_records.capacity() * sizeof(uint32_t) +
                    m_triangles.capacity() * sizeof(TriangleState) +
                    m_vertices.capacity() * sizeof(SlotTracker) + m_meshes.capacity() * sizeof(MeshState) +
-                   m_segments.capacity() * sizeof(MeshSegment);
+                   m_motion.memory_bytes();
   return s;
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetic/band_motion.h"
 #include "kinetic/coverage_rule.h"
 #include "kinetic/event_queue.h"
 #include "kinetic/grid_scene.h"
@@ -80,7 +81,7 @@ class FrustumBand {
 
  private:
   struct PixelCell {
-    PixelCell(const DepthSource* source, int column, int row, EventQueue& queue, uint32_t owner,
+    PixelCell(const BandMotion* source, int column, int row, EventQueue& queue, uint32_t owner,
               const KineticSortConfig& config)
         : keys(source, column, row), order(keys, queue, owner, config) {}
     PixelDepthKeys keys;
@@ -165,8 +166,7 @@ class FrustumBand {
   SlotCircle m_columns, m_rows;
   EventQueue m_queue;
   double m_now = 0;
-  std::vector<MeshSegment> m_segments;
-  DepthSource m_depth_source;
+  BandMotion m_motion;  ///< the current segment of every mesh and its vertex motions
   std::vector<MeshState> m_meshes;
   std::vector<TriangleState> m_triangles;
   std::vector<SlotTracker> m_vertices;  ///< by global vertex id; used for moving meshes

@@ -76,6 +76,27 @@ struct PixelPolynomials {
 };
 [[nodiscard]] PixelPolynomials pixel_polynomials(const TriangleMotion& m, double x, double y);
 
+/// N and D of one triangle along the ray (x, y, 1), in the local time of its motion.
+struct DepthPolynomials {
+  Polynomial numerator;    ///< det(v0, v1, v2) = (v0 x v1) . v2, cubic
+  Polynomial denominator;  ///< ((v1 - v0) x (v2 - v0)) . d, quadratic
+};
+[[nodiscard]] inline DepthPolynomials depth_polynomials(const TriangleMotion& m, double x,
+                                                        double y) {
+  const EdgeNormal n01 = edge_normal(m.v[0], m.v[1]);
+  const PointMotion& v2 = m.v[2];
+  DepthPolynomials p;
+  p.numerator.degree = 3;
+  p.numerator.c[0] = n01.c0.dot(v2.a);
+  p.numerator.c[1] = n01.c0.dot(v2.b) + n01.c1.dot(v2.a);
+  p.numerator.c[2] = n01.c1.dot(v2.b) + n01.c2.dot(v2.a);
+  p.numerator.c[3] = n01.c2.dot(v2.b);
+  const PointMotion e1{m.v[1].a - m.v[0].a, m.v[1].b - m.v[0].b};
+  const PointMotion e2{m.v[2].a - m.v[0].a, m.v[2].b - m.v[0].b};
+  p.denominator = edge_normal(e1, e2).along(x, y);
+  return p;
+}
+
 /// Camera-space depth of the ray d = (x, y, 1) on the plane of (p0, p1, p2), exactly as the
 /// Embree backend reports it: det(p0, p1, p2) / ((p1 - p0) x (p2 - p0)) . d, in double.
 [[nodiscard]] inline double plane_depth(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,

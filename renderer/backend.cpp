@@ -1,6 +1,7 @@
 #include "renderer/backend.h"
 
 #include "renderer/embree_backend.h"
+#include "renderer/kinetic_backend.h"
 #ifdef KINRAY_WITH_OSMESA
 #include "renderer/osmesa_backend.h"
 #endif
@@ -18,6 +19,7 @@ struct BackendEntry {
 
 // One line per backend; each factory validates its own part of the config.
 const BackendEntry kBackends[] = {
+    {"kinetic", &make_kinetic_backend},
     {"embree", &make_embree_backend},
 #ifdef KINRAY_WITH_OSMESA
     {"osmesa", &make_osmesa_backend},

@@ -229,7 +229,8 @@ TEST_P(GridSorts, ObjectsAppearAndDisappear) {
   EXPECT_EQ(stats.events.remove, 1u);
   for (int j = 0; j < scene.height; ++j)
     for (int i = 0; i < scene.width; ++i) {
-      if (grid.front(i, j)) EXPECT_EQ(grid.front(i, j)->mesh, 0u);
+      const auto hit = grid.front(i, j);
+      EXPECT_TRUE(!hit || hit->mesh == 0u) << i << ", " << j;
     }
 }
 

@@ -1,0 +1,26 @@
+#pragma once
+// Failure times of the kinetic grid's coverage certificates. Most of them are quadratics (an edge
+// function along one pixel-centre ray), and a boundary that moves across the image makes its
+// certificates fail inside almost every segment, so the general root isolation of
+// root_finding.h (Bernstein subdivision) would run its slow path for half of them. A quadratic's
+// roots are known in closed form: the stable formula gives the crossing to within a few ulps, and
+// a short gallop and bisection on Horner's values (exactly as sign_after evaluates them) turns it
+// into the time the contract of first_failure asks for. Anything unusual falls back to
+// first_failure / schedule_certificate.
+#include <optional>
+
+#include "kinetic/polynomial.h"
+
+namespace kinray {
+
+/// first_failure(f, s_now, s_end) (root_finding.h), with a closed-form path for degree 2.
+[[nodiscard]] std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now,
+                                                             double s_end);
+
+/// Absolute time of the first failure of the certificate f(t - origin) > 0 after `now`, searched
+/// up to `end` (the next flightplan update): `now` when it is already broken just after now, +inf
+/// when it holds until end. The returned t satisfies sign_after(f, t - origin) < 0 with the
+/// subtraction in double, as the event handler will evaluate it, so the event sees the change.
+[[nodiscard]] double certificate_failure_time(const Polynomial& f, double origin, double now, double end);
+
+}  // namespace kinray

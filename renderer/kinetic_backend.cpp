@@ -1,0 +1,137 @@
+#include "renderer/kinetic_backend.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "kinetic/frustum_grid.h"
+#include "scenes/error.h"
+
+namespace kinray {
+
+namespace {
+
+GridInput grid_input(const CameraSpaceScene& scene, const BackendConfig& config) {
+  GridInput input;
+  input.rays = PixelRays{config.width, config.height};
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const CameraSpaceObject& cs = scene.objects[o];
+    GridMesh mesh;
+    mesh.id = cs.object;
+    mesh.key_times = cs.key_times;
+    mesh.positions = cs.positions;
+    mesh.vertex_count = cs.vertex_count;
+    mesh.triangles = scene.triangles(o);
+    mesh.appear = cs.appear;
+    mesh.disappear = cs.disappear;
+    mesh.is_static = cs.is_static;
+    input.meshes.push_back(mesh);
+  }
+  return input;
+}
+
+class KineticBackend final : public Backend {
+ public:
+  KineticBackend(const CameraSpaceScene& scene, const BackendConfig& config)
+      : m_scene(scene), m_config(config) {
+    if (config.width < 1 || config.height < 1) throw InputError("--size", "the image must be at least 1x1");
+    try {
+      m_grid_config.sort = parse_depth_sort(config.sort);
+    } catch (const std::invalid_argument&) {
+      throw InputError("--sort", "unknown depth sort '" + config.sort +
+                                     "' (available: list, tournament, heap)");
+    }
+    m_grid_config.threads = config.threads;
+    m_grid_config.audit = config.audit;
+  }
+
+  [[nodiscard]] std::string name() const override { return "kinetic"; }
+
+  void render(double t, Frame& frame) override {
+    if (frame.width != m_config.width || frame.height != m_config.height || frame.pixel_count() == 0)
+      frame.resize(m_config.width, m_config.height);
+    frame.time = t;
+    const auto start = std::chrono::steady_clock::now();
+    const uint64_t events_before = m_grid ? m_grid->stats().events.total() : 0;
+    if (!m_grid) {
+      m_grid = std::make_unique<FrustumGrid>(grid_input(m_scene, m_config), t, m_grid_config);
+    } else {
+      m_grid->advance_to(t);
+    }
+    const auto advanced = std::chrono::steady_clock::now();
+    m_grid->read_out(frame.object, frame.prim, frame.depth);
+    const auto done = std::chrono::steady_clock::now();
+    m_events_s.push_back(std::chrono::duration<double>(advanced - start).count());
+    m_readout_s.push_back(std::chrono::duration<double>(done - advanced).count());
+    m_events.push_back(m_grid->stats().events.total() - events_before);
+  }
+
+  void write_stats(nlohmann::json& stats) const override {
+    if (!m_grid) return;
+    const GridStats s = m_grid->stats();
+    const GridTimings& timings = m_grid->timings();
+    stats["events"] = {
+        {"total", s.events.total()},       {"boundary", s.events.boundary},
+        {"vertex_row", s.events.vertex_row}, {"orientation", s.events.orientation},
+        {"swap", s.events.swap},           {"flightplan", s.events.flightplan},
+        {"insert", s.events.insert},       {"delete", s.events.remove},
+    };
+    stats["certificates_live_max"] = s.certificates_live_max;
+    stats["memory_bytes_peak"] = m_grid->memory_bytes_peak();
+    const double events = double(s.events.total());
+    const double triangles = double(std::max<uint64_t>(s.triangles_present, 1));
+    stats["quality"] = {
+        {"compactness", s.certificates_live_max},
+        {"responsiveness", events > 0 ? double(s.certificates_computed) / events : 0.0},
+        {"locality", double(s.certificates_live) / triangles},
+        {"efficiency", s.events_external > 0 ? double(s.events_internal) / double(s.events_external)
+                                             : double(s.events_internal)},
+    };
+    nlohmann::json& time = stats["time_s"];
+    time["init"] = timings.init;
+    time["events"] = timings.events;
+    time["readout"] = timings.readout;
+    stats["kinetic"] = {
+        {"sort", depth_sort_name(m_grid_config.sort)},
+        {"bands", m_grid->band_count()},
+        {"audit", m_grid_config.audit},
+        {"events_external", s.events_external},
+        {"events_internal", s.events_internal},
+        {"spurious", s.spurious},
+        {"renewals", s.renewals},
+        {"coverage_changes", s.coverage_changes},
+        {"records", s.records},
+        {"records_born", s.records_born},
+        {"records_died", s.records_died},
+        {"reties", s.reties},
+        {"row_rebuilds", s.row_rebuilds},
+        {"degenerate_rebuilds", s.degenerate_rebuilds},
+        {"certificates_live", s.certificates_live},
+        {"certificates_computed", s.certificates_computed},
+        {"triangles_present", s.triangles_present},
+        {"pixel_entries", s.pixel_entries},
+        {"memory_bytes", s.memory_bytes},
+        {"pixel_memory_bytes", s.pixel_memory_bytes},
+        {"memory_per_pixel_entry",
+         s.pixel_entries > 0 ? double(s.pixel_memory_bytes) / double(s.pixel_entries) : 0.0},
+        {"per_frame", {{"events_s", m_events_s}, {"readout_s", m_readout_s}, {"events", m_events}}},
+    };
+  }
+
+ private:
+  const CameraSpaceScene& m_scene;
+  BackendConfig m_config;
+  FrustumGridConfig m_grid_config;
+  std::unique_ptr<FrustumGrid> m_grid;
+  std::vector<double> m_events_s, m_readout_s;
+  std::vector<uint64_t> m_events;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_kinetic_backend(const CameraSpaceScene& scene, const BackendConfig& config) {
+  return std::make_unique<KineticBackend>(scene, config);
+}
+
+}  // namespace kinray

@@ -1,0 +1,22 @@
+#pragma once
+// The kinetic backend: the kinetic grid of frusta (kinetic/frustum_grid.h) over the scene's
+// camera-space flightplans. The grid is built by scan conversion at the first frame time; each
+// later frame processes the events up to its time and reads the front triangle of every pixel
+// out. Nothing is rasterized or traced per frame. The ID and depth buffers are written exactly as
+// the Embree backend writes them (object index, triangle index within the object, the double
+// plane depth of the hit triangle along the pixel-centre ray, as a float), and the colour comes
+// from the shared shade_frame, so frames agree with Embree's up to ties.
+//
+// BackendConfig: width, height, threads, sort (list | tournament | heap), audit.
+#include <memory>
+
+#include "renderer/backend.h"
+
+namespace kinray {
+
+/// Creates the kinetic backend for `scene` (which must outlive it). Throws InputError naming
+/// --sort for an unknown depth sort. Frame times must not decrease between render calls.
+[[nodiscard]] std::unique_ptr<Backend> make_kinetic_backend(const CameraSpaceScene& scene,
+                                                            const BackendConfig& config);
+
+}  // namespace kinray
