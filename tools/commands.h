@@ -9,5 +9,6 @@ void register_render_command(CLI::App& app);  // tools/render_command.cpp
 void register_info_command(CLI::App& app);    // tools/info_command.cpp
 void register_diff_command(CLI::App& app);    // tools/diff_command.cpp
 void register_bench_command(CLI::App& app);   // tools/bench_command.cpp
+void register_regress_command(CLI::App& app); // tools/regress_command.cpp
 
 }  // namespace kinray

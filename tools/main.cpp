@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   kinray::register_info_command(app);
   kinray::register_diff_command(app);
   kinray::register_bench_command(app);
+  kinray::register_regress_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
