@@ -9,12 +9,11 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "kinetic/parallel.h"
 #include "scenes/error.h"
@@ -47,13 +46,20 @@ class FlushDenormals {
 
 const char* error_name(RTCError code) {
   switch (code) {
-    case RTC_ERROR_NONE: return "no error";
-    case RTC_ERROR_UNKNOWN: return "unknown error";
-    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
-    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
-    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
-    case RTC_ERROR_CANCELLED: return "cancelled";
+    case RTC_ERROR_NONE:
+      return "no error";
+    case RTC_ERROR_UNKNOWN:
+      return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
   }
   return "error";
 }
@@ -92,7 +98,8 @@ class Device {
   static void on_error(void* user, RTCError code, const char* message) {
     auto* self = static_cast<Device*>(user);
     std::lock_guard lock(self->m_mutex);
-    self->m_last_error = std::string(error_name(code)) + (message ? std::string(" (") + message + ")" : "");
+    self->m_last_error =
+        std::string(error_name(code)) + (message ? std::string(" (") + message + ")" : "");
     self->m_errors.fetch_add(1);
   }
 
@@ -110,7 +117,8 @@ template <>
 struct Packet<4> {
   using RayHit = RTCRayHit4;
   static constexpr int kTileWidth = 2, kTileHeight = 2;
-  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context, RayHit* rayhit) {
+  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
+                        RayHit* rayhit) {
     rtcIntersect4(valid, scene, context, rayhit);
   }
 };
@@ -118,7 +126,8 @@ template <>
 struct Packet<8> {
   using RayHit = RTCRayHit8;
   static constexpr int kTileWidth = 4, kTileHeight = 2;
-  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context, RayHit* rayhit) {
+  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
+                        RayHit* rayhit) {
     rtcIntersect8(valid, scene, context, rayhit);
   }
 };
@@ -126,7 +135,8 @@ template <>
 struct Packet<16> {
   using RayHit = RTCRayHit16;
   static constexpr int kTileWidth = 4, kTileHeight = 4;
-  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context, RayHit* rayhit) {
+  static void intersect(const int* valid, RTCScene scene, RTCIntersectContext* context,
+                        RayHit* rayhit) {
     rtcIntersect16(valid, scene, context, rayhit);
   }
 };
@@ -134,26 +144,31 @@ struct Packet<16> {
 /// One Scene object as an Embree triangle geometry whose geometry id is the object index.
 struct Mesh {
   RTCGeometry geometry = nullptr;
-  float* vertices = nullptr;         ///< Embree-owned float3 buffer, padded for 16-byte loads
-  bool moving = false;               ///< camera-space positions change over time
-  bool enabled = true;               ///< refit mode: current rtcEnable/DisableGeometry state
-  std::vector<Vec3> interpolated;    ///< moving objects: camera-space positions at the frame time
-  std::span<const Vec3> positions;   ///< the double positions Embree was given this frame
+  float* vertices = nullptr;        ///< Embree-owned float3 buffer, padded for 16-byte loads
+  bool moving = false;              ///< camera-space positions change over time
+  bool enabled = true;              ///< refit mode: current rtcEnable/DisableGeometry state
+  std::vector<Vec3> interpolated;   ///< moving objects: camera-space positions at the frame time
+  std::span<const Vec3> positions;  ///< the double positions Embree was given this frame
 };
 
 class EmbreeBackend final : public Backend {
  public:
   EmbreeBackend(const CameraSpaceScene& scene, const BackendConfig& config)
-      : m_scene(scene), m_config(config), m_threads(resolve_threads(config.threads)),
-        m_device(Device::get(config.threads)), m_refit(config.embree_mode == "refit") {
+      : m_scene(scene),
+        m_config(config),
+        m_threads(resolve_threads(config.threads)),
+        m_device(Device::get(config.threads)),
+        m_refit(config.embree_mode == "refit") {
     const RTCDevice device = m_device.handle();
     const uint64_t mark = m_device.error_count();
     if (m_config.embree_packet > 1) {
-      const RTCDeviceProperty property = m_config.embree_packet == 4   ? RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED
-                                         : m_config.embree_packet == 8 ? RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED
-                                                                       : RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED;
+      const RTCDeviceProperty property =
+          m_config.embree_packet == 4   ? RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED
+          : m_config.embree_packet == 8 ? RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED
+                                        : RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED;
       if (!rtcGetDeviceProperty(device, property))
-        throw InputError("--packet", "this Embree build has no " + std::to_string(m_config.embree_packet) +
+        throw InputError("--packet", "this Embree build has no " +
+                                         std::to_string(m_config.embree_packet) +
                                          "-wide ray packets");
     }
     m_meshes.resize(scene.objects.size());
@@ -166,16 +181,17 @@ class EmbreeBackend final : public Backend {
       if (triangles.empty() || cs.vertex_count == 0) continue;
       mesh.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
       // Index buffer shared with the scene model (Triangle is three packed uint32).
-      rtcSetSharedGeometryBuffer(mesh.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, triangles.data(), 0,
-                                 sizeof(Triangle), triangles.size());
+      rtcSetSharedGeometryBuffer(mesh.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                 triangles.data(), 0, sizeof(Triangle), triangles.size());
       // Embree allocates new buffers with the tail padding its 16-byte vector loads need.
-      mesh.vertices = static_cast<float*>(rtcSetNewGeometryBuffer(mesh.geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                                  RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                                  cs.vertex_count));
+      mesh.vertices = static_cast<float*>(
+          rtcSetNewGeometryBuffer(mesh.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                  3 * sizeof(float), cs.vertex_count));
       if (!mesh.vertices) m_device.check(mark, "vertex buffer allocation");
       convert(cs.key(0), mesh.vertices);
       if (m_refit)
-        rtcSetGeometryBuildQuality(mesh.geometry, mesh.moving ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+        rtcSetGeometryBuildQuality(mesh.geometry,
+                                   mesh.moving ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
       else
         rtcSetGeometryBuildQuality(mesh.geometry, kRebuildQuality);
       rtcCommitGeometry(mesh.geometry);
@@ -187,7 +203,8 @@ class EmbreeBackend final : public Backend {
       rtcSetSceneFlags(m_rtc_scene, RTCSceneFlags(RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST));
       rtcSetSceneBuildQuality(m_rtc_scene, RTC_BUILD_QUALITY_LOW);
       for (size_t o = 0; o < m_meshes.size(); ++o)
-        if (m_meshes[o].geometry) rtcAttachGeometryByID(m_rtc_scene, m_meshes[o].geometry, unsigned(o));
+        if (m_meshes[o].geometry)
+          rtcAttachGeometryByID(m_rtc_scene, m_meshes[o].geometry, unsigned(o));
     }
     m_device.check(mark, "scene set-up");
   }
@@ -202,7 +219,8 @@ class EmbreeBackend final : public Backend {
 
   void render(double t, Frame& frame) override {
     const FlushDenormals flush_denormals;
-    if (frame.width != m_config.width || frame.height != m_config.height || frame.pixel_count() == 0)
+    if (frame.width != m_config.width || frame.height != m_config.height ||
+        frame.pixel_count() == 0)
       frame.resize(m_config.width, m_config.height);
     frame.time = t;
 
@@ -213,10 +231,18 @@ class EmbreeBackend final : public Backend {
     start = Clock::now();
     const uint64_t mark = m_device.error_count();
     switch (m_config.embree_packet) {
-      case 4: trace_packets<4>(frame); break;
-      case 8: trace_packets<8>(frame); break;
-      case 16: trace_packets<16>(frame); break;
-      default: trace_single(frame); break;
+      case 4:
+        trace_packets<4>(frame);
+        break;
+      case 8:
+        trace_packets<8>(frame);
+        break;
+      case 16:
+        trace_packets<16>(frame);
+        break;
+      default:
+        trace_single(frame);
+        break;
     }
     m_device.check(mark, "tracing");
     m_trace_s.push_back(seconds_since(start));
@@ -234,9 +260,12 @@ class EmbreeBackend final : public Backend {
     };
     const RTCDevice device = m_device.handle();
     std::vector<int> packets;
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) packets.push_back(4);
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) packets.push_back(8);
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) packets.push_back(16);
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED))
+      packets.push_back(4);
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED))
+      packets.push_back(8);
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED))
+      packets.push_back(16);
     stats["embree"] = {
         {"version", rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION)},
         {"mode", m_refit ? "refit" : "rebuild"},
@@ -379,7 +408,8 @@ class EmbreeBackend final : public Backend {
         for (int k = 0; k < N; ++k) {
           if (!valid[k]) continue;
           const int i = i0 + k % P::kTileWidth, j = j0 + k / P::kTileWidth;
-          store(frame, frame.index(i, j), rayhit.hit.geomID[k], rayhit.hit.primID[k], rayhit.ray.tfar[k]);
+          store(frame, frame.index(i, j), rayhit.hit.geomID[k], rayhit.hit.primID[k],
+                rayhit.ray.tfar[k]);
         }
       }
     });
@@ -431,12 +461,14 @@ class EmbreeBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_embree_backend(const CameraSpaceScene& scene, const BackendConfig& config) {
+std::unique_ptr<Backend> make_embree_backend(const CameraSpaceScene& scene,
+                                             const BackendConfig& config) {
   if (config.embree_mode != "refit" && config.embree_mode != "rebuild")
     throw InputError("--embree-mode", "must be rebuild or refit, got '" + config.embree_mode + "'");
   if (config.embree_packet != 1 && config.embree_packet != 4 && config.embree_packet != 8 &&
       config.embree_packet != 16)
-    throw InputError("--packet", "must be 1, 4, 8 or 16, got " + std::to_string(config.embree_packet));
+    throw InputError("--packet",
+                     "must be 1, 4, 8 or 16, got " + std::to_string(config.embree_packet));
   if (config.width <= 0 || config.height <= 0)
     throw InputError("--size", "width and height must be positive");
   if (config.threads < 0) throw InputError("--threads", "must be 0 (all cores) or more");

@@ -26,8 +26,8 @@ bool parse_number(const std::string& text, double& value) {
 
 void check_count(size_t count, const char* flag) {
   if (count > kMaxFrameCount)
-    throw InputError(flag, "asks for " + std::to_string(count) + " frames, more than the limit of " +
-                               std::to_string(kMaxFrameCount));
+    throw InputError(flag, "asks for " + std::to_string(count) +
+                               " frames, more than the limit of " + std::to_string(kMaxFrameCount));
 }
 
 }  // namespace
@@ -46,24 +46,29 @@ std::pair<double, double> parse_time_range(const std::string& text) {
 }
 
 void validate(const FrameScheduleParams& params) {
-  const int given = int(params.frames.has_value()) + int(params.fps.has_value()) + int(params.inbetweens.has_value());
+  const int given = int(params.frames.has_value()) + int(params.fps.has_value()) +
+                    int(params.inbetweens.has_value());
   if (given > 1) throw InputError("--frames/--fps/--inbetweens", "give at most one of them");
   if (params.frames && *params.frames < 1)
     throw InputError("--frames", "must be at least 1, got " + std::to_string(*params.frames));
   if (params.fps && !(std::isfinite(*params.fps) && *params.fps > 0))
     throw InputError("--fps", "must be a finite number > 0, got " + format(*params.fps));
   if (params.inbetweens && *params.inbetweens < 1)
-    throw InputError("--inbetweens", "must be at least 1, got " + std::to_string(*params.inbetweens));
+    throw InputError("--inbetweens",
+                     "must be at least 1, got " + std::to_string(*params.inbetweens));
   if (params.time) {
     const auto [a, b] = *params.time;
-    if (!std::isfinite(a) || !std::isfinite(b)) throw InputError("--time", "A and B must be finite numbers");
-    if (!(a < b)) throw InputError("--time", "A must be less than B, got " + format(a) + ":" + format(b));
+    if (!std::isfinite(a) || !std::isfinite(b))
+      throw InputError("--time", "A and B must be finite numbers");
+    if (!(a < b))
+      throw InputError("--time", "A must be less than B, got " + format(a) + ":" + format(b));
   }
   if (params.frames) check_count(size_t(*params.frames), "--frames");
   if (params.inbetweens) check_count(size_t(*params.inbetweens), "--inbetweens");
 }
 
-std::vector<double> frame_times(std::span<const double> key_times, const FrameScheduleParams& params) {
+std::vector<double> frame_times(std::span<const double> key_times,
+                                const FrameScheduleParams& params) {
   validate(params);
   if (key_times.empty()) throw InputError("", "the scene has no shot to render");
   const double shot_begin = key_times.front(), shot_end = key_times.back();
@@ -71,8 +76,9 @@ std::vector<double> frame_times(std::span<const double> key_times, const FrameSc
   if (params.time) {
     std::tie(begin, end) = *params.time;
     if (begin < shot_begin || end > shot_end)
-      throw InputError("--time", "[" + format(begin) + ", " + format(end) + "] is not inside the shot [" +
-                                     format(shot_begin) + ", " + format(shot_end) + "]");
+      throw InputError("--time", "[" + format(begin) + ", " + format(end) +
+                                     "] is not inside the shot [" + format(shot_begin) + ", " +
+                                     format(shot_end) + "]");
   }
   std::vector<double> grid = {begin};
   for (double t : key_times)
@@ -90,8 +96,8 @@ std::vector<double> frame_times(std::span<const double> key_times, const FrameSc
       if (t >= begin && t <= end) times.push_back(t);
     }
     if (times.empty())
-      throw InputError("--fps", "no multiple of 1/" + format(fps) + " s lies in the shot [" + format(begin) +
-                                    ", " + format(end) + "]");
+      throw InputError("--fps", "no multiple of 1/" + format(fps) + " s lies in the shot [" +
+                                    format(begin) + ", " + format(end) + "]");
     check_count(times.size(), "--fps");
   } else if (params.inbetweens) {
     const int k_per_interval = *params.inbetweens;
@@ -103,7 +109,8 @@ std::vector<double> frame_times(std::span<const double> key_times, const FrameSc
   } else {
     const int n = params.frames.value_or(kDefaultFrameCount);
     times.resize(size_t(n));
-    for (int m = 0; m < n; ++m) times[size_t(m)] = n == 1 ? begin : begin + (end - begin) * m / (n - 1);
+    for (int m = 0; m < n; ++m)
+      times[size_t(m)] = n == 1 ? begin : begin + (end - begin) * m / (n - 1);
     if (n > 1) times.back() = end;
   }
   return times;

@@ -15,9 +15,10 @@ inline constexpr size_t kMaxFrameCount = 1'000'000;
 
 /// One field per flag; at most one of frames, fps and inbetweens may be set (none: 24 frames).
 struct FrameScheduleParams {
-  std::optional<int> frames;      ///< --frames N: N frames evenly over the shot, both ends included
-  std::optional<double> fps;      ///< --fps F: every multiple of 1/F inside the shot
-  std::optional<int> inbetweens;  ///< --inbetweens K: K frames per keyframe interval, plus the last key
+  std::optional<int> frames;  ///< --frames N: N frames evenly over the shot, both ends included
+  std::optional<double> fps;  ///< --fps F: every multiple of 1/F inside the shot
+  std::optional<int>
+      inbetweens;  ///< --inbetweens K: K frames per keyframe interval, plus the last key
   std::optional<std::pair<double, double>> time;  ///< --time A:B: restricts the shot to [A, B]
 };
 
@@ -32,6 +33,7 @@ void validate(const FrameScheduleParams& params);
 /// = the shot's ends, as Scene::key_times()). --time must lie inside the shot; the grid is cut to
 /// [A, B] (keys strictly inside, plus A and B). Throws InputError naming the flag at fault,
 /// including when --fps finds no frame or a schedule exceeds kMaxFrameCount frames.
-[[nodiscard]] std::vector<double> frame_times(std::span<const double> key_times, const FrameScheduleParams& params);
+[[nodiscard]] std::vector<double> frame_times(std::span<const double> key_times,
+                                              const FrameScheduleParams& params);
 
 }  // namespace kinray

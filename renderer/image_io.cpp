@@ -9,11 +9,10 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "scenes/error.h"
 
@@ -36,7 +35,8 @@ const std::array<float, 255>& srgb_thresholds() {
 }
 
 void resize_if_needed(Frame& frame, int width, int height) {
-  if (frame.width != width || frame.height != height || frame.pixel_count() != size_t(width) * size_t(height))
+  if (frame.width != width || frame.height != height ||
+      frame.pixel_count() != size_t(width) * size_t(height))
     frame.resize(width, height);
 }
 
@@ -61,7 +61,9 @@ uint8_t linear_to_srgb8(float linear) {
   return uint8_t(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
 }
 
-float srgb8_to_linear(uint8_t code) { return srgb_decode(code / 255.0); }
+float srgb8_to_linear(uint8_t code) {
+  return srgb_decode(code / 255.0);
+}
 
 cv::Mat color_image(const Frame& frame) {
   cv::Mat image(frame.height, frame.width, CV_8UC3);
@@ -87,8 +89,9 @@ cv::Mat id_image(const Frame& frame) {
         continue;
       }
       if (object >= 0xFFFFu)
-        throw std::runtime_error("the ID buffer holds at most 65534 objects, pixel (" + std::to_string(i) + ", " +
-                                 std::to_string(j) + ") shows object " + std::to_string(object));
+        throw std::runtime_error("the ID buffer holds at most 65534 objects, pixel (" +
+                                 std::to_string(i) + ", " + std::to_string(j) + ") shows object " +
+                                 std::to_string(object));
       const uint32_t prim = frame.prim[p];
       row[i] = cv::Vec3w(uint16_t(prim & 0xFFFFu), uint16_t(prim >> 16), uint16_t(object + 1));
     }
@@ -108,7 +111,8 @@ cv::Mat depth_image(const Frame& frame) {
 void write_file_atomically(const std::string& path, std::string_view bytes) {
   const std::filesystem::path target(path);
   const std::filesystem::path temporary =
-      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+      target.parent_path() /
+      ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
   if (!file) throw InputError(path, std::string("cannot write: ") + std::strerror(errno));
   int error_number = 0;
@@ -137,12 +141,19 @@ void write_image(const std::string& path, const cv::Mat& image) {
     throw InputError(path, "cannot encode the image (" + std::string(e.err) + ")");
   }
   if (!ok) throw InputError(path, "cannot encode the image as " + extension);
-  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
+  write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
-void write_color_png(const std::string& path, const Frame& frame) { write_image(path, color_image(frame)); }
-void write_id_png(const std::string& path, const Frame& frame) { write_image(path, id_image(frame)); }
-void write_depth_tiff(const std::string& path, const Frame& frame) { write_image(path, depth_image(frame)); }
+void write_color_png(const std::string& path, const Frame& frame) {
+  write_image(path, color_image(frame));
+}
+void write_id_png(const std::string& path, const Frame& frame) {
+  write_image(path, id_image(frame));
+}
+void write_depth_tiff(const std::string& path, const Frame& frame) {
+  write_image(path, depth_image(frame));
+}
 
 cv::Mat read_color_png(const std::string& path) {
   cv::Mat image = read_image(path, cv::IMREAD_COLOR);
@@ -152,7 +163,8 @@ cv::Mat read_color_png(const std::string& path) {
 
 void read_id_png(const std::string& path, Frame& frame) {
   const cv::Mat image = read_image(path, cv::IMREAD_UNCHANGED);
-  if (image.type() != CV_16UC3) throw InputError(path, "not an ID buffer (expected a 16-bit RGB PNG)");
+  if (image.type() != CV_16UC3)
+    throw InputError(path, "not an ID buffer (expected a 16-bit RGB PNG)");
   resize_if_needed(frame, image.cols, image.rows);
   for (int j = 0; j < image.rows; ++j) {
     const auto* row = image.ptr<cv::Vec3w>(j);
@@ -172,7 +184,8 @@ void read_id_png(const std::string& path, Frame& frame) {
 
 void read_depth_tiff(const std::string& path, Frame& frame) {
   const cv::Mat image = read_image(path, cv::IMREAD_UNCHANGED);
-  if (image.type() != CV_32FC1) throw InputError(path, "not a depth buffer (expected a 32-bit float TIFF)");
+  if (image.type() != CV_32FC1)
+    throw InputError(path, "not a depth buffer (expected a 32-bit float TIFF)");
   resize_if_needed(frame, image.cols, image.rows);
   for (int j = 0; j < image.rows; ++j) {
     const auto* row = image.ptr<float>(j);

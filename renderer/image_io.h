@@ -7,10 +7,9 @@
 // Every file is written under a temporary name in the same folder and renamed into place, so a
 // crash mid-write never leaves a torn file, and readers round-trip the buffers bit for bit.
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
-
-#include <opencv2/core.hpp>
 
 #include "renderer/frame.h"
 

@@ -25,18 +25,24 @@ std::string format_seconds(double s) {
 Progress::Progress(size_t total, bool enabled)
     : m_total(total), m_enabled(enabled), m_start(Clock::now()), m_last_draw(m_start) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+  finish();
+}
 
-bool Progress::stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
+bool Progress::stderr_is_terminal() {
+  return ::isatty(STDERR_FILENO) == 1;
+}
 
 std::string Progress::format(size_t done, size_t total, double elapsed_s, int width) {
   const double fraction = total == 0 ? 1.0 : double(done) / double(total);
   const int filled = int(std::lround(fraction * width));
-  std::string bar = "[" + std::string(size_t(filled), '#') + std::string(size_t(width - filled), '.') + "]";
+  std::string bar =
+      "[" + std::string(size_t(filled), '#') + std::string(size_t(width - filled), '.') + "]";
   const double left = done == 0 ? NAN : elapsed_s * double(total - done) / double(done);
   char counts[64];
   std::snprintf(counts, sizeof counts, " %zu/%zu frames", done, total);
-  return bar + counts + "  " + format_seconds(elapsed_s) + " elapsed  " + format_seconds(left) + " left";
+  return bar + counts + "  " + format_seconds(elapsed_s) + " elapsed  " + format_seconds(left) +
+         " left";
 }
 
 void Progress::update(size_t done) {

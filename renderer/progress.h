@@ -22,7 +22,8 @@ class Progress {
   /// Clears the bar, so that what follows starts on a clean line.
   void finish();
   /// The bar as text, e.g. "[#####.....]  12/24 frames  1.3 s elapsed  1.3 s left" (for tests).
-  [[nodiscard]] static std::string format(size_t done, size_t total, double elapsed_s, int width = 30);
+  [[nodiscard]] static std::string format(size_t done, size_t total, double elapsed_s,
+                                          int width = 30);
 
  private:
   using Clock = std::chrono::steady_clock;

@@ -8,9 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
-#include <system_error>
-
 #include <nlohmann/json.hpp>
+#include <system_error>
 
 #include "renderer/progress.h"
 #include "renderer/shading.h"
@@ -21,7 +20,9 @@
 namespace kinray {
 namespace {
 
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 bool parse_int(const std::string& text, int& value) {
   if (text.empty() || !std::isdigit(static_cast<unsigned char>(text.front()))) return false;
@@ -33,7 +34,8 @@ bool parse_int(const std::string& text, int& value) {
   return true;
 }
 
-void check_one_of(const std::string& value, std::initializer_list<const char*> allowed, const char* flag) {
+void check_one_of(const std::string& value, std::initializer_list<const char*> allowed,
+                  const char* flag) {
   std::string list;
   for (const char* a : allowed) {
     if (value == a) return;
@@ -47,11 +49,13 @@ void check_one_of(const std::string& value, std::initializer_list<const char*> a
 std::pair<int, int> parse_size(const std::string& text) {
   const size_t x = text.find_first_of("xX");
   int width = 0, height = 0;
-  if (x == std::string::npos || !parse_int(text.substr(0, x), width) || !parse_int(text.substr(x + 1), height))
-    throw InputError("--size", "expected WxH with two positive integers, e.g. 512x512, got '" + text + "'");
+  if (x == std::string::npos || !parse_int(text.substr(0, x), width) ||
+      !parse_int(text.substr(x + 1), height))
+    throw InputError("--size",
+                     "expected WxH with two positive integers, e.g. 512x512, got '" + text + "'");
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
-    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) + ", got '" +
-                                   text + "'");
+    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
+                                   ", got '" + text + "'");
   return {width, height};
 }
 
@@ -72,12 +76,15 @@ std::vector<std::string> parse_aov(const std::string& text) {
 
 void validate(const RenderParams& params) {
   if (params.scene.empty()) throw InputError("SCENE", "no scene given");
-  if (params.width < 1 || params.height < 1 || params.width > kMaxImageSide || params.height > kMaxImageSide)
-    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) + ", got " +
-                                   std::to_string(params.width) + "x" + std::to_string(params.height));
+  if (params.width < 1 || params.height < 1 || params.width > kMaxImageSide ||
+      params.height > kMaxImageSide)
+    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
+                                   ", got " + std::to_string(params.width) + "x" +
+                                   std::to_string(params.height));
   validate(schedule_params(params));
   if (params.threads < 0 || params.threads > 4096)
-    throw InputError("--threads", "must lie in 0..4096 (0: all cores), got " + std::to_string(params.threads));
+    throw InputError("--threads",
+                     "must lie in 0..4096 (0: all cores), got " + std::to_string(params.threads));
   check_one_of(params.embree_mode, {"rebuild", "refit"}, "--embree-mode");
   if (params.packet != 1 && params.packet != 4 && params.packet != 8 && params.packet != 16)
     throw InputError("--packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
@@ -119,7 +126,8 @@ ModelOptions model_options(const RenderParams& params) {
 std::string scene_stem(const std::string& spec) {
   std::error_code error;
   // A file keeps its whole name (it may contain ':'); a built-in name drops its parameters.
-  const std::string base = std::filesystem::exists(spec, error) ? spec : spec.substr(0, spec.find(':'));
+  const std::string base =
+      std::filesystem::exists(spec, error) ? spec : spec.substr(0, spec.find(':'));
   std::string stem = std::filesystem::path(base).stem().string();
   for (char& c : stem)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
@@ -127,7 +135,8 @@ std::string scene_stem(const std::string& spec) {
 }
 
 std::string output_folder(const RenderParams& params) {
-  return params.out.empty() ? (std::filesystem::path("out") / scene_stem(params.scene)).string() : params.out;
+  return params.out.empty() ? (std::filesystem::path("out") / scene_stem(params.scene)).string()
+                            : params.out;
 }
 
 RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_started(now_s()) {
@@ -141,8 +150,8 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
 
 std::unique_ptr<Backend> RenderJob::make_backend(const std::string& name) {
   const double start = now_s();
-  std::unique_ptr<Backend> backend =
-      kinray::make_backend(name.empty() ? m_params.backend : name, m_camera_space, backend_config(m_params));
+  std::unique_ptr<Backend> backend = kinray::make_backend(name.empty() ? m_params.backend : name,
+                                                          m_camera_space, backend_config(m_params));
   m_timings.setup += now_s() - start;
   return backend;
 }
@@ -156,7 +165,8 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   m_timings.shade += now_s() - start;
 }
 
-const RenderTimings& RenderJob::run(Backend& backend, const std::function<void(size_t, const Frame&)>& sink) {
+const RenderTimings& RenderJob::run(Backend& backend,
+                                    const std::function<void(size_t, const Frame&)>& sink) {
   Progress progress(m_frame_times.size(), !m_params.quiet && Progress::stderr_is_terminal());
   Frame frame;
   frame.resize(m_params.width, m_params.height);

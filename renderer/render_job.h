@@ -5,12 +5,11 @@
 // file: bad input is rejected before a command touches its output.
 #include <functional>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "renderer/backend.h"
 #include "renderer/frame.h"
@@ -23,25 +22,25 @@ namespace kinray {
 
 /// Every flag of `kinray render` (and of diff and bench, which share them), one field each.
 struct RenderParams {
-  std::string scene;                 ///< SCENE: built-in name with parameters, .json file or model file
-  std::string backend = "embree";    ///< --backend
-  int width = 512, height = 512;     ///< --size WxH
-  std::optional<int> frames;         ///< --frames N
-  std::optional<double> fps;         ///< --fps F
-  std::optional<int> inbetweens;     ///< --inbetweens K
+  std::string scene;  ///< SCENE: built-in name with parameters, .json file or model file
+  std::string backend = "embree";                 ///< --backend
+  int width = 512, height = 512;                  ///< --size WxH
+  std::optional<int> frames;                      ///< --frames N
+  std::optional<double> fps;                      ///< --fps F
+  std::optional<int> inbetweens;                  ///< --inbetweens K
   std::optional<std::pair<double, double>> time;  ///< --time A:B
-  std::string out;                   ///< --out DIR; empty: out/<scene-name>
-  std::string video;                 ///< --video FILE (.mp4 or .avi); empty: none
-  std::vector<std::string> aov;      ///< --aov: any of "id", "depth"
-  std::string stats;                 ///< --stats FILE.json; empty: none
-  int threads = 0;                   ///< --threads; 0: all cores
-  std::string embree_mode = "refit"; ///< --embree-mode rebuild|refit
-  int packet = 1;                    ///< --packet 1|4|8|16
-  std::string sort = "list";         ///< --sort list|tournament|heap
-  bool audit = false;                ///< --audit
-  std::string animation;             ///< --animation NAME|INDEX (model files)
-  double keyrate = 0;                ///< --keyrate HZ (model files)
-  bool quiet = false;                ///< --quiet
+  std::string out;                                ///< --out DIR; empty: out/<scene-name>
+  std::string video;                              ///< --video FILE (.mp4 or .avi); empty: none
+  std::vector<std::string> aov;                   ///< --aov: any of "id", "depth"
+  std::string stats;                              ///< --stats FILE.json; empty: none
+  int threads = 0;                                ///< --threads; 0: all cores
+  std::string embree_mode = "refit";              ///< --embree-mode rebuild|refit
+  int packet = 1;                                 ///< --packet 1|4|8|16
+  std::string sort = "list";                      ///< --sort list|tournament|heap
+  bool audit = false;                             ///< --audit
+  std::string animation;                          ///< --animation NAME|INDEX (model files)
+  double keyrate = 0;                             ///< --keyrate HZ (model files)
+  bool quiet = false;                             ///< --quiet
 };
 
 inline constexpr int kMaxImageSide = 16384;
@@ -101,7 +100,8 @@ class RenderJob {
   /// The frame loop: every frame time in order, rendered, shaded and handed to `sink` (timed as
   /// "write"), with a progress bar on stderr when it is a terminal and params().quiet is false.
   /// Returns the timings of the whole job.
-  const RenderTimings& run(Backend& backend, const std::function<void(size_t index, const Frame&)>& sink);
+  const RenderTimings& run(Backend& backend,
+                           const std::function<void(size_t index, const Frame&)>& sink);
 
  private:
   RenderParams m_params;

@@ -28,7 +28,8 @@ void VideoWriter::validate_path(const std::string& path) {
   if (extension != ".mp4" && extension != ".avi")
     throw InputError("--video", "'" + path + "' must end in .mp4 or .avi");
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError("--video", "'" + path + "' is a directory");
+  if (std::filesystem::is_directory(path, error))
+    throw InputError("--video", "'" + path + "' is a directory");
 }
 
 VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
@@ -37,16 +38,19 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
   const std::filesystem::path target(m_path);
   const std::string extension = lower_extension(m_path);
   // The temporary name keeps the extension: OpenCV picks the container from it.
-  m_temporary = (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                                         extension)).string();
+  m_temporary = (target.parent_path() /
+                 ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + extension))
+                    .string();
   if (!(fps > 0) || !std::isfinite(fps)) fps = 24;
   const char* codecs_mp4[] = {"avc1", "mp4v"};
   const char* codecs_avi[] = {"MJPG"};
   const bool mp4 = extension == ".mp4";
-  for (const char* codec : mp4 ? std::span<const char* const>(codecs_mp4) : std::span<const char* const>(codecs_avi)) {
+  for (const char* codec :
+       mp4 ? std::span<const char* const>(codecs_mp4) : std::span<const char* const>(codecs_avi)) {
     const int fourcc = cv::VideoWriter::fourcc(codec[0], codec[1], codec[2], codec[3]);
     try {
-      if (m_writer.open(m_temporary, mp4 ? cv::CAP_FFMPEG : cv::CAP_ANY, fourcc, fps, cv::Size(width, height))) {
+      if (m_writer.open(m_temporary, mp4 ? cv::CAP_FFMPEG : cv::CAP_ANY, fourcc, fps,
+                        cv::Size(width, height))) {
         m_codec = codec;
         break;
       }
@@ -57,9 +61,10 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
   if (!m_writer.isOpened()) {
     std::error_code ignored;
     std::filesystem::remove(m_temporary, ignored);
-    throw InputError(m_path, mp4 ? "cannot open an MP4 encoder (tried avc1 and mp4v through OpenCV's FFmpeg "
-                                   "backend); try an .avi file instead"
-                                 : "cannot open an MJPG encoder for this file");
+    throw InputError(
+        m_path, mp4 ? "cannot open an MP4 encoder (tried avc1 and mp4v through OpenCV's FFmpeg "
+                      "backend); try an .avi file instead"
+                    : "cannot open an MJPG encoder for this file");
   }
 }
 

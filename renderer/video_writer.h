@@ -2,9 +2,8 @@
 // Video output through OpenCV: .mp4 through its FFmpeg backend (H.264 'avc1', else MPEG-4 Part 2
 // 'mp4v'), .avi as Motion JPEG. The video is written under a temporary name beside the target and
 // renamed into place by close(), so an interrupted render never leaves a torn video.
-#include <string>
-
 #include <opencv2/videoio.hpp>
+#include <string>
 
 #include "renderer/frame.h"
 

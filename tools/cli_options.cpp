@@ -20,15 +20,19 @@ RenderParams RenderOptions::resolve() const {
 
 void add_scene_options(CLI::App& command, RenderOptions& options) {
   command
-      .add_option("SCENE", options.params.scene,
-                  "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene file "
-                  "or a model file")
+      .add_option(
+          "SCENE", options.params.scene,
+          "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene file "
+          "or a model file")
       ->required();
-  command.add_option("--animation", options.params.animation, "Model files: the animation to play (name or index)")
+  command
+      .add_option("--animation", options.params.animation,
+                  "Model files: the animation to play (name or index)")
       ->group("Scene");
   command
-      .add_option("--keyrate", options.params.keyrate,
-                  "Model files: resample the animation at this many keys per second (0: its own keys)")
+      .add_option(
+          "--keyrate", options.params.keyrate,
+          "Model files: resample the animation at this many keys per second (0: its own keys)")
       ->group("Scene");
 }
 
@@ -36,17 +40,24 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
   const char* group = "Frames";
   command.add_option("--size", options.size, "Image size WxH")->capture_default_str()->group(group);
   options.frames_option =
-      command.add_option("--frames", options.frames, "N frames evenly over the shot, both ends included (default 24)")
+      command
+          .add_option("--frames", options.frames,
+                      "N frames evenly over the shot, both ends included (default 24)")
           ->group(group);
   options.fps_option =
-      command.add_option("--fps", options.fps, "A frame at every multiple of 1/F s inside the shot")->group(group);
-  options.inbetweens_option =
-      command.add_option("--inbetweens", options.inbetweens, "K frames per keyframe interval, plus the last key")
+      command
+          .add_option("--fps", options.fps, "A frame at every multiple of 1/F s inside the shot")
           ->group(group);
+  options.inbetweens_option = command
+                                  .add_option("--inbetweens", options.inbetweens,
+                                              "K frames per keyframe interval, plus the last key")
+                                  ->group(group);
   options.frames_option->excludes(options.fps_option)->excludes(options.inbetweens_option);
   options.fps_option->excludes(options.inbetweens_option);
   options.time_option =
-      command.add_option("--time", options.time, "Restrict the shot to [A, B] seconds, given as A:B")->group(group);
+      command
+          .add_option("--time", options.time, "Restrict the shot to [A, B] seconds, given as A:B")
+          ->group(group);
   command.add_option("--threads", options.params.threads, "Render threads (0: all cores)")
       ->capture_default_str()
       ->group(group);
@@ -57,32 +68,47 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
   command.add_option("--backend", options.params.backend, "kinetic | embree | osmesa")
       ->capture_default_str()
       ->group(group);
-  command.add_option("--embree-mode", options.params.embree_mode, "Embree: rebuild | refit the BVH each frame")
+  command
+      .add_option("--embree-mode", options.params.embree_mode,
+                  "Embree: rebuild | refit the BVH each frame")
       ->capture_default_str()
       ->group(group);
-  command.add_option("--packet", options.params.packet, "Embree: single rays (1) or 4/8/16-wide ray packets")
+  command
+      .add_option("--packet", options.params.packet,
+                  "Embree: single rays (1) or 4/8/16-wide ray packets")
       ->capture_default_str()
       ->group(group);
-  command.add_option("--sort", options.params.sort, "Kinetic: per-pixel depth order as list | tournament | heap")
+  command
+      .add_option("--sort", options.params.sort,
+                  "Kinetic: per-pixel depth order as list | tournament | heap")
       ->capture_default_str()
       ->group(group);
-  command.add_flag("--audit", options.params.audit, "Kinetic: re-check every certificate between events (slow)")
+  command
+      .add_flag("--audit", options.params.audit,
+                "Kinetic: re-check every certificate between events (slow)")
       ->group(group);
 }
 
 void add_output_options(CLI::App& command, RenderOptions& options) {
   const char* group = "Output";
-  command.add_option("--out", options.params.out, "Folder for the frames (default out/<scene-name>)")->group(group);
-  command.add_option("--video", options.params.video, "Also encode a video: FILE.mp4 (FFmpeg) or FILE.avi (MJPG)")
+  command
+      .add_option("--out", options.params.out, "Folder for the frames (default out/<scene-name>)")
       ->group(group);
-  options.aov_option =
-      command
-          .add_option("--aov", options.aov,
-                      "Also write lossless buffers, comma-separated: id (id_NNNNN.png), depth (depth_NNNNN.tiff)")
-          ->group(group);
-  command.add_option("--stats", options.params.stats, "Write timings and counters as JSON to FILE.json")
+  command
+      .add_option("--video", options.params.video,
+                  "Also encode a video: FILE.mp4 (FFmpeg) or FILE.avi (MJPG)")
       ->group(group);
-  command.add_flag("-q,--quiet", options.params.quiet, "No progress bar and no summary")->group(group);
+  options.aov_option = command
+                           .add_option("--aov", options.aov,
+                                       "Also write lossless buffers, comma-separated: id "
+                                       "(id_NNNNN.png), depth (depth_NNNNN.tiff)")
+                           ->group(group);
+  command
+      .add_option("--stats", options.params.stats,
+                  "Write timings and counters as JSON to FILE.json")
+      ->group(group);
+  command.add_flag("-q,--quiet", options.params.quiet, "No progress bar and no summary")
+      ->group(group);
 }
 
 void add_render_options(CLI::App& command, RenderOptions& options) {

@@ -1,9 +1,8 @@
 #pragma once
 // The flags that `kinray render`, `diff` and `bench` share, defined once so that they stay
 // identical: each command adds the groups it needs and turns what was parsed into RenderParams.
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "renderer/render_job.h"
 

@@ -3,10 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
@@ -24,7 +23,9 @@ struct InfoOptions {
 
 constexpr size_t kListedObjects = 20;
 
-nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vec(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 std::string text(const Vec3& v) {
   std::ostringstream out;
@@ -72,33 +73,40 @@ nlohmann::json describe(const std::string& spec, const Scene& scene) {
           {"time_begin", scene.time_begin},
           {"time_end", scene.time_end},
           {"duration", scene.time_end - scene.time_begin},
-          {"bounds", bounds.isEmpty() ? nlohmann::json(nullptr)
-                                      : nlohmann::json{{"min", vec(bounds.min())}, {"max", vec(bounds.max())}}},
+          {"bounds", bounds.isEmpty()
+                         ? nlohmann::json(nullptr)
+                         : nlohmann::json{{"min", vec(bounds.min())}, {"max", vec(bounds.max())}}},
           {"camera_keys", camera},
           {"object_list", objects}};
 }
 
 void print_text(const Scene& scene, const nlohmann::json& info) {
-  std::printf("scene       %s (%s)\n", info["scene"].get<std::string>().c_str(), scene.name.c_str());
+  std::printf("scene       %s (%s)\n", info["scene"].get<std::string>().c_str(),
+              scene.name.c_str());
   std::printf("triangles   %zu\n", scene.triangle_count());
   std::printf("vertices    %zu\n", scene.vertex_count());
   std::printf("objects     %zu (%zu moving, %zu static)\n", scene.objects.size(),
-              info["moving_objects"].get<size_t>(), scene.objects.size() - info["moving_objects"].get<size_t>());
+              info["moving_objects"].get<size_t>(),
+              scene.objects.size() - info["moving_objects"].get<size_t>());
   std::printf("materials   %zu (%zu textures)\n", scene.materials.size(), scene.textures.size());
-  std::printf("keyframes   %zu (the key grid that --inbetweens subdivides)\n", info["keyframes"].get<size_t>());
-  std::printf("duration    %g s (shot [%g, %g])\n", scene.time_end - scene.time_begin, scene.time_begin,
-              scene.time_end);
+  std::printf("keyframes   %zu (the key grid that --inbetweens subdivides)\n",
+              info["keyframes"].get<size_t>());
+  std::printf("duration    %g s (shot [%g, %g])\n", scene.time_end - scene.time_begin,
+              scene.time_begin, scene.time_end);
   const Eigen::AlignedBox3d bounds = scene.bounds();
   if (bounds.isEmpty())
     std::printf("bounds      empty\n");
   else
-    std::printf("bounds      min %s  max %s\n", text(bounds.min()).c_str(), text(bounds.max()).c_str());
-  std::printf("camera      %zu key%s\n", scene.camera.keys.size(), scene.camera.keys.size() == 1 ? "" : "s");
+    std::printf("bounds      min %s  max %s\n", text(bounds.min()).c_str(),
+                text(bounds.max()).c_str());
+  std::printf("camera      %zu key%s\n", scene.camera.keys.size(),
+              scene.camera.keys.size() == 1 ? "" : "s");
   for (const auto& key : info["camera_keys"]) {
     const auto p = key["position"], d = key["direction"];
-    std::printf("  t=%-8g position (%g, %g, %g)  looking (%g, %g, %g)  fov_y %g deg\n", key["time"].get<double>(),
-                p[0].get<double>(), p[1].get<double>(), p[2].get<double>(), d[0].get<double>(), d[1].get<double>(),
-                d[2].get<double>(), key["fov_y_degrees"].get<double>());
+    std::printf("  t=%-8g position (%g, %g, %g)  looking (%g, %g, %g)  fov_y %g deg\n",
+                key["time"].get<double>(), p[0].get<double>(), p[1].get<double>(),
+                p[2].get<double>(), d[0].get<double>(), d[1].get<double>(), d[2].get<double>(),
+                key["fov_y_degrees"].get<double>());
   }
   size_t listed = 0;
   for (const auto& object : info["object_list"]) {
@@ -108,26 +116,33 @@ void print_text(const Scene& scene, const nlohmann::json& info) {
     }
     std::string visibility;
     if (object.contains("appear") || object.contains("disappear"))
-      visibility = "  visible [" + (object.contains("appear") ? object["appear"].dump() : std::string("-inf")) +
-                   ", " + (object.contains("disappear") ? object["disappear"].dump() : std::string("inf")) + ")";
+      visibility =
+          "  visible [" +
+          (object.contains("appear") ? object["appear"].dump() : std::string("-inf")) + ", " +
+          (object.contains("disappear") ? object["disappear"].dump() : std::string("inf")) + ")";
     std::printf("  object %-3zu %-20s %8zu triangles %3zu keys  %s%s\n", listed - 1,
                 object["name"].get<std::string>().c_str(), object["triangles"].get<size_t>(),
-                object["keys"].get<size_t>(), object["static"].get<bool>() ? "static" : "moving", visibility.c_str());
+                object["keys"].get<size_t>(), object["static"].get<bool>() ? "static" : "moving",
+                visibility.c_str());
   }
 }
 
 }  // namespace
 
 void register_info_command(CLI::App& app) {
-  CLI::App* command = app.add_subcommand(
-      "info", "Print what a scene holds: triangles, vertices, objects, keyframes, duration, bounds, camera keys");
+  CLI::App* command = app.add_subcommand("info",
+                                         "Print what a scene holds: triangles, vertices, objects, "
+                                         "keyframes, duration, bounds, camera keys");
   auto options = std::make_shared<InfoOptions>();
   command
       ->add_option("SCENE", options->scene,
-                   "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene file or a model file")
+                   "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene "
+                   "file or a model file")
       ->required();
-  command->add_option("--animation", options->animation, "Model files: the animation to play (name or index)");
-  command->add_option("--keyrate", options->keyrate, "Model files: resample at this many keys per second");
+  command->add_option("--animation", options->animation,
+                      "Model files: the animation to play (name or index)");
+  command->add_option("--keyrate", options->keyrate,
+                      "Model files: resample at this many keys per second");
   command->add_flag("--json", options->json, "Print JSON instead of text");
   command->footer(describe_scene_spec_syntax());
   command->callback([options] {

@@ -1,10 +1,10 @@
 // kinray: one program, one subcommand per file (tools/commands.h). Errors are caught here, once,
-// and printed as one line: exit status 2 for bad input (flags, scenes, models), 1 for anything else.
+// and printed as one line: exit status 2 for bad input (flags, scenes, models), 1 for anything
+// else.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "scenes/error.h"
 #include "tools/commands.h"
@@ -37,7 +37,9 @@ int main(int argc, char** argv) {
       std::string commands;
       for (const CLI::App* command : app.get_subcommands({}))
         commands += (commands.empty() ? "" : ", ") + command->get_name();
-      return fail("unknown command '" + std::string(argv[1]) + "' (commands: " + commands + "; see kinray --help)", 2);
+      return fail("unknown command '" + std::string(argv[1]) + "' (commands: " + commands +
+                      "; see kinray --help)",
+                  2);
     }
     return fail(e.what(), 2);
   } catch (const kinray::InputError& e) {

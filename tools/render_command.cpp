@@ -6,10 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <system_error>
 #include <utility>
-
-#include <nlohmann/json.hpp>
 
 #include "renderer/image_io.h"
 #include "renderer/video_writer.h"
@@ -43,8 +42,10 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
   if (!params.stats.empty() && fs::is_directory(params.stats, error))
     throw InputError("--stats", "'" + params.stats + "' is a folder");
   // A file where a folder must be would only fail after the whole render.
-  for (const auto& [file, flag] : {std::pair{params.stats, "--stats"}, std::pair{params.video, "--video"}}) {
-    for (fs::path parent = fs::path(file).parent_path(); !parent.empty(); parent = parent.parent_path()) {
+  for (const auto& [file, flag] :
+       {std::pair{params.stats, "--stats"}, std::pair{params.video, "--video"}}) {
+    for (fs::path parent = fs::path(file).parent_path(); !parent.empty();
+         parent = parent.parent_path()) {
       if (fs::exists(parent, error)) {
         if (!fs::is_directory(parent, error))
           throw InputError(flag, "'" + parent.string() + "' is not a folder");
@@ -59,7 +60,9 @@ void create_folder(const fs::path& folder, const char* flag) {
   if (folder.empty()) return;
   std::error_code error;
   fs::create_directories(folder, error);
-  if (error) throw InputError(flag, "cannot create the folder '" + folder.string() + "': " + error.message());
+  if (error)
+    throw InputError(flag,
+                     "cannot create the folder '" + folder.string() + "': " + error.message());
 }
 
 void run_render(const RenderParams& params) {
@@ -77,7 +80,8 @@ void run_render(const RenderParams& params) {
                                           video_fps(params, job.frame_times()));
   }
   const bool write_id = std::find(params.aov.begin(), params.aov.end(), "id") != params.aov.end();
-  const bool write_depth = std::find(params.aov.begin(), params.aov.end(), "depth") != params.aov.end();
+  const bool write_depth =
+      std::find(params.aov.begin(), params.aov.end(), "depth") != params.aov.end();
   const fs::path folder(out);
   const RenderTimings& timings = job.run(*backend, [&](size_t index, const Frame& frame) {
     write_color_png((folder / numbered("frame", index, ".png")).string(), frame);
@@ -89,16 +93,19 @@ void run_render(const RenderParams& params) {
   if (!params.stats.empty()) {
     create_folder(fs::path(params.stats).parent_path(), "--stats");
     nlohmann::json stats = render_stats(job, *backend);
-    if (video) stats["video"] = {{"path", params.video}, {"codec", video->codec()}, {"frames", video->frames_written()}};
+    if (video)
+      stats["video"] = {
+          {"path", params.video}, {"codec", video->codec()}, {"frames", video->frames_written()}};
     write_file_atomically(params.stats, stats.dump(2) + "\n");
   }
   if (!params.quiet) {
     const size_t n = timings.frames;
-    std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s\n", n, n == 1 ? "" : "s",
-                params.scene.c_str(), job.scene().triangle_count(), params.width, params.height,
-                backend->name().c_str(), timings.total);
+    std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s\n", n,
+                n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
+                params.height, backend->name().c_str(), timings.total);
     const std::string last = n > 1 ? " .. " + numbered("frame", n - 1, ".png") : "";
-    std::printf("frames: %s/%s%s\n", out.c_str(), numbered("frame", 0, ".png").c_str(), last.c_str());
+    std::printf("frames: %s/%s%s\n", out.c_str(), numbered("frame", 0, ".png").c_str(),
+                last.c_str());
     if (video) std::printf("video:  %s (%s)\n", params.video.c_str(), video->codec().c_str());
     if (!params.stats.empty()) std::printf("stats:  %s\n", params.stats.c_str());
   }
@@ -107,8 +114,9 @@ void run_render(const RenderParams& params) {
 }  // namespace
 
 void register_render_command(CLI::App& app) {
-  CLI::App* command = app.add_subcommand(
-      "render", "Render a scene to PNG frames out/<scene>/frame_00000.png ... (and a video, ID/depth buffers, stats)");
+  CLI::App* command = app.add_subcommand("render",
+                                         "Render a scene to PNG frames out/<scene>/frame_00000.png "
+                                         "... (and a video, ID/depth buffers, stats)");
   auto options = std::make_shared<RenderOptions>();
   add_render_options(*command, *options);
   command->footer(describe_scene_spec_syntax());

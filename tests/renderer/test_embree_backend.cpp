@@ -1,12 +1,12 @@
 // The Embree backend on analytic scenes: a quad at a known depth parallel to the image plane
 // (every pixel's object, primitive and depth exact), a tilted quad (depth against the analytic
 // plane), and a moving scene on which every mode and packet width must agree.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "renderer/backend.h"
 #include "renderer/embree_backend.h"
@@ -108,10 +108,12 @@ TEST(EmbreeBackend, QuadParallelToImagePlaneHasExactIdsAndDepth) {
 }
 
 TEST(EmbreeBackend, TiltedQuadDepthFollowsTheAnalyticPlane) {
-  // The plane z = 3 + 0.5 x + 0.25 y; along d = (x_i, y_j, 1) its depth is 3 / (1 - 0.5 x_i - 0.25 y_j).
+  // The plane z = 3 + 0.5 x + 0.25 y; along d = (x_i, y_j, 1) its depth is 3 / (1 - 0.5 x_i - 0.25
+  // y_j).
   auto plane = [](double x, double y) { return Vec3(x, y, 3 + 0.5 * x + 0.25 * y); };
   Scene scene = empty_scene();
-  scene.objects.push_back(quad(plane(-1.5, -1.2), plane(1.4, -1.2), plane(1.4, 1.1), plane(-1.5, 1.1)));
+  scene.objects.push_back(
+      quad(plane(-1.5, -1.2), plane(1.4, -1.2), plane(1.4, 1.1), plane(-1.5, 1.1)));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   const ImageGeometry image{kWidth, kHeight};
   for (int packet : {1, 16}) {
@@ -126,10 +128,10 @@ TEST(EmbreeBackend, TiltedQuadDepthFollowsTheAnalyticPlane) {
         const Vec3 hit = depth * image.direction(i, j);
         const size_t p = frame.index(i, j);
         const double margin = 1e-3;
-        const bool inside = hit.x() > -1.5 + margin && hit.x() < 1.4 - margin && hit.y() > -1.2 + margin &&
-                            hit.y() < 1.1 - margin;
-        const bool outside = hit.x() < -1.5 - margin || hit.x() > 1.4 + margin || hit.y() < -1.2 - margin ||
-                             hit.y() > 1.1 + margin;
+        const bool inside = hit.x() > -1.5 + margin && hit.x() < 1.4 - margin &&
+                            hit.y() > -1.2 + margin && hit.y() < 1.1 - margin;
+        const bool outside = hit.x() < -1.5 - margin || hit.x() > 1.4 + margin ||
+                             hit.y() < -1.2 - margin || hit.y() > 1.1 + margin;
         if (inside) {
           ++hits;
           ASSERT_EQ(frame.object[p], 0u) << i << "," << j;
@@ -154,8 +156,10 @@ Object breathing_sphere() {
   object.key_positions.resize(3);
   for (int r = 0; r <= rings; ++r) {
     for (int s = 0; s < segments; ++s) {
-      const double theta = std::numbers::pi * r / rings, phi = 2 * std::numbers::pi * s / segments + 0.1;
-      const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      const double theta = std::numbers::pi * r / rings,
+                   phi = 2 * std::numbers::pi * s / segments + 0.1;
+      const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                   std::sin(theta) * std::sin(phi));
       for (int k = 0; k < 3; ++k) {
         const double radius = 1.1 + 0.25 * std::sin(3 * theta + 2 * phi + 1.7 * k);
         object.key_positions[size_t(k)].push_back(centre + radius * n + Vec3(0.3 * k, 0.1 * k, 0));
@@ -164,7 +168,8 @@ Object breathing_sphere() {
   }
   for (int r = 0; r < rings; ++r) {
     for (int s = 0; s < segments; ++s) {
-      const uint32_t a = uint32_t(r * segments + s), b = uint32_t(r * segments + (s + 1) % segments);
+      const uint32_t a = uint32_t(r * segments + s),
+                     b = uint32_t(r * segments + (s + 1) % segments);
       const uint32_t c = a + uint32_t(segments), d = b + uint32_t(segments);
       object.triangles.push_back({a, c, b});
       object.triangles.push_back({b, c, d});

@@ -1,9 +1,9 @@
 // Frame times from --frames, --fps, --inbetweens and --time on known key grids.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "renderer/frame_schedule.h"
 #include "scenes/error.h"
@@ -37,7 +37,8 @@ TEST(FrameSchedule, DefaultIs24FramesOverTheShot) {
 }
 
 TEST(FrameSchedule, FramesIncludeBothEnds) {
-  EXPECT_EQ(frame_times(std::vector<double>{0, 2}, frames(5)), (std::vector<double>{0, 0.5, 1, 1.5, 2}));
+  EXPECT_EQ(frame_times(std::vector<double>{0, 2}, frames(5)),
+            (std::vector<double>{0, 0.5, 1, 1.5, 2}));
   EXPECT_EQ(frame_times(kGrid, frames(1)), (std::vector<double>{0}));
   EXPECT_EQ(frame_times(kGrid, frames(2)), (std::vector<double>{0, 3}));
   const std::vector<double> odd = frame_times(std::vector<double>{0.1, 0.7}, frames(7));
@@ -53,7 +54,8 @@ TEST(FrameSchedule, InbetweensSubdivideEveryKeyInterval) {
 }
 
 TEST(FrameSchedule, FpsTakesMultiplesOfThePeriodInsideTheShot) {
-  EXPECT_EQ(frame_times(std::vector<double>{0.1, 1}, fps(4)), (std::vector<double>{0.25, 0.5, 0.75, 1}));
+  EXPECT_EQ(frame_times(std::vector<double>{0.1, 1}, fps(4)),
+            (std::vector<double>{0.25, 0.5, 0.75, 1}));
   EXPECT_EQ(frame_times(kGrid, fps(1)), (std::vector<double>{0, 1, 2, 3}));
   EXPECT_EQ(frame_times(kGrid, fps(24)).size(), 73u);
   EXPECT_THROW((void)frame_times(std::vector<double>{0.1, 0.2}, fps(1)), InputError);
@@ -92,7 +94,8 @@ TEST(FrameSchedule, RejectsBadValues) {
 TEST(FrameSchedule, ParsesTimeRanges) {
   EXPECT_EQ(parse_time_range("0.5:2"), std::make_pair(0.5, 2.0));
   EXPECT_EQ(parse_time_range("-1:1e-1"), std::make_pair(-1.0, 0.1));
-  for (const char* bad : {"", "1", "1:", ":2", "a:b", "2:1", "1:1", "nan:1", "0:inf", "1:2:3", " 1:2"})
+  for (const char* bad :
+       {"", "1", "1:", ":2", "a:b", "2:1", "1:1", "nan:1", "0:inf", "1:2:3", " 1:2"})
     EXPECT_THROW((void)parse_time_range(bad), InputError) << bad;
 }
 

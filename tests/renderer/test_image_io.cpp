@@ -1,13 +1,13 @@
 // PNG colour frames, lossless ID and depth buffers: what is written reads back bit for bit, and
 // files appear whole or not at all.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "renderer/image_io.h"
 #include "scenes/error.h"
@@ -21,7 +21,8 @@ class ImageIo : public ::testing::Test {
  protected:
   void SetUp() override {
     m_dir = fs::temp_directory_path() /
-            ("kinray_image_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("kinray_image_io_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
   }
@@ -69,7 +70,9 @@ TEST_F(ImageIo, DepthBufferRoundTripsBitForBit) {
   Frame read;
   read_depth_tiff(path("depth_00000.tiff"), read);
   ASSERT_EQ(read.depth.size(), written.depth.size());
-  EXPECT_EQ(std::memcmp(read.depth.data(), written.depth.data(), written.depth.size() * sizeof(float)), 0);
+  EXPECT_EQ(
+      std::memcmp(read.depth.data(), written.depth.data(), written.depth.size() * sizeof(float)),
+      0);
   EXPECT_TRUE(std::isinf(read.depth[0]) || read.depth[0] == written.depth[0]);
 }
 
@@ -82,7 +85,9 @@ TEST_F(ImageIo, ReadingIdThenDepthFillsOneFrame) {
   read_depth_tiff(path("depth.tiff"), read);
   EXPECT_EQ(read.object, written.object);
   EXPECT_EQ(read.prim, written.prim);
-  EXPECT_EQ(std::memcmp(read.depth.data(), written.depth.data(), written.depth.size() * sizeof(float)), 0);
+  EXPECT_EQ(
+      std::memcmp(read.depth.data(), written.depth.data(), written.depth.size() * sizeof(float)),
+      0);
 }
 
 TEST_F(ImageIo, ColourPngReadsBackAsWritten) {
@@ -106,10 +111,11 @@ TEST(Srgb, EncodesTheStandardCurve) {
   EXPECT_EQ(linear_to_srgb8(std::nanf("")), 0);
   EXPECT_EQ(linear_to_srgb8(1.0f), 255);
   EXPECT_EQ(linear_to_srgb8(7.0f), 255);
-  EXPECT_EQ(linear_to_srgb8(0.5f), 188);      // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354 -> 187.5 -> 188
-  EXPECT_EQ(linear_to_srgb8(0.18f), 118);     // middle grey: 0.4614 * 255 = 117.66
-  EXPECT_EQ(linear_to_srgb8(0.001f), 3);      // linear segment: 12.92 * 0.001 * 255 = 3.29
-  for (int code = 0; code < 256; ++code) EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(uint8_t(code))), code);
+  EXPECT_EQ(linear_to_srgb8(0.5f), 188);   // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354 -> 187.5 -> 188
+  EXPECT_EQ(linear_to_srgb8(0.18f), 118);  // middle grey: 0.4614 * 255 = 117.66
+  EXPECT_EQ(linear_to_srgb8(0.001f), 3);   // linear segment: 12.92 * 0.001 * 255 = 3.29
+  for (int code = 0; code < 256; ++code)
+    EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(uint8_t(code))), code);
   for (float x = 0; x < 1; x += 1e-3f) EXPECT_LE(linear_to_srgb8(x), linear_to_srgb8(x + 1e-3f));
 }
 

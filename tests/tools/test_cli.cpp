@@ -1,5 +1,6 @@
 // The kinray program as a user runs it: bad input gives one line on stderr and a non-zero exit
 // without touching earlier output; good input writes the expected files.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -7,13 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
+#include <opencv2/videoio.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "renderer/image_io.h"
 #include "renderer/render_job.h"
@@ -50,7 +49,8 @@ class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
     m_dir = fs::temp_directory_path() /
-            ("kinray_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("kinray_cli_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
   }
@@ -59,8 +59,8 @@ class Cli : public ::testing::Test {
   /// Runs `kinray <args>` with stdin closed and stdout/stderr captured.
   Invocation kinray(const std::string& args) const {
     const fs::path out = m_dir / "stdout.txt", err = m_dir / "stderr.txt";
-    const std::string command = std::string("'") + KINRAY_BINARY + "' " + args + " </dev/null >'" + out.string() +
-                                "' 2>'" + err.string() + "'";
+    const std::string command = std::string("'") + KINRAY_BINARY + "' " + args + " </dev/null >'" +
+                                out.string() + "' 2>'" + err.string() + "'";
     const int raw = std::system(command.c_str());
     Invocation run;
     run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -122,17 +122,20 @@ TEST_F(Cli, BadInputIsOneLineAndLeavesEarlierOutputAlone) {
 }
 
 TEST_F(Cli, RenderWritesTheFramesAndBuffers) {
-  const Invocation run = kinray(std::string("render ") + kTinyScene + " --size 32x24 --frames 3 --aov id,depth --out '" +
-                         path("frames") + "' --stats '" + path("stats.json") + "' --quiet");
+  const Invocation run = kinray(std::string("render ") + kTinyScene +
+                                " --backend embree --size 32x24 --frames 3 --aov id,depth --out '" +
+                                path("frames") + "' --stats '" + path("stats.json") + "' --quiet");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_EQ(run.err, "");
   EXPECT_EQ(run.out, "") << "--quiet prints nothing";
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(path("frames"))) names.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(path("frames")))
+    names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"depth_00000.tiff", "depth_00001.tiff", "depth_00002.tiff",
-                                             "frame_00000.png", "frame_00001.png", "frame_00002.png", "id_00000.png",
-                                             "id_00001.png", "id_00002.png"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"depth_00000.tiff", "depth_00001.tiff", "depth_00002.tiff",
+                                      "frame_00000.png", "frame_00001.png", "frame_00002.png",
+                                      "id_00000.png", "id_00001.png", "id_00002.png"}));
   const cv::Mat colour = read_color_png(path("frames/frame_00001.png"));
   EXPECT_EQ(colour.cols, 32);
   EXPECT_EQ(colour.rows, 24);
@@ -159,8 +162,9 @@ TEST_F(Cli, RenderWritesTheFramesAndBuffers) {
 TEST_F(Cli, VideoIsPlayable) {
   for (const char* name : {"clip.mp4", "clip.avi"}) {
     SCOPED_TRACE(name);
-    const Invocation run = kinray(std::string("render ") + kTinyScene + " --size 64x48 --frames 5 --quiet --out '" +
-                           path("frames") + "' --video '" + path(name) + "'");
+    const Invocation run =
+        kinray(std::string("render ") + kTinyScene + " --size 64x48 --frames 5 --quiet --out '" +
+               path("frames") + "' --video '" + path(name) + "'");
     ASSERT_EQ(run.status, 0) << run.err;
     cv::VideoCapture capture(path(name));
     ASSERT_TRUE(capture.isOpened());
@@ -176,7 +180,8 @@ TEST_F(Cli, VideoIsPlayable) {
 }
 
 TEST_F(Cli, RenderSaysWhereTheFramesWent) {
-  const Invocation run = kinray(std::string("render ") + kTinyScene + " --size 16x16 --frames 2 --out '" + path("f") + "'");
+  const Invocation run = kinray(std::string("render ") + kTinyScene +
+                                " --size 16x16 --frames 2 --out '" + path("f") + "'");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find(path("f") + "/frame_00000.png"), std::string::npos) << run.out;
   EXPECT_TRUE(fs::exists(path("f/frame_00001.png")));
@@ -186,7 +191,8 @@ TEST_F(Cli, InfoPrintsTheTriangleCount) {
   const size_t triangles = load_scene(kTinyScene, {}).triangle_count();
   Invocation run = kinray(std::string("info ") + kTinyScene);
   ASSERT_EQ(run.status, 0) << run.err;
-  EXPECT_NE(run.out.find("triangles   " + std::to_string(triangles) + "\n"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("triangles   " + std::to_string(triangles) + "\n"), std::string::npos)
+      << run.out;
   run = kinray(std::string("info ") + kTinyScene + " --json");
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json info = nlohmann::json::parse(run.out);
@@ -197,11 +203,13 @@ TEST_F(Cli, InfoPrintsTheTriangleCount) {
 TEST(RenderParams, ParseTheFlagsThatAreNotPlainNumbers) {
   EXPECT_EQ(parse_size("640x480"), std::make_pair(640, 480));
   EXPECT_EQ(parse_size("1x16384"), std::make_pair(1, 16384));
-  for (const char* bad : {"0x0", "10", "x10", "10x", "-4x4", "4x-4", "4.5x4", "16385x1", "4x4x4", "", "axb", " 4x4"})
+  for (const char* bad :
+       {"0x0", "10", "x10", "10x", "-4x4", "4x-4", "4.5x4", "16385x1", "4x4x4", "", "axb", " 4x4"})
     EXPECT_THROW((void)parse_size(bad), InputError) << bad;
   EXPECT_EQ(parse_aov("id"), std::vector<std::string>{"id"});
   EXPECT_EQ(parse_aov("depth,id"), (std::vector<std::string>{"depth", "id"}));
-  for (const char* bad : {"", "id,", "normal", "id,id", "ID"}) EXPECT_THROW((void)parse_aov(bad), InputError) << bad;
+  for (const char* bad : {"", "id,", "normal", "id,id", "ID"})
+    EXPECT_THROW((void)parse_aov(bad), InputError) << bad;
 }
 
 TEST(RenderParams, DefaultOutputFolderIsNamedAfterTheScene) {
