@@ -8,7 +8,6 @@
 #include <memory>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "kinetic/kinetic_sort.h"
@@ -32,7 +31,7 @@ class KineticHeap {
     KINRAY_DCHECK(!contains(id));
     m_nodes.push_back(Node{id, kNoEvent});
     if (m_nodes.size() == kIndexThreshold + 1) build_index();
-    if (m_index) (*m_index)[id] = static_cast<uint32_t>(m_nodes.size() - 1);
+    if (m_index) m_index->set(id, static_cast<uint32_t>(m_nodes.size() - 1));
     if (m_nodes.size() > 1) ++m_core.stats().certificates_live;
     Touched touched;
     sift_up(static_cast<uint32_t>(m_nodes.size() - 1), now, touched);
@@ -127,7 +126,7 @@ class KineticHeap {
   [[nodiscard]] size_t size() const { return m_nodes.size(); }
   [[nodiscard]] bool empty() const { return m_nodes.empty(); }
   [[nodiscard]] bool contains(uint32_t id) const {
-    if (m_index) return m_index->count(id) > 0;
+    if (m_index) return m_index->contains(id);
     return std::any_of(m_nodes.begin(), m_nodes.end(), [id](const Node& n) { return n.id == id; });
   }
 
@@ -150,7 +149,7 @@ class KineticHeap {
   [[nodiscard]] const KineticSortStats& stats() const { return m_core.stats(); }
   [[nodiscard]] size_t memory_bytes() const {
     size_t bytes = sizeof(*this) + m_nodes.capacity() * sizeof(Node);
-    if (m_index) bytes += m_index->size() * (sizeof(std::pair<uint32_t, uint32_t>) + 16);
+    if (m_index) bytes += m_index->memory_bytes();
     return bytes;
   }
 
@@ -167,9 +166,9 @@ class KineticHeap {
 
   uint32_t find(uint32_t id) const {
     if (m_index) {
-      const auto it = m_index->find(id);
-      KINRAY_CHECK_MSG(it != m_index->end(), "id not in the kinetic heap");
-      return it->second;
+      const uint32_t pos = m_index->find(id);
+      KINRAY_CHECK_MSG(pos != detail::IdIndex::kMissing, "id not in the kinetic heap");
+      return pos;
     }
     for (uint32_t i = 0; i < m_nodes.size(); ++i)
       if (m_nodes[i].id == id) return i;
@@ -178,11 +177,11 @@ class KineticHeap {
   }
   void set_id(uint32_t i, uint32_t id) {
     m_nodes[i].id = id;
-    if (m_index) (*m_index)[id] = i;
+    if (m_index) m_index->set(id, i);
   }
   void build_index() {
-    m_index = std::make_unique<std::unordered_map<uint32_t, uint32_t>>();
-    for (uint32_t i = 0; i < m_nodes.size(); ++i) (*m_index)[m_nodes[i].id] = i;
+    m_index = std::make_unique<detail::IdIndex>();
+    for (uint32_t i = 0; i < m_nodes.size(); ++i) m_index->set(m_nodes[i].id, i);
   }
 
   void sift_up(uint32_t i, double now, Touched& touched) {
@@ -233,7 +232,7 @@ class KineticHeap {
 
   detail::SortCore<Keys> m_core;
   std::vector<Node> m_nodes;  ///< implicit binary heap, root at 0
-  std::unique_ptr<std::unordered_map<uint32_t, uint32_t>> m_index;  ///< id -> node, large only
+  std::unique_ptr<detail::IdIndex> m_index;  ///< id -> node, large only
 };
 
 }  // namespace kinray

@@ -6,7 +6,6 @@
 #include <memory>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "kinetic/kinetic_sort.h"
@@ -102,7 +101,7 @@ class KineticTournament {
   [[nodiscard]] size_t size() const { return m_size; }
   [[nodiscard]] bool empty() const { return m_size == 0; }
   [[nodiscard]] bool contains(uint32_t id) const {
-    if (m_index) return m_index->count(id) > 0;
+    if (m_index) return m_index->contains(id);
     for (uint32_t i = 0; i < m_size; ++i)
       if (m_nodes[m_capacity + i].winner == id) return true;
     return false;
@@ -139,7 +138,7 @@ class KineticTournament {
   [[nodiscard]] const KineticSortStats& stats() const { return m_core.stats(); }
   [[nodiscard]] size_t memory_bytes() const {
     size_t bytes = sizeof(*this) + m_nodes.capacity() * sizeof(Node);
-    if (m_index) bytes += m_index->size() * (sizeof(std::pair<uint32_t, uint32_t>) + 16);
+    if (m_index) bytes += m_index->memory_bytes();
     return bytes;
   }
 
@@ -153,9 +152,9 @@ class KineticTournament {
 
   uint32_t find_leaf(uint32_t id) const {
     if (m_index) {
-      const auto it = m_index->find(id);
-      KINRAY_CHECK_MSG(it != m_index->end(), "id not in the kinetic tournament");
-      return it->second;
+      const uint32_t leaf = m_index->find(id);
+      KINRAY_CHECK_MSG(leaf != detail::IdIndex::kMissing, "id not in the kinetic tournament");
+      return leaf;
     }
     for (uint32_t i = 0; i < m_size; ++i)
       if (m_nodes[m_capacity + i].winner == id) return m_capacity + i;
@@ -164,7 +163,7 @@ class KineticTournament {
   }
   void set_leaf(uint32_t leaf, uint32_t id) {
     m_nodes[leaf].winner = id;
-    if (m_index) (*m_index)[id] = leaf;
+    if (m_index) m_index->set(id, leaf);
   }
   void update_path(uint32_t leaf, double now) {
     for (uint32_t k = leaf / 2; k >= 1; k /= 2) recompute(k, now);
@@ -205,7 +204,7 @@ class KineticTournament {
     m_nodes.assign(2 * size_t{capacity}, Node{});
     m_nodes.shrink_to_fit();
     if (capacity > kIndexThreshold) {
-      if (!m_index) m_index = std::make_unique<std::unordered_map<uint32_t, uint32_t>>();
+      if (!m_index) m_index = std::make_unique<detail::IdIndex>();
       m_index->clear();
     } else {
       m_index.reset();
@@ -217,7 +216,7 @@ class KineticTournament {
 
   detail::SortCore<Keys> m_core;
   std::vector<Node> m_nodes;  ///< 1-based heap layout, leaves at [m_capacity, 2 m_capacity)
-  std::unique_ptr<std::unordered_map<uint32_t, uint32_t>> m_index;  ///< id -> leaf, large only
+  std::unique_ptr<detail::IdIndex> m_index;  ///< id -> leaf, large only
   uint32_t m_capacity = 0, m_size = 0;
 };
 

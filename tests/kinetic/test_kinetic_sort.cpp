@@ -221,7 +221,9 @@ TYPED_TEST(KineticSort, RandomMotionsAgainstBruteForce) {
         return h.keys.add_copy(static_cast<uint32_t>(rng() % h.keys.size()));
       return h.keys.add(random_motion(5 * u(rng)), h.sim.now());
     };
-    for (int i = 0; i < 30; ++i) h.insert(new_object());
+    // Odd seeds start above 64 objects: the tournament and heap then use their id index.
+    const int initial = seed % 2 ? 90 : 30;
+    for (int i = 0; i < initial; ++i) h.insert(new_object());
     h.check();
     double t = 0;
     while (t < 15) {
@@ -229,7 +231,7 @@ TYPED_TEST(KineticSort, RandomMotionsAgainstBruteForce) {
       h.advance(t);
       ASSERT_NO_FATAL_FAILURE(h.check());
       const int op = static_cast<int>(rng() % 10);
-      if (op == 0 && h.members.size() < 60) {
+      if (op == 0 && h.members.size() < 120) {
         h.insert(new_object());
       } else if (op == 1 && !h.members.empty()) {
         auto it = h.members.begin();
@@ -407,6 +409,34 @@ TYPED_TEST(KineticSort, ManySmallInstancesShareOneQueue) {
   const KineticSortQuality q = quality(total, 1650);
   EXPECT_GT(q.responsiveness, 0);
   EXPECT_LT(pixels[0].memory_bytes(), 512u);
+}
+
+TEST(KineticSortIdIndex, RandomAgainstUnorderedMap) {
+  detail::IdIndex index;
+  std::map<uint32_t, uint32_t> model;
+  std::mt19937_64 rng(41);
+  for (int step = 0; step < 200000; ++step) {
+    const auto id = static_cast<uint32_t>(rng() % 3000) * 7919u;  // clustered hash homes
+    switch (rng() % 3) {
+      case 0:
+      case 1: {
+        const auto pos = static_cast<uint32_t>(rng() % 100000);
+        index.set(id, pos);
+        model[id] = pos;
+        break;
+      }
+      default:
+        index.erase(id);
+        model.erase(id);
+    }
+    if (step % 1000 == 0) {
+      ASSERT_EQ(index.size(), model.size());
+      for (const auto& [k, v] : model) ASSERT_EQ(index.find(k), v);
+    }
+    const auto probe = static_cast<uint32_t>(rng() % 3000) * 7919u;
+    const auto it = model.find(probe);
+    ASSERT_EQ(index.find(probe), it == model.end() ? detail::IdIndex::kMissing : it->second);
+  }
 }
 
 TEST(KineticSortLinear, SortedListWithLinearMotionKeys) {
