@@ -290,6 +290,19 @@ TEST_P(GridSorts, RandomMotionsAgreeWithBruteForce) {
   }
 }
 
+// Degenerate image shapes: one column (the only slot is off), one row (bands of one row).
+TEST(FrustumGrid, TinyImagesAgreeWithBruteForce) {
+  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1, 1}, {2, 1}, {1, 3}, {5, 2}, {3, 7}}) {
+    RandomScene r(9, 12);
+    r.scene.width = w;
+    r.scene.height = h;
+    const GridInput in = r.scene.input();
+    FrustumGrid grid(in, 0.0, audited(DepthSortKind::kList, std::min(h, 2)));
+    const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 40));
+    EXPECT_EQ(c.real, 0u) << w << "x" << h;
+  }
+}
+
 GridEventCounts geometric(const GridStats& s) { return s.events; }
 bool same_counts(const GridEventCounts& a, const GridEventCounts& b) {
   return a.boundary == b.boundary && a.vertex_row == b.vertex_row &&
