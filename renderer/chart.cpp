@@ -88,7 +88,7 @@ void write_chart_png(const Chart& chart, const std::string& path, int width, int
   if (xs.empty() || ys.empty()) throw InputError(path, "the chart '" + chart.title + "' has no data");
 
   cv::Mat image(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  const int left = 90, right = width - 230, top = 50, bottom = height - 70;
+  const int left = 90, right = width - 230, top = 64, bottom = height - 70;
   auto px = [&](double x) { return left + int(std::lround(ax.fraction(x) * (right - left))); };
   auto py = [&](double y) { return bottom - int(std::lround(ay.fraction(y) * (bottom - top))); };
   const int font = cv::FONT_HERSHEY_SIMPLEX;
@@ -107,10 +107,10 @@ void write_chart_png(const Chart& chart, const std::string& path, int width, int
     cv::putText(image, label, {left - 8 - size.width, py(t) + 5}, font, 0.45, ink, 1, cv::LINE_AA);
   }
   cv::rectangle(image, {left, top}, {right, bottom}, ink, 1);
-  cv::putText(image, chart.title, {left, top - 18}, font, 0.6, ink, 1, cv::LINE_AA);
+  cv::putText(image, chart.title, {left, 26}, font, 0.6, ink, 1, cv::LINE_AA);
   const cv::Size xsize = cv::getTextSize(chart.x_label, font, 0.5, 1, nullptr);
   cv::putText(image, chart.x_label, {(left + right - xsize.width) / 2, bottom + 48}, font, 0.5, ink, 1, cv::LINE_AA);
-  cv::putText(image, chart.y_label, {8, top - 18 + 0}, font, 0.45, ink, 1, cv::LINE_AA);
+  cv::putText(image, chart.y_label, {8, top - 12}, font, 0.45, ink, 1, cv::LINE_AA);
 
   if (chart.marker_x && (!chart.log_x || *chart.marker_x > 0)) {
     const int x = px(*chart.marker_x);
