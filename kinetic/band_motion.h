@@ -33,7 +33,7 @@ class BandMotion {
   /// Global vertex v on its mesh's current segment.
   [[nodiscard]] const PointMotion& vertex(uint32_t v) const { return m_vertices[v]; }
   [[nodiscard]] TriangleMotion triangle(uint32_t tri) const {
-    const auto vs = m_scene->triangle_vertices(tri);
+    const auto& vs = m_scene->triangle_vertices(tri);
     return TriangleMotion{{m_vertices[vs[0]], m_vertices[vs[1]], m_vertices[vs[2]]}};
   }
 

@@ -178,11 +178,12 @@ void FrustumBand<Sort>::set_event(EventHandle& handle, double time, const EventK
 }
 
 template <class Sort>
-void FrustumBand<Sort>::schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn) {
+void FrustumBand<Sort>::schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn,
+                                          const EdgeNormal* known) {
   RowRecord& r = m_records[rec];
   SlotTracker& b = r.boundary[size_t(bi)];
   if (!tn.moving) return;
-  const EdgeNormal edge = tn.motion.edge(b.edge);
+  const EdgeNormal edge = known ? *known : tn.motion.edge(b.edge);
   const double y = m_scene.row_y(r.row);
   const auto [lo, hi] = m_columns.watched(b.slot);
   double t = failure_time(b.sign_lo, edge.along(m_scene.column_x(lo), y), tn.segment);
@@ -458,7 +459,7 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
   }
   b.sign_lo = int8_t(sl);
   b.sign_hi = int8_t(sh);
-  schedule_boundary(rec, bi, tn);
+  schedule_boundary(rec, bi, tn, &edge);
   // At the instant of the re-tie the boundary is the vertex itself; a vertex exactly on a
   // pixel-centre ray may change that pixel, so the two watched columns are re-evaluated.
   update_pixel(rec, lo, tn);
@@ -672,13 +673,13 @@ void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
   const bool changed_lo = gl != b.sign_lo, changed_hi = gh != b.sign_hi;
   if (!changed_lo && !changed_hi) {
     ++m_stats.spurious;
-    schedule_boundary(rec, bi, tn);
+    schedule_boundary(rec, bi, tn, &edge);
     return;
   }
   ++m_stats.events.boundary;
   if (lo == hi) {  // a one-column image: the only slot is off
     b.sign_lo = b.sign_hi = int8_t(gl);
-    schedule_boundary(rec, bi, tn);
+    schedule_boundary(rec, bi, tn, &edge);
     update_pixel(rec, lo, tn);
     return;
   }
@@ -700,7 +701,7 @@ void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
   b.slot = slot;
   b.sign_lo = int8_t(sl);
   b.sign_hi = int8_t(sh);
-  schedule_boundary(rec, bi, tn);
+  schedule_boundary(rec, bi, tn, &edge);
   update_pixel(rec, column, tn);
 }
 

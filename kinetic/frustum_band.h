@@ -123,7 +123,8 @@ class FrustumBand {
   // Scheduling.
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;
   void set_event(EventHandle& handle, double time, const EventKey& key, uint64_t payload);
-  void schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn);
+  void schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn,
+                         const EdgeNormal* edge = nullptr);
   void schedule_vertex(uint32_t v);
   void schedule_orientation(uint32_t tri, const TriangleNow& tn);
   void schedule_flightplan(uint32_t m);

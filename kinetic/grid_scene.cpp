@@ -57,6 +57,14 @@ GridScene::GridScene(GridInput input) : m_input(std::move(input)) {
               m);
   }
 
+  m_triangle_vertices.resize(triangle_count());
+  for (uint32_t m = 0; m < meshes; ++m) {
+    const auto& tris = m_input.meshes[m].triangles;
+    for (size_t k = 0; k < tris.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+        m_triangle_vertices[m_triangle_begin[m] + k][size_t(c)] = m_vertex_begin[m] + tris[k][size_t(c)];
+  }
+
   // Vertex -> triangle adjacency (CSR), triangles in increasing id order.
   m_adjacency_begin.assign(size_t(vertex_count()) + 1, 0);
   for (uint32_t tri = 0; tri < triangle_count(); ++tri)
@@ -82,13 +90,6 @@ GridScene::GridScene(GridInput input) : m_input(std::move(input)) {
   }
   m_adjacency_begin.back() = uint32_t(out);
   m_adjacency.resize(out);
-}
-
-std::array<uint32_t, 3> GridScene::triangle_vertices(uint32_t tri) const {
-  const uint32_t m = m_triangle_mesh[tri];
-  const auto& local = m_input.meshes[m].triangles[tri - m_triangle_begin[m]];
-  const uint32_t base = m_vertex_begin[m];
-  return {base + local[0], base + local[1], base + local[2]};
 }
 
 MeshSegment GridScene::segment(uint32_t m, uint32_t index) const {

@@ -44,7 +44,9 @@ class GridScene {
   [[nodiscard]] uint32_t mesh_of_triangle(uint32_t tri) const { return m_triangle_mesh[tri]; }
   [[nodiscard]] uint32_t mesh_of_vertex(uint32_t v) const { return m_vertex_mesh[v]; }
   /// Global vertex ids of a global triangle.
-  [[nodiscard]] std::array<uint32_t, 3> triangle_vertices(uint32_t tri) const;
+  [[nodiscard]] const std::array<uint32_t, 3>& triangle_vertices(uint32_t tri) const {
+    return m_triangle_vertices[tri];
+  }
   /// Global ids of the triangles that use global vertex v.
   [[nodiscard]] std::span<const uint32_t> triangles_of_vertex(uint32_t v) const {
     return {m_adjacency.data() + m_adjacency_begin[v],
@@ -64,6 +66,7 @@ class GridScene {
   std::vector<double> m_x, m_y;
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin;  ///< prefix sums over meshes
   std::vector<uint32_t> m_triangle_mesh, m_vertex_mesh;
+  std::vector<std::array<uint32_t, 3>> m_triangle_vertices;  ///< global vertex ids
   std::vector<uint32_t> m_adjacency_begin, m_adjacency;
 };
 
