@@ -34,6 +34,7 @@ class Simulator {
       const uint64_t payload = m_queue.top_payload();
       KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
       m_queue.pop();
+      if (!m_queue.empty()) m_queue.prefetch(m_queue.top());  // overlaps the next slot's miss
       m_now = key.time;
       ++m_events;
       handle(key, payload);
