@@ -1,0 +1,92 @@
+// kinray bench as a library: a tiny run must measure both sides, agree with Embree, and report
+// consistent figures; the break-even point and the charts follow from the numbers.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "renderer/benchmark.h"
+#include "renderer/chart.h"
+#include "scenes/error.h"
+
+namespace kinray {
+namespace {
+
+TEST(Benchmark, TinyRunMeasuresBothSidesAndAgrees) {
+  BenchParams params;
+  params.base.scene = "wavy-sphere:triangles=300";
+  params.base.width = 48;
+  params.base.height = 40;
+  params.base.threads = 1;
+  params.base.time = std::pair{0.0, 2.0 / 24.0};  // two keyframe intervals at 24 keys/s
+  params.inbetweens = {1, 3};
+  params.repetitions = 1;
+  params.reference_frames = 3;
+  params.embree_modes = {{"refit", 1}, {"rebuild", 8}};
+  const BenchReport report = run_benchmark(params);
+  ASSERT_EQ(report.points.size(), 2u);
+  for (const BenchPoint& p : report.points) {
+    EXPECT_EQ(p.sweep, "inbetweens");
+    EXPECT_EQ(p.frames, size_t(p.inbetweens) * p.key_intervals + 1);
+    EXPECT_EQ(p.key_intervals, 2u);
+    EXPECT_GT(p.kinetic_ms_per_frame, 0);
+    EXPECT_NEAR(p.kinetic_ms_per_frame, p.kinetic_events_ms + p.kinetic_readout_ms, 1e-9);
+    ASSERT_EQ(p.embree.size(), 2u);
+    EXPECT_EQ(p.mismatch_real, 0u);
+    EXPECT_GT(p.pixels_compared, 0u);
+    EXPECT_NEAR(p.speedup_vs_best_embree, p.embree_best_ms_per_frame / p.kinetic_ms_per_frame, 1e-12);
+  }
+  // The events depend on the motion, not on the number of frames read out.
+  EXPECT_EQ(report.points[0].kinetic_stats["events"], report.points[1].kinetic_stats["events"]);
+  const nlohmann::json json = report.to_json();
+  for (const char* key : {"kinetic_ms_per_frame", "embree_best_ms_per_frame", "embree_best_mode",
+                          "speedup_vs_best_embree", "mismatch_real"})
+    EXPECT_TRUE(json["points"][0].contains(key)) << key;
+  EXPECT_NE(report.to_csv().find("kinetic"), std::string::npos);
+}
+
+TEST(Benchmark, BreakEvenInterpolatesInLogK) {
+  BenchReport report;
+  auto point = [](int k, double kinetic, double embree) {
+    BenchPoint p;
+    p.sweep = "inbetweens";
+    p.inbetweens = k;
+    p.kinetic_ms_per_frame = kinetic;
+    p.embree_best_ms_per_frame = embree;
+    return p;
+  };
+  report.points = {point(1, 40, 10), point(4, 10, 10), point(16, 2, 10)};
+  EXPECT_DOUBLE_EQ(*report.break_even_inbetweens(), 4.0);
+  report.points = {point(2, 30, 10), point(8, 5, 10)};  // margins -20 and +5: 4/5 of the way
+  EXPECT_NEAR(*report.break_even_inbetweens(), std::exp2(1 + 2 * 0.8), 1e-12);
+  report.points = {point(1, 30, 10)};
+  EXPECT_FALSE(report.break_even_inbetweens());
+}
+
+TEST(Benchmark, BadListsAreRejected) {
+  EXPECT_THROW(parse_int_list("1,,4", "--inbetweens"), InputError);
+  EXPECT_THROW(parse_int_list("0", "--inbetweens"), InputError);
+  EXPECT_THROW(parse_int_list("2x", "--triangles"), InputError);
+  EXPECT_THROW(parse_embree_modes("refit/3"), InputError);
+  EXPECT_THROW(parse_embree_modes("fast/8"), InputError);
+  EXPECT_EQ(parse_embree_modes("rebuild/8,refit").back().packet, 1);
+}
+
+TEST(Chart, WritesAPngOfTheAskedSize) {
+  Chart chart;
+  chart.title = "test";
+  chart.log_x = chart.log_y = true;
+  chart.series = {{"a", {1, 10, 100}, {5, 2, 1}}, {"b", {1, 100}, {3, 3}, Color(1, 0, 0), true}};
+  chart.marker_x = 10;
+  const std::string path = (std::filesystem::path(testing::TempDir()) / "kinray_chart.png").string();
+  write_chart_png(chart, path, 400, 300);
+  const cv::Mat image = cv::imread(path);
+  ASSERT_FALSE(image.empty());
+  EXPECT_EQ(image.cols, 400);
+  EXPECT_EQ(image.rows, 300);
+  Chart empty;
+  EXPECT_THROW(write_chart_png(empty, path), InputError);
+}
+
+}  // namespace
+}  // namespace kinray
