@@ -287,12 +287,20 @@ TEST(ImageDiff, SummaryTotalsPrintsAndWritesJson) {
   summary.scene = "analytic";
   summary.tested = "kinetic";
   summary.reference = "embree";
-  FrameDiffSummary first{
-      .frame = 0, .time = 0, .pixels = 1024, .mismatch_real = 2, .mismatch_tie = 5};
+  FrameDiffSummary first;
+  first.frame = 0;
+  first.time = 0;
+  first.pixels = 1024;
+  first.mismatch_real = 2;
+  first.mismatch_tie = 5;
   first.heat_map = "report/frame_0000.png";
   first.color = ColorError{.max_error = 0.25, .mse = 1e-4};
-  FrameDiffSummary second{
-      .frame = 1, .time = 0.5, .pixels = 1024, .mismatch_real = 0, .mismatch_tie = 3};
+  FrameDiffSummary second;
+  second.frame = 1;
+  second.time = 0.5;
+  second.pixels = 1024;
+  second.mismatch_real = 0;
+  second.mismatch_tie = 3;
   second.color = ColorError{};
   summary.add(first);
   summary.add(second);

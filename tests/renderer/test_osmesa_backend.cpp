@@ -249,8 +249,9 @@ TEST(OsmesaBackend, AgreesWithEmbreeOnABuiltInSceneUpToTies) {
     for (uint32_t o : b.object) hits += o != kNoHit;
     // Where the IDs agree, so do the depths (both are the camera-space z of the same triangle).
     for (size_t p = 0; p < a.pixel_count(); ++p)
-      if (diff.pixels[p] == PixelClass::kEqual)
+      if (diff.pixels[p] == PixelClass::kEqual) {
         ASSERT_NEAR(a.depth[p], b.depth[p], 2e-6 * b.depth[p]);
+      }
   }
   EXPECT_GT(hits, 3 * 160 * 120 / 4);
   EXPECT_LT(ties, 3 * 160 * 120 / 100);
