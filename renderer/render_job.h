@@ -23,7 +23,7 @@ namespace kinray {
 /// Every flag of `kinray render` (and of diff and bench, which share them), one field each.
 struct RenderParams {
   std::string scene;  ///< SCENE: built-in name with parameters, .json file or model file
-  std::string backend = "embree";                 ///< --backend
+  std::string backend = "kinetic";                ///< --backend
   int width = 512, height = 512;                  ///< --size WxH
   std::optional<int> frames;                      ///< --frames N
   std::optional<double> fps;                      ///< --fps F
