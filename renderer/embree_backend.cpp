@@ -187,7 +187,11 @@ class EmbreeBackend final : public Backend {
       mesh.vertices = static_cast<float*>(
           rtcSetNewGeometryBuffer(mesh.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                   3 * sizeof(float), cs.vertex_count));
-      if (!mesh.vertices) m_device.check(mark, "vertex buffer allocation");
+      if (!mesh.vertices) {
+        release();
+        m_device.check(mark, "vertex buffer allocation");
+        throw std::runtime_error("Embree could not allocate a vertex buffer");
+      }
       convert(cs.key(0), mesh.vertices);
       if (m_refit)
         rtcSetGeometryBuildQuality(mesh.geometry,
@@ -206,14 +210,17 @@ class EmbreeBackend final : public Backend {
         if (m_meshes[o].geometry)
           rtcAttachGeometryByID(m_rtc_scene, m_meshes[o].geometry, unsigned(o));
     }
-    m_device.check(mark, "scene set-up");
+    try {
+      m_device.check(mark, "scene set-up");
+    } catch (...) {
+      release();  // the destructor does not run for a constructor that throws
+      throw;
+    }
   }
 
-  ~EmbreeBackend() override {
-    if (m_rtc_scene) rtcReleaseScene(m_rtc_scene);
-    for (Mesh& mesh : m_meshes)
-      if (mesh.geometry) rtcReleaseGeometry(mesh.geometry);
-  }
+  ~EmbreeBackend() override { release(); }
+  EmbreeBackend(const EmbreeBackend&) = delete;
+  EmbreeBackend& operator=(const EmbreeBackend&) = delete;
 
   [[nodiscard]] std::string name() const override { return "embree"; }
 
@@ -286,6 +293,15 @@ class EmbreeBackend final : public Backend {
   // A scene rebuilt every frame is built once and traced once, so Embree's fast (Morton/binned)
   // build of dynamic content is the right trade between build and trace time.
   static constexpr RTCBuildQuality kRebuildQuality = RTC_BUILD_QUALITY_LOW;
+
+  void release() {
+    if (m_rtc_scene) rtcReleaseScene(m_rtc_scene);
+    m_rtc_scene = nullptr;
+    for (Mesh& mesh : m_meshes) {
+      if (mesh.geometry) rtcReleaseGeometry(mesh.geometry);
+      mesh.geometry = nullptr;
+    }
+  }
 
   void convert(std::span<const Vec3> positions, float* out) const {
     const auto convert_range = [&](size_t begin, size_t end) {
