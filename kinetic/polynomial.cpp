@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "kinetic/binomial.h"
 #include "kinetic/check.h"
 
 namespace kinray {
@@ -9,16 +10,7 @@ namespace kinray {
 namespace {
 constexpr int kN = kMaxPolynomialDegree;
 
-// Binomial coefficients C(n, k) for n <= 8, exact in double.
-constexpr std::array<std::array<double, kN + 1>, kN + 1> make_binomials() {
-  std::array<std::array<double, kN + 1>, kN + 1> t{};
-  for (int n = 0; n <= kN; ++n) {
-    t[n][0] = 1;
-    for (int k = 1; k <= n; ++k) t[n][k] = t[n - 1][k - 1] + (k <= n - 1 ? t[n - 1][k] : 0);
-  }
-  return t;
-}
-constexpr auto kBinomial = make_binomials();
+using detail::kBinomial;
 }  // namespace
 
 Polynomial::Polynomial(double constant) { c[0] = constant; }

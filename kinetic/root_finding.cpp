@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "kinetic/binomial.h"
 #include "kinetic/check.h"
 
 // Root isolation in the Bernstein basis (Descartes' rule of signs, de Casteljau subdivision; see
@@ -30,15 +31,7 @@ thread_local RootStats t_stats;
 
 int sign_of(double x) { return (x > 0) - (x < 0); }
 
-constexpr std::array<std::array<double, kN + 1>, kN + 1> make_binomials() {
-  std::array<std::array<double, kN + 1>, kN + 1> t{};
-  for (int n = 0; n <= kN; ++n) {
-    t[n][0] = 1;
-    for (int k = 1; k <= n; ++k) t[n][k] = t[n - 1][k - 1] + (k <= n - 1 ? t[n - 1][k] : 0);
-  }
-  return t;
-}
-constexpr auto kBinomial = make_binomials();
+using detail::kBinomial;
 
 // kRatio[n][i][j] = C(i, j) / C(n, j): power (in u on [0,1]) to Bernstein conversion.
 struct RatioTable {
