@@ -25,7 +25,10 @@ struct CommandRun {
 
 /// Runs `kinray diff ARGS` with its output captured.
 CommandRun kinray_diff(const std::string& args) {
-  const fs::path folder = fs::path(::testing::TempDir()) / "kinray_diff_command";
+  // One folder per test: ctest runs tests in parallel processes that share TempDir().
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path folder = fs::path(::testing::TempDir()) /
+                          ("kinray_diff_command_" + std::string(test->test_suite_name()) + "_" + test->name());
   fs::create_directories(folder);
   const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
   const std::string command =
