@@ -94,10 +94,24 @@ typename FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const Po
 }
 
 template <class Sort>
-void FrustumBand<Sort>::locate_boundary(SlotTracker& b, const EdgeNormal& edge, int row,
-                                        double s) const {
+Polynomial FrustumBand<Sort>::boundary_front(const TriangleNow& tn, int edge, int row) const {
+  const PointMotion& p = tn.motion.v[size_t(kEdgeStart[edge])];
+  const PointMotion& q = tn.motion.v[size_t(kEdgeEnd[edge])];
   const double y = m_scene.row_y(row);
-  auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), s); };
+  const Polynomial z = boundary_depth(p, q, y);
+  return sign_plus(row_side(q, y), tn.s) > 0 ? z : -z;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::locate_boundary(SlotTracker& b, const TriangleNow& tn, int row) const {
+  if (sign_plus(boundary_front(tn, b.edge, row), tn.s) < 0) {
+    b.slot = kBehindEye;
+    b.sign_lo = b.sign_hi = 1;
+    return;
+  }
+  const EdgeNormal edge = tn.motion.edge(b.edge);
+  const double y = m_scene.row_y(row);
+  auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), tn.s); };
   b.slot = m_columns.locate(sign_at);
   const auto [lo, hi] = m_columns.watched(b.slot);
   b.sign_lo = int8_t(sign_at(lo));
@@ -124,7 +138,8 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
   if (!full) {
     // Coverage is constant between consecutive cuts: the boundary slots and the image borders
     // (the covered columns end only where the ray passes a boundary point in front of the eye).
-    int cuts[4] = {0, r.boundary[0].slot, r.boundary[1].slot, m_width};
+    // A boundary behind the eye changes no coverage where it crosses (no cut).
+    int cuts[4] = {0, std::max(r.boundary[0].slot, 0), std::max(r.boundary[1].slot, 0), m_width};
     std::sort(cuts, cuts + 4);
     for (int k = 0; k + 1 < 4; ++k) {
       const int a = cuts[k], b = cuts[k + 1];
@@ -183,11 +198,18 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t rec, int bi, const TriangleNo
   RowRecord& r = m_records[rec];
   SlotTracker& b = r.boundary[size_t(bi)];
   if (!tn.moving) return;
-  const EdgeNormal edge = known ? *known : tn.motion.edge(b.edge);
-  const double y = m_scene.row_y(r.row);
-  const auto [lo, hi] = m_columns.watched(b.slot);
-  double t = failure_time(b.sign_lo, edge.along(m_scene.column_x(lo), y), tn.segment);
-  if (hi != lo) t = std::min(t, failure_time(b.sign_hi, edge.along(m_scene.column_x(hi), y), tn.segment));
+  double t;
+  if (b.slot == kBehindEye) {
+    t = failure_time(-1, boundary_front(tn, b.edge, r.row), tn.segment);
+  } else {
+    const EdgeNormal edge = known ? *known : tn.motion.edge(b.edge);
+    const double y = m_scene.row_y(r.row);
+    const auto [lo, hi] = m_columns.watched(b.slot);
+    t = failure_time(b.sign_lo, edge.along(m_scene.column_x(lo), y), tn.segment);
+    if (hi != lo) t = std::min(t, failure_time(b.sign_hi, edge.along(m_scene.column_x(hi), y), tn.segment));
+    // Only from the off slot (at infinity) can the point pass behind the eye.
+    if (b.slot == 0) t = std::min(t, failure_time(1, boundary_front(tn, b.edge, r.row), tn.segment));
+  }
   m_stats.certificates_computed += 2;
   set_event(b.event, t, EventKey{0, kGridBoundary, uint32_t(r.row), boundary_code(r.triangle, b.edge)},
             (uint64_t{rec} << 1) | uint64_t(bi));
@@ -299,7 +321,7 @@ uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int
   ts.head = rec;
   r.boundary[0].edge = uint8_t(edge_a);
   r.boundary[1].edge = uint8_t(edge_b);
-  for (SlotTracker& b : r.boundary) locate_boundary(b, tn.motion.edge(b.edge), row, tn.s);
+  for (SlotTracker& b : r.boundary) locate_boundary(b, tn, row);
   ++m_stats.records_born;
   if (tn.moving) m_live_boundaries += 2;
   const CoverageRule rule = first ? CoverageRule(tn.motion, tn.s)
@@ -370,7 +392,7 @@ void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool
         }
       }
     }
-    for (SlotTracker& b : r.boundary) locate_boundary(b, tn.motion.edge(b.edge), r.row, tn.s);
+    for (SlotTracker& b : r.boundary) locate_boundary(b, tn, r.row);
   }
   const CoverageRule rule(tn.motion, tn.s);
   const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
@@ -447,12 +469,23 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
   const int other = r.boundary[size_t(1 - bi)].edge;
   SlotTracker& b = r.boundary[size_t(bi)];
   b.edge = uint8_t(crossing[0] == other ? crossing[1] : crossing[0]);
+  // The new edge's point is the same point: on the same side of the eye, in the same slot.
+  const bool front = sign_plus(boundary_front(tn, b.edge, row), tn.s) > 0;
+  if (b.slot == kBehindEye) {
+    if (front) {
+      ++m_stats.degenerate_rebuilds;
+      rebuild_record(rec, tn, true);
+      return;
+    }
+    schedule_boundary(rec, bi, tn);
+    return;
+  }
   const EdgeNormal edge = tn.motion.edge(b.edge);
   const double y = m_scene.row_y(row);
   const auto [lo, hi] = m_columns.watched(b.slot);
   const int sl = sign_plus(edge.along(m_scene.column_x(lo), y), tn.s);
   const int sh = lo == hi ? sl : sign_plus(edge.along(m_scene.column_x(hi), y), tn.s);
-  if (!SlotCircle::consistent(b.slot, sl, sh)) {
+  if (!front || !SlotCircle::consistent(b.slot, sl, sh)) {
     ++m_stats.degenerate_rebuilds;
     rebuild_record(rec, tn, true);
     return;
@@ -668,9 +701,43 @@ void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
   const EdgeNormal edge = tn.motion.edge(b.edge);
   const double y = m_scene.row_y(r.row);
   auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), tn.s); };
+  if (b.slot == kBehindEye) {
+    // Back in front through the eye plane, at infinity: the off slot. Nothing visible changes.
+    if (sign_plus(boundary_front(tn, b.edge, r.row), tn.s) < 0) {
+      ++m_stats.spurious;
+      schedule_boundary(rec, bi, tn, &edge);
+      return;
+    }
+    ++m_stats.events.boundary;
+    const auto [lo, hi] = m_columns.watched(0);
+    const int sl = sign_at(lo), sh = lo == hi ? sl : sign_at(hi);
+    if (!SlotCircle::consistent(0, sl, sh)) {
+      ++m_stats.degenerate_rebuilds;
+      rebuild_record(rec, tn, true);
+      return;
+    }
+    b.slot = 0;
+    b.sign_lo = int8_t(sl);
+    b.sign_hi = int8_t(sh);
+    schedule_boundary(rec, bi, tn, &edge);
+    return;
+  }
   const auto [lo, hi] = m_columns.watched(b.slot);
   const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
   const bool changed_lo = gl != b.sign_lo, changed_hi = gh != b.sign_hi;
+  if (b.slot == 0 && sign_plus(boundary_front(tn, b.edge, r.row), tn.s) < 0) {
+    // Behind the eye through the eye plane, at infinity: nothing visible changes.
+    ++m_stats.events.boundary;
+    if (changed_lo || changed_hi) {
+      ++m_stats.degenerate_rebuilds;
+      rebuild_record(rec, tn, true);
+      return;
+    }
+    b.slot = kBehindEye;
+    b.sign_lo = b.sign_hi = 1;
+    schedule_boundary(rec, bi, tn, &edge);
+    return;
+  }
   if (!changed_lo && !changed_hi) {
     ++m_stats.spurious;
     schedule_boundary(rec, bi, tn, &edge);
@@ -850,7 +917,17 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
                           (r.boundary[0].edge == crossing[1] && r.boundary[1].edge == crossing[0]);
           if (!ok) report(where(tri, r.row) + "boundaries tied to the wrong edges");
         }
+        TriangleNow tn;
+        tn.motion = motion;
+        tn.s = s;
         for (const SlotTracker& b : r.boundary) {
+          const bool front = sign_plus(boundary_front(tn, b.edge, r.row), s) > 0;
+          if (front == (b.slot == kBehindEye)) {
+            report(where(tri, r.row) + "boundary on edge " + std::to_string(b.edge) +
+                   (front ? " in front but marked behind the eye" : " behind the eye but in a slot"));
+            continue;
+          }
+          if (!front) continue;
           const EdgeNormal edge = motion.edge(b.edge);
           const auto [lo, hi] = m_columns.watched(b.slot);
           const int gl = sign_plus(edge.along(m_scene.column_x(lo), y), s);

@@ -114,7 +114,9 @@ class FrustumBand {
   [[nodiscard]] TriangleNow triangle_now(uint32_t tri) const;
   [[nodiscard]] PointMotion vertex_now(uint32_t v, double& s) const;
   [[nodiscard]] RowPattern locate_vertex(const PointMotion& p, double s) const;
-  void locate_boundary(SlotTracker& b, const EdgeNormal& edge, int row, double s) const;
+  void locate_boundary(SlotTracker& b, const TriangleNow& tn, int row) const;
+  /// F > 0 (perturbed) iff the boundary point of edge e on row plane `row` is in front of the eye.
+  [[nodiscard]] Polynomial boundary_front(const TriangleNow& tn, int edge, int row) const;
   [[nodiscard]] std::array<int, 3> row_sides(const TriangleNow& tn, int row) const;
   /// Scans a record's covered interval: from its boundary slots (`full` = every column).
   [[nodiscard]] std::pair<int, int> scan_coverage(const RowRecord& r, const CoverageRule& rule,

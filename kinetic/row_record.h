@@ -51,10 +51,16 @@ struct SlotCircle {
   }
 };
 
+/// The slot of a boundary whose point lies behind the eye plane: its crossings of column centres
+/// change nothing visible (the sign rule), so it watches only its depth; it can come back in
+/// front only through the eye plane, where its column position is at infinity: the off slot.
+inline constexpr int32_t kBehindEye = -1;
+
 /// A point tracked on a slot circle: its slot, the signs at the two watched positions, and the
-/// queue entry of the earlier failure of its two certificates "sign keeps its value".
+/// queue entry of the earlier failure of its certificates "sign keeps its value" (a boundary in
+/// the off slot also watches that its point stays in front of the eye plane).
 struct SlotTracker {
-  int32_t slot = 0;
+  int32_t slot = 0;  ///< boundaries: kBehindEye when the point is behind the eye
   int8_t sign_lo = 1, sign_hi = 1;
   uint8_t edge = 0;  ///< boundaries: the edge the point is tied to (0: v0v1, 1: v1v2, 2: v2v0)
   EventHandle event = kNoEvent;

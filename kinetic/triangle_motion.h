@@ -51,6 +51,20 @@ struct EdgeNormal {
   return f;
 }
 
+/// Where the boundary point of edge pq on row plane Pi_j (normal (0, 1, -y)) lies in depth: its
+/// z has the sign of sigma (p.z (n.q) - q.z (n.p)), sigma = sign(n.q - n.p) constant while the
+/// edge crosses the plane. Returns p.z (n.q) - q.z (n.p), a quadratic.
+[[nodiscard]] inline Polynomial boundary_depth(const PointMotion& p, const PointMotion& q, double y) {
+  const Polynomial side_p = row_side(p, y), side_q = row_side(q, y);
+  Polynomial pz, qz;
+  pz.degree = qz.degree = 1;
+  pz.c[0] = p.a.z();
+  pz.c[1] = p.b.z();
+  qz.c[0] = q.a.z();
+  qz.c[1] = q.b.z();
+  return pz * side_q - qz * side_p;
+}
+
 /// Edges are numbered by their first vertex: edge e runs from v[e] to v[(e + 1) % 3].
 inline constexpr int kEdgeStart[3] = {0, 1, 2};
 inline constexpr int kEdgeEnd[3] = {1, 2, 0};
