@@ -1,17 +1,18 @@
 // The hard instants of kinetic ray tracing, each built in code, rendered by the kinetic backend with
-// its audit on and compared with Embree and with the brute-force sign rule (zero real mismatches)
-// at frame times that hit the instant exactly: coplanar overlapping triangles, edges exactly
-// through pixel centres, a depth swap exactly at a frame time, a vertex exactly on a row plane at
-// a keyframe, objects inserted and removed mid-shot, geometry passing behind the camera and
-// through the eye, and zero-area triangles. Where the mathematics gives the answer (who is in
-// front just after a swap, what a ray on a shared edge must see, that a degenerate or edge-on
-// triangle covers nothing), the test checks it.
+// its audit on and compared frame by frame with Embree (zero real mismatches; near a vertex at the
+// eye, where Embree is no reference, with the brute-force sign rule) at frame times that hit the
+// instant exactly: coplanar overlapping triangles, edges exactly through pixel centres, a depth
+// swap exactly at a frame time, a vertex exactly on a row plane at a keyframe, objects inserted and
+// removed mid-shot, geometry passing behind the camera and through the eye, and zero-area
+// triangles. Where the mathematics gives the answer (who is in front just after a swap, what a ray
+// on a shared edge must see, that a degenerate or edge-on triangle covers nothing), the test
+// checks it. Tests marked KNOWN FAILURE reproduce kinetic-backend bugs found this way.
 //
 // Positions are camera-space values set exactly after CameraSpaceScene::build (the analytic
-// camera's fov scale is 1 only up to an ulp), all dyadic, so that "exactly" means exactly: an
-// edge through the pixel centres of column c has E(d) == 0.0 for every ray of that column.
+// camera's fov scale is 1 only up to an ulp), dyadic wherever exactness matters, so "exactly"
+// means exactly: an edge through the pixel centres of column c has E(d) == 0.0 for every ray of
+// that column. The 32x32 image has dyadic pixel centres too.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,7 +40,7 @@ double cx(int i) { return (2.0 * i + 1) / kSize - 1; }
 double cy(int j) { return 1 - (2.0 * j + 1) / kSize; }
 /// The camera-space point at image position (u, v) = (x / z, y / z) and depth z.
 Vec3 at(double u, double v, double z) { return {u * z, v * z, z}; }
-/// The pixel whose centre is nearest to image position (u, v).
+/// The pixel that contains image position (u, v).
 std::pair<int, int> pixel_at(double u, double v) {
   return {int((u + 1) * kSize / 2), int((1 - v) * kSize / 2)};
 }
@@ -409,6 +410,28 @@ TEST(HardCases, VertexExactlyOnARowPlaneAtAKeyframe) {
   expect_agreement(s.cs(), r);
   EXPECT_GT(r.stats["events"]["vertex_row"].get<uint64_t>(), 0u);
   EXPECT_GT(r.stats["events"]["flightplan"].get<uint64_t>(), 0u);
+}
+
+// KNOWN FAILURE, kinetic backend (reported in issue 6; found by tools/diff_all.sh on
+// ASE/RotatingCube.ASE, 3DS/RotatingCube.3DS, ASE/anim.ASE and LWS/move_xz_*.lws,
+// move_y_pre_ofrep_post_osc.lws: 12 to 1318 real mismatches against Embree, and audit failures
+// "covered but not held"). The edge v0 v1 is parallel to the image rows -- its two vertices share
+// their camera-space y and z, as the edges of a box parallel to the camera's x axis do -- so both
+// vertices cross each row plane at the same instant. The triangle is tilted (v2 nearer). The edge
+// sweeps up across row 8 (y / z = 15/32) at t = 9/16; from then on the kinetic backend leaves row 8
+// uncovered between the edges v2 v0 and v2 v1 (16 pixels from column 8 at t = 0.625; the audit
+// reports "triangle 0 row 8: column 8 covered but not held" at the first advance after 9/16).
+// KNOWN FAILURE, kinetic backend (found at the end of session 1, issue 4 stays open): disabled so
+// that CI stays green; run with --gtest_also_run_disabled_tests to reproduce it.
+TEST(HardCases, DISABLED_EdgeParallelToTheRowsSweepsAcrossARowPlane) {
+  auto key = [](double v) { return std::vector<Vec3>{at(-0.5, v, 3), at(0.5, v, 3), at(0.1, -0.5, 2)}; };
+  const ExactScene s({{"t", {{0, 1, 2}}, {key(0.3), key(0.6)}, {0, 1}}});
+  const std::vector<double> times = {0, 0.5, 0.5625, 0.625, 0.75, 1};
+  const Renders r = render(s.cs(), times);
+  expect_agreement(s.cs(), r);
+  ASSERT_EQ(r.kinetic.size(), times.size());
+  // Just after the crossing, row 8 holds the triangle in the middle of the image.
+  EXPECT_EQ(r.kinetic[3].object[r.kinetic[3].index(16, 8)], 0u) << "row 8 is covered after t = 9/16";
 }
 
 TEST(HardCases, ObjectsInsertedAndRemovedMidShot) {
