@@ -47,6 +47,15 @@ class CoverageRule {
       if (sign_plus(m_edges[e].along(x, y), m_s) != m_orientation) return false;
     return true;
   }
+  /// The sign rule restricted to a row plane that edges a and b cross: there the third edge's
+  /// sign follows from the other two (the cone from the eye over the row segment is the wedge
+  /// between the planes of a and b), so only a and b are tested. This equals covers() except at
+  /// degenerate instants (the third edge lying in the row plane, when rounding can make its sign
+  /// lag the vertex-row event by an ulp), and depends only on what the row record tracks.
+  [[nodiscard]] bool covers_in_row(double x, double y, int a, int b) const {
+    return m_orientation != 0 && sign_plus(m_edges[a].along(x, y), m_s) == m_orientation &&
+           sign_plus(m_edges[b].along(x, y), m_s) == m_orientation;
+  }
 
  private:
   std::array<EdgeNormal, 3> m_edges;

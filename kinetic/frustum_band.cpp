@@ -144,7 +144,7 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
     for (int k = 0; k + 1 < 4; ++k) {
       const int a = cuts[k], b = cuts[k + 1];
       if (a >= b) continue;
-      if (rule.covers(m_scene.column_x(a), y)) {
+      if (rule.covers_in_row(m_scene.column_x(a), y, r.boundary[0].edge, r.boundary[1].edge)) {
         lo = std::min(lo, a);
         hi = std::max(hi, b - 1);
         count += b - a;
@@ -155,7 +155,7 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
   }
   lo = m_width, hi = -1, count = 0;
   for (int c = 0; c < m_width; ++c)
-    if (rule.covers(m_scene.column_x(c), y)) {
+    if (rule.covers_in_row(m_scene.column_x(c), y, r.boundary[0].edge, r.boundary[1].edge)) {
       lo = std::min(lo, c);
       hi = c;
       ++count;
@@ -407,7 +407,8 @@ void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
   // this very instant is still pending and rebuilds the record when processed).
   const CoverageRule rule(tn.motion, tn.s, m_triangles[r.triangle].orientation);
-  const bool covered = rule.covers(m_scene.column_x(column), m_scene.row_y(r.row));
+  const bool covered = rule.covers_in_row(m_scene.column_x(column), m_scene.row_y(r.row),
+                                          r.boundary[0].edge, r.boundary[1].edge);
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
   if (covered) {
@@ -937,7 +938,7 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
                    std::to_string(b.slot));
         }
         for (int c = 0; c < m_width; ++c) {
-          const bool truth = rule.covers(m_scene.column_x(c), y);
+          const bool truth = rule.covers_in_row(m_scene.column_x(c), y, r.boundary[0].edge, r.boundary[1].edge);
           if (truth != r.covers(c))
             report(where(tri, r.row) + "column " + std::to_string(c) + (truth ? " covered but not held" : " held but not covered"));
           if (r.covers(c)) {

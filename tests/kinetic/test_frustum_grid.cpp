@@ -171,6 +171,25 @@ TEST_P(GridSorts, VertexCrossesRowPlanes) {
   EXPECT_EQ(grid.stats().events.vertex_row, rows_crossed);
 }
 
+// An edge parallel to the rows (both ends share y and z) sweeps across a row plane: both its
+// vertices cross it at one instant, while the edge lies in the plane. The record born there
+// covers 16 columns at once; rounding may make the edge's own sign flip an ulp later than the
+// vertex-row event, which must not leave the row uncovered.
+TEST_P(GridSorts, EdgeParallelToTheRowsCrossesARowPlane) {
+  TestScene scene;
+  scene.width = scene.height = 32;
+  auto key = [](double v) {
+    return std::array<Vec, 3>{at_depth(-0.5, v, 3), at_depth(0.5, v, 3), at_depth(0.1, -0.5, 2)};
+  };
+  scene.meshes.push_back(test::moving_triangle({0.0, 1.0}, {key(0.3), key(0.6)}));
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.0, audited(GetParam(), 1));
+  // Row 8 (y = 15/32) is crossed at t = 9/16; 0.625 is just after.
+  run_against_brute_force(grid, in, {0.5, 0.5625, 0.5625 + 1e-15, 0.57, 0.625, 0.75, 1.0});
+  grid.advance_to(1.0);
+  EXPECT_GE(grid.stats().events.vertex_row, 2u);
+}
+
 // A triangle translating along -z through the eye plane: the sign rule decides what is seen
 // while it straddles the eye; once fully behind, nothing is.
 TEST_P(GridSorts, TrianglePassingBehindTheCamera) {
