@@ -6,7 +6,8 @@
 // removed mid-shot, geometry passing behind the camera and through the eye, and zero-area
 // triangles. Where the mathematics gives the answer (who is in front just after a swap, what a ray
 // on a shared edge must see, that a degenerate or edge-on triangle covers nothing), the test
-// checks it. Tests marked KNOWN FAILURE reproduce kinetic-backend bugs found this way.
+// checks it. Tests marked KNOWN FAILURE reproduce kinetic-backend bugs found this way; they are
+// disabled (DISABLED_, so CI stays green) and run with --gtest_also_run_disabled_tests.
 //
 // Positions are camera-space values set exactly after CameraSpaceScene::build (the analytic
 // camera's fov scale is 1 only up to an ulp), dyadic wherever exactness matters, so "exactly"
@@ -421,8 +422,8 @@ TEST(HardCases, VertexExactlyOnARowPlaneAtAKeyframe) {
 // sweeps up across row 8 (y / z = 15/32) at t = 9/16; from then on the kinetic backend leaves row 8
 // uncovered between the edges v2 v0 and v2 v1 (16 pixels from column 8 at t = 0.625; the audit
 // reports "triangle 0 row 8: column 8 covered but not held" at the first advance after 9/16).
-// KNOWN FAILURE, kinetic backend (found at the end of session 1, issue 4 stays open): disabled so
-// that CI stays green; run with --gtest_also_run_disabled_tests to reproduce it.
+// Disabled so that CI stays green; the bug stays open in issues 4 and 6: run with
+// --gtest_also_run_disabled_tests to reproduce it.
 TEST(HardCases, DISABLED_EdgeParallelToTheRowsSweepsAcrossARowPlane) {
   auto key = [](double v) { return std::vector<Vec3>{at(-0.5, v, 3), at(0.5, v, 3), at(0.1, -0.5, 2)}; };
   const ExactScene s({{"t", {{0, 1, 2}}, {key(0.3), key(0.6)}, {0, 1}}});
@@ -504,7 +505,8 @@ TEST(HardCases, GeometryPassingBehindTheCamera) {
 // is no reference: it forms o's edges v1 - v0 in float, where a vertex 1e-6 from the eye is lost
 // to cancellation (6 to 140 real mismatches against the exact sign rule within 1e-6 of t = 0.5,
 // and at t = 0.5 every ray starts on o and gets a hit at distance 0); those frames are compared
-// with the brute-force sign rule in double.
+// with the brute-force sign rule in double. Disabled so that CI stays green; the bug stays open in
+// issues 4 and 6: run with --gtest_also_run_disabled_tests to reproduce it.
 TEST(HardCases, DISABLED_VertexPassingThroughTheEye) {
   const Piece o{"o", {{0, 1, 2}},
                 {{{0.27, -0.52, 1}, {1.05, -1.45, 2}, {1.55, -0.95, 2}},
@@ -528,7 +530,8 @@ TEST(HardCases, DISABLED_VertexPassingThroughTheEye) {
 // t = 0.1: there N_r and D_r (depth = N / D) vanish together and change sign, so the depth
 // certificate N_r D_wall - N_wall D_r changes sign while r stays in front of the wall (at depth
 // ~2 against 4) -- DESIGN.md assumes the sign of D_A D_B constant while both cover the pixel.
-// The render runs in a child process, so the abort fails this test only.
+// The render runs in a child process, so the abort fails this test only. Disabled so that CI stays
+// green; the bug stays open in issues 4 and 6: run with --gtest_also_run_disabled_tests.
 TEST(HardCases, DISABLED_StaticEdgeOnPixelCentresWhileItsPlaneSweepsThroughTheEye) {
   const Piece rr{"r", {{0, 1, 2}},
                  {{{0.5, 0.5, 1}, at(0.75, 0.5, 2), at(0.5, 0.75, 2)}, {{0.5, 0.5, -1}, at(0.75, 0.5, 2), at(0.5, 0.75, 2)}},
