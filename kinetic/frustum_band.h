@@ -68,6 +68,12 @@ class FrustumBand {
   [[nodiscard]] std::optional<uint32_t> front(int column, int row) const {
     return cell(column, row).order.front();
   }
+  /// f(global id) for every triangle in pixel (column, row)'s depth order: front to back for the
+  /// sorted list, the front first but otherwise unsorted for the tournament and the heap.
+  template <class F>
+  void for_each_member(int column, int row, F&& f) const {
+    cell(column, row).order.for_each(f);
+  }
   /// The number of triangles in pixel (column, row)'s depth order.
   [[nodiscard]] size_t depth_complexity(int column, int row) const {
     return cell(column, row).order.size();

@@ -48,6 +48,9 @@ class FrustumGrid::Bands {
   virtual void fronts(int row_begin, int row_end, std::span<uint32_t> out) const = 0;
   virtual size_t depth_complexity(int i, int j) const = 0;
   virtual uint32_t front(int i, int j) const = 0;
+  /// Every triangle of pixel (i, j)'s order into `out` (cleared first): front to back for the
+  /// sorted list, the front first for the tournament and the heap.
+  virtual void members(int i, int j, std::vector<uint32_t>& out) const = 0;
   virtual std::vector<std::string> audit(double t, int threads) const = 0;
   virtual GridStats stats() const = 0;
   virtual int count() const = 0;
@@ -85,6 +88,10 @@ class BandsOf final : public FrustumGrid::Bands {
   }
   uint32_t front(int i, int j) const override {
     return m_bands[band_of(j)]->front(i, j).value_or(kNoGridHit);
+  }
+  void members(int i, int j, std::vector<uint32_t>& out) const override {
+    out.clear();
+    m_bands[band_of(j)]->for_each_member(i, j, [&](uint32_t tri) { out.push_back(tri); });
   }
   size_t depth_complexity(int i, int j) const override {
     return m_bands[band_of(j)]->depth_complexity(i, j);
@@ -199,38 +206,62 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
     }
     b.k1 = b.k0 + 1;
   }
+  // The depth of triangle `tri` along pixel (i, j)'s ray at now, from its interpolated vertices.
+  auto hit_depth = [&](uint32_t tri, int i, int j) {
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    const GridMesh& mesh = m_scene.mesh(m);
+    const auto& vs = mesh.triangles[tri - m_scene.triangle_begin(m)];
+    const Blend& b = blends[m];
+    Eigen::Vector3d q[3];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d& a = mesh.key_position(b.k0, vs[size_t(k)]);
+      if (b.still) {
+        q[k] = a;
+      } else {
+        const Eigen::Vector3d& c = mesh.key_position(b.k1, vs[size_t(k)]);
+        q[k] = a + b.alpha * (c - a);
+      }
+    }
+    return plane_depth(q[0], q[1], q[2], m_scene.column_x(i), m_scene.row_y(j));
+  };
+  // A triangle in a pixel's order pierces its ray just after now; exactly at now it may not: when
+  // its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers nothing at
+  // that instant (DESIGN.md's strict rule), and its hit is not in front of the eye. That is
+  // measure zero, so the front is checked and only then are the other members visited.
+  auto pierces = [](double z) { return std::isfinite(z) && z > 0; };
   parallel_chunks(size_t(h), m_threads, [&](size_t row_begin, size_t row_end) {
     m_bands->fronts(int(row_begin), int(row_end),
                     object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
+    std::vector<uint32_t> members;
     for (size_t j = row_begin; j < row_end; ++j)
       for (int i = 0; i < w; ++i) {
         const size_t p = j * size_t(w) + size_t(i);
-        const uint32_t tri = object[p];
+        uint32_t tri = object[p];
+        double z = tri == kNoGridHit ? 0.0 : hit_depth(tri, i, int(j));
+        if (tri != kNoGridHit && !pierces(z)) {
+          // The nearest member that pierces the ray at now; at equal depths the earlier one in
+          // the order (the sorted list visits front to back).
+          const uint32_t front = tri;
+          tri = kNoGridHit;
+          m_bands->members(i, int(j), members);
+          for (uint32_t other : members) {
+            if (other == front) continue;
+            const double zo = hit_depth(other, i, int(j));
+            if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
+              tri = other;
+              z = zo;
+            }
+          }
+        }
         if (tri == kNoGridHit) {
-          prim[p] = kNoGridHit;
+          object[p] = prim[p] = kNoGridHit;
           depth[p] = std::numeric_limits<float>::infinity();
           continue;
         }
         const uint32_t m = m_scene.mesh_of_triangle(tri);
-        const GridMesh& mesh = m_scene.mesh(m);
-        const uint32_t local = tri - m_scene.triangle_begin(m);
-        const auto& vs = mesh.triangles[local];
-        const Blend& b = blends[m];
-        Eigen::Vector3d q[3];
-        for (int k = 0; k < 3; ++k) {
-          const Eigen::Vector3d& a = mesh.key_position(b.k0, vs[size_t(k)]);
-          if (b.still) {
-            q[k] = a;
-          } else {
-            const Eigen::Vector3d& c = mesh.key_position(b.k1, vs[size_t(k)]);
-            q[k] = a + b.alpha * (c - a);
-          }
-        }
-        const double z = plane_depth(q[0], q[1], q[2], m_scene.column_x(i), m_scene.row_y(int(j)));
-        object[p] = mesh.id;
-        prim[p] = local;
-        // The ray pierces the triangle, so z > 0 but for rounding at an edge-on plane.
-        depth[p] = std::isfinite(z) && z > 0 ? float(z) : 0.0f;
+        object[p] = m_scene.mesh(m).id;
+        prim[p] = tri - m_scene.triangle_begin(m);
+        depth[p] = float(z);
       }
   });
   m_timings.readout += seconds_since(started);

@@ -71,7 +71,9 @@ class FrustumGrid {
   /// Number of triangles whose centre-ray hits pixel (i, j) holds.
   [[nodiscard]] size_t depth_complexity(int i, int j) const;
   /// Read-out at now(), row-major with row 0 at the top: the front triangle's GridMesh::id and
-  /// triangle index (kNoGridHit for background) and its exact depth along the centre ray at now,
+  /// triangle index (kNoGridHit for background) and its exact depth along the centre ray at now
+  /// (when the front does not pierce the ray exactly at now -- its plane holds the eye -- the
+  /// nearest member of the pixel's order that does),
   /// computed in double from the interpolated positions exactly as the Embree backend does (+inf
   /// for background). Spans of width * height.
   void read_out(std::span<uint32_t> object, std::span<uint32_t> prim, std::span<float> depth) const;

@@ -129,6 +129,11 @@ class KineticHeap {
     if (m_index) return m_index->contains(id);
     return std::any_of(m_nodes.begin(), m_nodes.end(), [id](const Node& n) { return n.id == id; });
   }
+  /// f(id) for every object, in heap order (the front first, the rest not sorted).
+  template <class F>
+  void for_each(F&& f) const {
+    for (const Node& n : m_nodes) f(n.id);
+  }
 
   /// Every parent-child certificate recomputed at t holds just after t or is pending at t.
   void audit(double t) const {

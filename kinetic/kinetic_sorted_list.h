@@ -133,6 +133,11 @@ class KineticSortedList {
   void for_each_in_order(F&& f) const {
     for (const Entry& e : m_entries) f(e.id);
   }
+  /// f(id) for every object (front to back), as the tournament and the heap offer it.
+  template <class F>
+  void for_each(F&& f) const {
+    for_each_in_order(f);
+  }
 
   /// Every adjacent certificate recomputed at t: holds just after t, or its event is pending at t
   /// (simultaneous events); key values in order; no failure scheduled later than recomputed.

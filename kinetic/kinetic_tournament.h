@@ -106,6 +106,11 @@ class KineticTournament {
       if (m_nodes[m_capacity + i].winner == id) return true;
     return false;
   }
+  /// f(id) for every object, in no particular order.
+  template <class F>
+  void for_each(F&& f) const {
+    for (uint32_t i = 0; i < m_size; ++i) f(m_nodes[m_capacity + i].winner);
+  }
 
   /// Every match recomputed at t: the winner is one of the two children's winners and beats the
   /// other just after t, or the match's event is pending at t.

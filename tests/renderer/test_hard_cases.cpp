@@ -6,8 +6,7 @@
 // removed mid-shot, geometry passing behind the camera and through the eye, and zero-area
 // triangles. Where the mathematics gives the answer (who is in front just after a swap, what a ray
 // on a shared edge must see, that a degenerate or edge-on triangle covers nothing), the test
-// checks it. Tests marked KNOWN FAILURE reproduce kinetic-backend bugs found this way; they are
-// disabled (DISABLED_, so CI stays green) and run with --gtest_also_run_disabled_tests.
+// checks it.
 //
 // Positions are camera-space values set exactly after CameraSpaceScene::build (the analytic
 // camera's fov scale is 1 only up to an ulp), dyadic wherever exactness matters, so "exactly"
@@ -413,18 +412,13 @@ TEST(HardCases, VertexExactlyOnARowPlaneAtAKeyframe) {
   EXPECT_GT(r.stats["events"]["flightplan"].get<uint64_t>(), 0u);
 }
 
-// KNOWN FAILURE, kinetic backend (reported in issue 6; found by tools/diff_all.sh on
-// ASE/RotatingCube.ASE, 3DS/RotatingCube.3DS, ASE/anim.ASE and LWS/move_xz_*.lws,
-// move_y_pre_ofrep_post_osc.lws: 12 to 1318 real mismatches against Embree, and audit failures
-// "covered but not held"). The edge v0 v1 is parallel to the image rows -- its two vertices share
-// their camera-space y and z, as the edges of a box parallel to the camera's x axis do -- so both
-// vertices cross each row plane at the same instant. The triangle is tilted (v2 nearer). The edge
-// sweeps up across row 8 (y / z = 15/32) at t = 9/16; from then on the kinetic backend leaves row 8
-// uncovered between the edges v2 v0 and v2 v1 (16 pixels from column 8 at t = 0.625; the audit
-// reports "triangle 0 row 8: column 8 covered but not held" at the first advance after 9/16).
-// Disabled so that CI stays green; the bug stays open in issues 4 and 6: run with
-// --gtest_also_run_disabled_tests to reproduce it.
-TEST(HardCases, DISABLED_EdgeParallelToTheRowsSweepsAcrossARowPlane) {
+// Found by tools/diff_all.sh on ASE/RotatingCube.ASE, 3DS/RotatingCube.3DS, ASE/anim.ASE and
+// LWS/move_xz_*.lws, move_y_pre_ofrep_post_osc.lws (fixed by d738b5c). The edge v0 v1 is parallel
+// to the image rows -- its two vertices share their camera-space y and z, as the edges of a box
+// parallel to the camera's x axis do -- so both vertices cross each row plane at the same instant.
+// The triangle is tilted (v2 nearer). The edge sweeps up across row 8 (y / z = 15/32) at
+// t = 9/16; from then on row 8 must be covered between the edges v2 v0 and v2 v1.
+TEST(HardCases, EdgeParallelToTheRowsSweepsAcrossARowPlane) {
   auto key = [](double v) { return std::vector<Vec3>{at(-0.5, v, 3), at(0.5, v, 3), at(0.1, -0.5, 2)}; };
   const ExactScene s({{"t", {{0, 1, 2}}, {key(0.3), key(0.6)}, {0, 1}}});
   const std::vector<double> times = {0, 0.5, 0.5625, 0.625, 0.75, 1};
@@ -497,17 +491,15 @@ TEST(HardCases, GeometryPassingBehindTheCamera) {
   EXPECT_GT(r.stats["events"]["orientation"].get<uint64_t>(), 0u);
 }
 
-// KNOWN FAILURE, kinetic backend (reported in issue 6). o's first vertex moves along its own
-// ray, through the eye at t = 0.5 and behind it after. At t = 0.5 the eye is a vertex of o, so its
-// plane holds the eye (det = 0) and by DESIGN.md's rule it covers nothing; the kinetic backend
-// reads out the coverage of just after 0.5 instead: 42 pixels of o, at depth 0. Before and after
-// the instant it agrees with the sign rule, and away from it with Embree. Near the instant Embree
-// is no reference: it forms o's edges v1 - v0 in float, where a vertex 1e-6 from the eye is lost
-// to cancellation (6 to 140 real mismatches against the exact sign rule within 1e-6 of t = 0.5,
-// and at t = 0.5 every ray starts on o and gets a hit at distance 0); those frames are compared
-// with the brute-force sign rule in double. Disabled so that CI stays green; the bug stays open in
-// issues 4 and 6: run with --gtest_also_run_disabled_tests to reproduce it.
-TEST(HardCases, DISABLED_VertexPassingThroughTheEye) {
+// o's first vertex moves along its own ray, through the eye at t = 0.5 and behind it after. At
+// t = 0.5 the eye is a vertex of o, so its plane holds the eye (det = 0) and by DESIGN.md's rule it
+// covers nothing, although the pixel orders hold the coverage of just after 0.5: the read-out must
+// see that the front does not pierce the ray at that instant and show what is behind. Near the
+// instant Embree is no reference: it forms o's edges v1 - v0 in float, where a vertex 1e-6 from
+// the eye is lost to cancellation (6 to 140 real mismatches against the exact sign rule within
+// 1e-6 of t = 0.5, and at t = 0.5 every ray starts on o and gets a hit at distance 0); those
+// frames are compared with the brute-force sign rule in double.
+TEST(HardCases, VertexPassingThroughTheEye) {
   const Piece o{"o", {{0, 1, 2}},
                 {{{0.27, -0.52, 1}, {1.05, -1.45, 2}, {1.55, -0.95, 2}},
                  {{-0.27, 0.52, -1}, {1.05, -1.45, 2}, {1.55, -0.95, 2}}},
