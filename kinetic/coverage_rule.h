@@ -6,9 +6,14 @@
 // Signs are always taken "just after now" (sign_after), in initialisation, events and audit
 // alike, so that the structure and its certificates agree exactly and an event never re-fires at
 // the instant it was processed. An edge function that vanishes identically on a segment (a ray
-// lying exactly in the plane of the eye and an edge for a whole segment) reads as positive: a
-// symbolic perturbation shared by the boundary slots and the sign rule, which keeps both
-// consistent; O must be strictly non-zero, so an edge-on or degenerate triangle covers nothing.
+// lying exactly in the plane of the eye and an edge for a whole segment) is decided by a symbolic
+// perturbation of the ray, d -> d + (eps, eps^2, 0) (EdgeNormal::perturbed): its sign is that of
+// n_x, or of n_y when n_x vanishes too (n = p x q). The two triangles sharing an edge have opposite
+// normals, so exactly one of them claims such a ray, whatever their winding: no crack and no
+// double cover. Along a row the perturbed signs are those of the linear function E at x + eps, so
+// they still form one step (a zero column joins the side of sign n_x) and the boundary slots stay
+// valid. The same perturbed sign decides coverage, slots, certificates and the audit. O must be
+// strictly non-zero, so an edge-on or degenerate triangle covers nothing.
 #include <array>
 
 #include "kinetic/polynomial.h"
@@ -17,10 +22,15 @@
 
 namespace kinray {
 
-/// sign_after(f, s) with 0 (the zero polynomial) read as +1: the perturbed sign of an edge
-/// function or of a vertex's side of a row plane.
+/// sign_after(f, s) with 0 (the zero polynomial) read as +1: the perturbed sign of a vertex's side
+/// of a row plane, and of an edge function whose edge passes through the eye all segment long.
 [[nodiscard]] inline int sign_plus(const Polynomial& f, double s) {
   return sign_after(f, s) >= 0 ? 1 : -1;
+}
+
+/// The sign (+1 or -1) of edge function n . d along the perturbed ray of (x, y, 1) just after s.
+[[nodiscard]] inline int edge_sign(const EdgeNormal& n, double x, double y, double s) {
+  return sign_plus(n.perturbed(x, y), s);
 }
 
 /// The sign rule at one instant for many rays of one triangle: the orientation's sign is taken
@@ -40,11 +50,11 @@ class CoverageRule {
   /// Sign of O just after s (0 when O vanishes identically).
   [[nodiscard]] int orientation_sign() const { return m_orientation; }
   [[nodiscard]] const EdgeNormal& edge(int e) const { return m_edges[e]; }
-  /// Does the ray (x, y, 1) pierce the triangle just after s?
+  /// Does the (perturbed) ray (x, y, 1) pierce the triangle just after s?
   [[nodiscard]] bool covers(double x, double y) const {
     if (m_orientation == 0) return false;
     for (int e = 0; e < 3; ++e)
-      if (sign_plus(m_edges[e].along(x, y), m_s) != m_orientation) return false;
+      if (edge_sign(m_edges[e], x, y, m_s) != m_orientation) return false;
     return true;
   }
   /// The sign rule restricted to a row plane that edges a and b cross: there the third edge's
@@ -53,8 +63,8 @@ class CoverageRule {
   /// degenerate instants (the third edge lying in the row plane, when rounding can make its sign
   /// lag the vertex-row event by an ulp), and depends only on what the row record tracks.
   [[nodiscard]] bool covers_in_row(double x, double y, int a, int b) const {
-    return m_orientation != 0 && sign_plus(m_edges[a].along(x, y), m_s) == m_orientation &&
-           sign_plus(m_edges[b].along(x, y), m_s) == m_orientation;
+    return m_orientation != 0 && edge_sign(m_edges[a], x, y, m_s) == m_orientation &&
+           edge_sign(m_edges[b], x, y, m_s) == m_orientation;
   }
 
  private:

@@ -111,7 +111,7 @@ void FrustumBand<Sort>::locate_boundary(SlotTracker& b, const TriangleNow& tn, i
   }
   const EdgeNormal edge = tn.motion.edge(b.edge);
   const double y = m_scene.row_y(row);
-  auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), tn.s); };
+  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, tn.s); };
   b.slot = m_columns.locate(sign_at);
   const auto [lo, hi] = m_columns.watched(b.slot);
   b.sign_lo = int8_t(sign_at(lo));
@@ -170,7 +170,12 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
 template <class Sort>
 double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const {
   if (sign == 0) return f.is_zero() ? kInf : m_now;
-  if (f.is_zero()) return sign > 0 ? kInf : m_now;  // a zero edge function reads as positive
+  // The zero polynomial reads as positive (sign_plus). An edge function that vanishes identically
+  // is watched through its perturbed sign (EdgeNormal::perturbed), which can still change within
+  // the segment: n_x changes sign where n is normal to d and to x, i.e. to the row plane (the edge
+  // lies in it, or its line passes through the eye), and n_y, when n_x vanishes too, where n = 0.
+  // Those are scheduled like any other crossing, so the slots never hold a stale perturbed sign.
+  if (f.is_zero()) return sign > 0 ? kInf : m_now;
   return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_now, seg.end);
 }
 
@@ -205,8 +210,8 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t rec, int bi, const TriangleNo
     const EdgeNormal edge = known ? *known : tn.motion.edge(b.edge);
     const double y = m_scene.row_y(r.row);
     const auto [lo, hi] = m_columns.watched(b.slot);
-    t = failure_time(b.sign_lo, edge.along(m_scene.column_x(lo), y), tn.segment);
-    if (hi != lo) t = std::min(t, failure_time(b.sign_hi, edge.along(m_scene.column_x(hi), y), tn.segment));
+    t = failure_time(b.sign_lo, edge.perturbed(m_scene.column_x(lo), y), tn.segment);
+    if (hi != lo) t = std::min(t, failure_time(b.sign_hi, edge.perturbed(m_scene.column_x(hi), y), tn.segment));
     // Only from the off slot (at infinity) can the point pass behind the eye.
     if (b.slot == 0) t = std::min(t, failure_time(1, boundary_front(tn, b.edge, r.row), tn.segment));
   }
@@ -484,8 +489,8 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
   const EdgeNormal edge = tn.motion.edge(b.edge);
   const double y = m_scene.row_y(row);
   const auto [lo, hi] = m_columns.watched(b.slot);
-  const int sl = sign_plus(edge.along(m_scene.column_x(lo), y), tn.s);
-  const int sh = lo == hi ? sl : sign_plus(edge.along(m_scene.column_x(hi), y), tn.s);
+  const int sl = edge_sign(edge, m_scene.column_x(lo), y, tn.s);
+  const int sh = lo == hi ? sl : edge_sign(edge, m_scene.column_x(hi), y, tn.s);
   if (!front || !SlotCircle::consistent(b.slot, sl, sh)) {
     ++m_stats.degenerate_rebuilds;
     rebuild_record(rec, tn, true);
@@ -701,7 +706,7 @@ void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
   const TriangleNow tn = triangle_now(r.triangle);
   const EdgeNormal edge = tn.motion.edge(b.edge);
   const double y = m_scene.row_y(r.row);
-  auto sign_at = [&](int c) { return sign_plus(edge.along(m_scene.column_x(c), y), tn.s); };
+  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, tn.s); };
   if (b.slot == kBehindEye) {
     // Back in front through the eye plane, at infinity: the off slot. Nothing visible changes.
     if (sign_plus(boundary_front(tn, b.edge, r.row), tn.s) < 0) {
@@ -931,8 +936,8 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
           if (!front) continue;
           const EdgeNormal edge = motion.edge(b.edge);
           const auto [lo, hi] = m_columns.watched(b.slot);
-          const int gl = sign_plus(edge.along(m_scene.column_x(lo), y), s);
-          const int gh = sign_plus(edge.along(m_scene.column_x(hi), y), s);
+          const int gl = edge_sign(edge, m_scene.column_x(lo), y, s);
+          const int gh = edge_sign(edge, m_scene.column_x(hi), y, s);
           if (gl != b.sign_lo || gh != b.sign_hi || !SlotCircle::consistent(b.slot, gl, gh))
             report(where(tri, r.row) + "boundary on edge " + std::to_string(b.edge) + " in a wrong slot " +
                    std::to_string(b.slot));

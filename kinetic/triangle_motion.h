@@ -37,6 +37,26 @@ struct EdgeNormal {
     f.c[2] = c2.x() * x + c2.y() * y + c2.z();
     return f;
   }
+  /// Component k (0: x, 1: y, 2: z) of p x q, a quadratic in s.
+  [[nodiscard]] Polynomial component(int k) const {
+    Polynomial f;
+    f.degree = 2;
+    f.c[0] = c0[k];
+    f.c[1] = c1[k];
+    f.c[2] = c2[k];
+    return f;
+  }
+  /// The edge function along the symbolically perturbed ray d' = (x + eps, y + eps^2, 1):
+  /// E(d') = E(d) + eps n_x + eps^2 n_y, whose sign just after s is the sign of the first of
+  /// E(d), n_x, n_y that is not the zero polynomial. Returns that polynomial: it is the one whose
+  /// sign changes are events. It is zero only when p x q vanishes on the whole segment (the edge's
+  /// line passes through the eye).
+  [[nodiscard]] Polynomial perturbed(double x, double y) const {
+    const Polynomial e = along(x, y);
+    if (!e.is_zero()) return e;
+    const Polynomial nx = component(0);
+    return nx.is_zero() ? component(1) : nx;
+  }
 };
 
 /// p x q; exactly antisymmetric (edge_normal(q, p) is the negation) and exactly zero for p == q.

@@ -288,16 +288,12 @@ TEST(HardCases, SharedEdgeExactlyThroughPixelCentresCounterClockwise) {
   }
 }
 
-// KNOWN FAILURE, kinetic backend (reported in issue 6; kinetic/ is not ours to change). When the
-// two triangles of a shared edge are wound clockwise in the image (det < 0) and the edge lies
-// exactly on pixel centres while it stands still, the edge function vanishes identically and the
-// symbolic perturbation of kinetic/coverage_rule.h reads it as positive in *both* triangles; the
-// sign rule wants the sign of det, negative, in both, so neither covers those rays: the wall shows
-// through the closed mesh along the whole edge (column 8, rows 4..11; row 24, columns 20..27),
-// where Embree sees the mesh. FrameComparator counts every such pixel as a real mismatch (crack).
-// Counter-clockwise meshes are closed (the test above). Disabled so that CI stays green; the bug
-// stays open in issues 4 and 6: run with --gtest_also_run_disabled_tests to reproduce it.
-TEST(HardCases, DISABLED_SharedEdgeExactlyThroughPixelCentresClockwise) {
+// The same edges wound clockwise in the image (det < 0). The edge function of a ray on the edge
+// vanishes identically while the edge stands still; a symbolic perturbation that read it as
+// positive in both triangles left the wall showing through along the whole edge (column 8, rows
+// 4..11; row 24, columns 20..27). The perturbation of the ray, d + (eps, eps^2, 0), gives the two
+// triangles opposite signs there, so exactly one of them covers each such ray, for both windings.
+TEST(HardCases, SharedEdgeExactlyThroughPixelCentresClockwise) {
   const ExactScene s({wall(), diamond_on_column(8, 0.5, -1), diamond_on_row(24, 0.5, -1)});
   const Renders r = render(s.cs(), {0, 1});
   expect_agreement(s.cs(), r);
