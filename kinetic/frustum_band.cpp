@@ -57,6 +57,7 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
     for (int i = 0; i < m_width; ++i)
       m_pixels.emplace_back(&m_motion, i, j, m_queue,
                             uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
+  for (const PixelCell& p : m_pixels) m_pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -260,7 +261,10 @@ template <class Sort>
 void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
   const std::optional<uint32_t> before = p.order.front();
+  const size_t bytes = p.order.memory_bytes();
   p.order.insert(tri, m_now);
+  m_pixel_bytes += p.order.memory_bytes() - bytes;
+  ++m_pixel_entries;
   ++m_stats.coverage_changes;
   if (p.order.front() != before) m_front_changed = true;
   if (m_config.audit) p.order.audit(m_now);
@@ -270,7 +274,10 @@ template <class Sort>
 void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
   const std::optional<uint32_t> before = p.order.front();
+  const size_t bytes = p.order.memory_bytes();
   p.order.erase(tri, m_now);
+  m_pixel_bytes -= bytes - p.order.memory_bytes();
+  --m_pixel_entries;
   ++m_stats.coverage_changes;
   if (p.order.front() != before) m_front_changed = true;
   if (m_config.audit) p.order.audit(m_now);
@@ -840,7 +847,9 @@ void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   PixelCell& p = cell(column, row);
   const std::optional<uint32_t> before = p.order.front();
   const uint64_t events_before = m_sort_stats.events();
+  const size_t bytes = p.order.memory_bytes();
   p.order.handle_event(payload, m_now);
+  m_pixel_bytes = m_pixel_bytes - bytes + p.order.memory_bytes();
   if (m_sort_stats.events() == events_before) {
     ++m_stats.renewals;
     return;
@@ -954,6 +963,14 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
         report(where(tri, -1) + "wrong orientation sign");
     }
   }
+  uint64_t entries = 0;
+  size_t pixel_bytes = 0;
+  for (const PixelCell& p : m_pixels) {
+    entries += p.order.size();
+    pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
+  }
+  if (entries != m_pixel_entries || pixel_bytes != m_pixel_bytes)
+    report("the running count of pixel entries or pixel bytes is wrong");
   for (int j = m_row_begin; j < m_row_end; ++j)
     for (int i = 0; i < m_width; ++i) {
       const PixelCell& p = cell(i, j);
@@ -972,13 +989,9 @@ GridStats FrustumBand<Sort>::stats() const {
   s.certificates_live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
                         m_sort_stats.certificates_live;
   s.records = m_records.size() - m_free_records.size();
-  size_t pixel_bytes = 0;
-  uint64_t entries = 0;
-  for (const PixelCell& p : m_pixels) {
-    pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
-    entries += p.order.size();
-  }
-  s.pixel_entries = entries;
+  // Kept up to date by every change of a pixel order: stats() runs after every frame.
+  const size_t pixel_bytes = m_pixel_bytes;
+  s.pixel_entries = m_pixel_entries;
   s.pixel_memory_bytes = pixel_bytes;
   s.memory_bytes = pixel_bytes + m_queue.memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
                    m_free_records.capacity() * sizeof(uint32_t) +

@@ -181,6 +181,8 @@ class FrustumBand {
   GridStats m_stats;
   bool m_front_changed = false;  ///< set by pixel changes during one event
   uint64_t m_live_boundaries = 0, m_live_vertices = 0, m_live_orientations = 0;
+  size_t m_pixel_bytes = 0;     ///< sum of the pixel orders' memory_bytes() and their keys
+  uint64_t m_pixel_entries = 0;  ///< sum of the pixel orders' sizes
 };
 
 }  // namespace kinray
