@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "kinetic/frustum_band.h"
@@ -202,7 +203,10 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   parallel_chunks(size_t(h), m_threads, [&](size_t row_begin, size_t row_end) {
     m_bands->fronts(int(row_begin), int(row_end),
                     object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
-    for (size_t j = row_begin; j < row_end; ++j)
+    for (size_t j = row_begin; j < row_end; ++j) {
+      // A triangle usually covers a run of pixels in a row: its plane is computed once per run.
+      uint32_t last = kNoGridHit, mesh_id = 0, local = 0;
+      std::optional<TrianglePlane> plane;
       for (int i = 0; i < w; ++i) {
         const size_t p = j * size_t(w) + size_t(i);
         const uint32_t tri = object[p];
@@ -211,27 +215,33 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
           depth[p] = std::numeric_limits<float>::infinity();
           continue;
         }
-        const uint32_t m = m_scene.mesh_of_triangle(tri);
-        const GridMesh& mesh = m_scene.mesh(m);
-        const uint32_t local = tri - m_scene.triangle_begin(m);
-        const auto& vs = mesh.triangles[local];
-        const Blend& b = blends[m];
-        Eigen::Vector3d q[3];
-        for (int k = 0; k < 3; ++k) {
-          const Eigen::Vector3d& a = mesh.key_position(b.k0, vs[size_t(k)]);
-          if (b.still) {
-            q[k] = a;
-          } else {
-            const Eigen::Vector3d& c = mesh.key_position(b.k1, vs[size_t(k)]);
-            q[k] = a + b.alpha * (c - a);
+        if (tri != last) {
+          const uint32_t m = m_scene.mesh_of_triangle(tri);
+          const GridMesh& mesh = m_scene.mesh(m);
+          local = tri - m_scene.triangle_begin(m);
+          mesh_id = mesh.id;
+          const auto& vs = mesh.triangles[local];
+          const Blend& b = blends[m];
+          Eigen::Vector3d q[3];
+          for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d& a = mesh.key_position(b.k0, vs[size_t(k)]);
+            if (b.still) {
+              q[k] = a;
+            } else {
+              const Eigen::Vector3d& c = mesh.key_position(b.k1, vs[size_t(k)]);
+              q[k] = a + b.alpha * (c - a);
+            }
           }
+          plane.emplace(q[0], q[1], q[2]);
+          last = tri;
         }
-        const double z = plane_depth(q[0], q[1], q[2], m_scene.column_x(i), m_scene.row_y(int(j)));
-        object[p] = mesh.id;
+        const double z = plane->depth(m_scene.column_x(i), m_scene.row_y(int(j)));
+        object[p] = mesh_id;
         prim[p] = local;
         // The ray pierces the triangle, so z > 0 but for rounding at an edge-on plane.
         depth[p] = std::isfinite(z) && z > 0 ? float(z) : 0.0f;
       }
+    }
   });
   m_timings.readout += seconds_since(started);
 }
