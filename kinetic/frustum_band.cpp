@@ -57,6 +57,7 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
     for (int i = 0; i < m_width; ++i)
       m_pixels.emplace_back(&m_motion, i, j, m_queue,
                             uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
+  for (const PixelCell& p : m_pixels) m_pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -265,7 +266,10 @@ template <class Sort>
 void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
   const std::optional<uint32_t> before = p.order.front();
+  const size_t bytes = p.order.memory_bytes();
   p.order.insert(tri, m_now);
+  m_pixel_bytes += p.order.memory_bytes() - bytes;
+  ++m_pixel_entries;
   ++m_stats.coverage_changes;
   if (p.order.front() != before) m_front_changed = true;
   if (m_config.audit) p.order.audit(m_now);
@@ -275,7 +279,10 @@ template <class Sort>
 void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
   const std::optional<uint32_t> before = p.order.front();
+  const size_t bytes = p.order.memory_bytes();
   p.order.erase(tri, m_now);
+  m_pixel_bytes -= bytes - p.order.memory_bytes();
+  --m_pixel_entries;
   ++m_stats.coverage_changes;
   if (p.order.front() != before) m_front_changed = true;
   if (m_config.audit) p.order.audit(m_now);
@@ -318,7 +325,8 @@ uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int
     m_records.emplace_back();
   }
   TriangleState& ts = m_triangles[tri];
-  const bool first = ts.head == kNoRecord;
+  // With culling the orientation is kept for every triangle, records or not.
+  const bool first = ts.head == kNoRecord && m_scene.cull_sign_of_triangle(tri) == 0;
   RowRecord& r = m_records[rec];
   r.triangle = tri;
   r.row = row;
@@ -363,7 +371,7 @@ void FrustumBand<Sort>::kill_record(uint32_t rec) {
     while (m_records[prev].next != rec) prev = m_records[prev].next;
     m_records[prev].next = r.next;
   }
-  if (ts.head == kNoRecord) {
+  if (ts.head == kNoRecord && m_scene.cull_sign_of_triangle(tri) == 0) {
     if (ts.event != kNoEvent) m_queue.erase(ts.event);
     ts.event = kNoEvent;
     ts.orientation = 0;
@@ -446,6 +454,7 @@ void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow
 
 template <class Sort>
 void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
+  if (culled(tri)) return;  // no records while it faces away
   const TriangleNow tn = triangle_now(tri);
   int crossing[2];
   const int n = crossing_edges(row_sides(tn, row), crossing);
@@ -510,14 +519,18 @@ void FrustumBand<Sort>::scan_triangle(uint32_t tri, const std::vector<RowPattern
   const auto vs = m_scene.triangle_vertices(tri);
   if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return;  // never covers anything
   const uint32_t base = m_scene.vertex_begin(m_scene.mesh_of_triangle(tri));
-  const RowPattern* p[3] = {&patterns[vs[0] - base], &patterns[vs[1] - base], &patterns[vs[2] - base]};
-  int cuts[5] = {0, p[0]->slot, p[1]->slot, p[2]->slot, m_rows.count};
+  scan_rows(tri, {patterns[vs[0] - base], patterns[vs[1] - base], patterns[vs[2] - base]});
+}
+
+template <class Sort>
+void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p) {
+  int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
   std::sort(cuts, cuts + 5);
   std::optional<TriangleNow> tn;
   for (int k = 0; k + 1 < 5; ++k) {
     const int a = cuts[k], b = cuts[k + 1];
     if (a >= b) continue;
-    const std::array<int, 3> sides = {p[0]->sign(a), p[1]->sign(a), p[2]->sign(a)};
+    const std::array<int, 3> sides = {p[0].sign(a), p[1].sign(a), p[2].sign(a)};
     int crossing[2];
     if (crossing_edges(sides, crossing) != 2) continue;
     if (!tn) tn = triangle_now(tri);
@@ -552,8 +565,19 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m) {
       schedule_vertex(v);
     }
   }
-  for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+  const int cull = m_scene.cull_sign(m);
+  for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
+    if (cull != 0) {
+      // Culling: every triangle keeps its orientation, which turns its records on and off.
+      const TriangleNow tn = triangle_now(tri);
+      TriangleState& ts = m_triangles[tri];
+      ts.orientation = int8_t(sign_after(tn.motion.orientation(), tn.s));
+      if (tn.moving) ++m_live_orientations;
+      schedule_orientation(tri, tn);
+      if (ts.orientation != cull) continue;
+    }
     scan_triangle(tri, patterns);
+  }
   schedule_flightplan(m);
   double remove_at = kInf;
   if (mesh.disappear < kInf && mesh.disappear > m_now) remove_at = mesh.disappear;
@@ -565,8 +589,15 @@ void FrustumBand<Sort>::remove_mesh(uint32_t m) {
   const GridMesh& mesh = m_scene.mesh(m);
   MeshState& ms = m_meshes[m];
   if (!ms.present) return;
-  for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+  for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
     while (m_triangles[tri].head != kNoRecord) kill_record(m_triangles[tri].head);
+    if (m_scene.cull_sign(m) == 0) continue;
+    TriangleState& ts = m_triangles[tri];
+    if (ts.event != kNoEvent) m_queue.erase(ts.event);
+    ts.event = kNoEvent;
+    ts.orientation = 0;
+    if (!mesh.is_static) --m_live_orientations;
+  }
   if (!mesh.is_static)
     for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v) {
       SlotTracker& st = m_vertices[v];
@@ -682,8 +713,9 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
     if (moving)
       for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v)
         if (!m_scene.triangles_of_vertex(v).empty()) schedule_vertex(v);
+    const int cull = m_scene.cull_sign(m);
     for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
-      if (m_triangles[tri].head == kNoRecord) continue;
+      if (m_triangles[tri].head == kNoRecord && cull == 0) continue;
       const TriangleNow tn = triangle_now(tri);
       schedule_orientation(tri, tn);
       for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
@@ -831,6 +863,30 @@ void FrustumBand<Sort>::handle_orientation(uint32_t tri) {
     schedule_orientation(tri, tn);
     return;
   }
+  const int cull = m_scene.cull_sign_of_triangle(tri);
+  if (cull != 0 && (o == cull) != (ts.orientation == cull)) {
+    // Culling: the triangle turns to face the eye (its records are born from its vertices' row
+    // slots) or away (its records die); counted per record, like a rebuild.
+    ts.orientation = int8_t(o);
+    if (o == cull) {
+      const auto& vs = m_scene.triangle_vertices(tri);
+      std::array<RowPattern, 3> p;
+      for (int k = 0; k < 3; ++k) {
+        const SlotTracker& st = m_vertices[vs[size_t(k)]];
+        p[size_t(k)] = RowPattern{st.slot, st.sign_lo, st.sign_hi};
+      }
+      const uint64_t born = m_stats.records_born;
+      scan_rows(tri, p);
+      m_stats.events.orientation += m_stats.records_born - born;
+    } else {
+      while (ts.head != kNoRecord) {
+        ++m_stats.events.orientation;
+        kill_record(ts.head);
+      }
+    }
+    schedule_orientation(tri, tn);
+    return;
+  }
   ts.orientation = int8_t(o);
   for (uint32_t rec = ts.head; rec != kNoRecord; rec = m_records[rec].next) {
     ++m_stats.events.orientation;
@@ -845,7 +901,9 @@ void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   PixelCell& p = cell(column, row);
   const std::optional<uint32_t> before = p.order.front();
   const uint64_t events_before = m_sort_stats.events();
+  const size_t bytes = p.order.memory_bytes();
   p.order.handle_event(payload, m_now);
+  m_pixel_bytes = m_pixel_bytes - bytes + p.order.memory_bytes();
   if (m_sort_stats.events() == events_before) {
     ++m_stats.renewals;
     return;
@@ -903,7 +961,9 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
       // The rows the triangle meets, from the vertex patterns.
       std::vector<int> rows;
       const auto vs = m_scene.triangle_vertices(tri);
-      if (!(vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]))
+      const int cull = m_scene.cull_sign(m);
+      const bool culled = cull != 0 && rule.orientation_sign() != cull;  // faces away: no records
+      if (!culled && !(vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]))
         for (int q = 0; q < m_rows.count; ++q) {
           const int a = patterns[vs[0] - vb].sign(q), b = patterns[vs[1] - vb].sign(q),
                     c = patterns[vs[2] - vb].sign(q);
@@ -955,10 +1015,18 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
       }
       std::sort(held.begin(), held.end());
       if (held != rows) report(where(tri, -1) + "records do not match the rows the triangle meets");
-      if (!held.empty() && m_triangles[tri].orientation != rule.orientation_sign())
+      if ((!held.empty() || cull != 0) && m_triangles[tri].orientation != rule.orientation_sign())
         report(where(tri, -1) + "wrong orientation sign");
     }
   }
+  uint64_t entries = 0;
+  size_t pixel_bytes = 0;
+  for (const PixelCell& p : m_pixels) {
+    entries += p.order.size();
+    pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
+  }
+  if (entries != m_pixel_entries || pixel_bytes != m_pixel_bytes)
+    report("the running count of pixel entries or pixel bytes is wrong");
   for (int j = m_row_begin; j < m_row_end; ++j)
     for (int i = 0; i < m_width; ++i) {
       const PixelCell& p = cell(i, j);
@@ -973,17 +1041,20 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
 template <class Sort>
 GridStats FrustumBand<Sort>::stats() const {
   GridStats s = m_stats;
+  if (m_config.counts_meshes)
+    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
+      if (m_scene.cull_sign(m) == 0 || !m_meshes[m].present) continue;
+      ++s.meshes_culling;
+      for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+        s.triangles_culled += culled(tri) ? 1 : 0;
+    }
   s.certificates_computed += m_sort_stats.work;
   s.certificates_live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
                         m_sort_stats.certificates_live;
   s.records = m_records.size() - m_free_records.size();
-  size_t pixel_bytes = 0;
-  uint64_t entries = 0;
-  for (const PixelCell& p : m_pixels) {
-    pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
-    entries += p.order.size();
-  }
-  s.pixel_entries = entries;
+  // Kept up to date by every change of a pixel order: stats() runs after every frame.
+  const size_t pixel_bytes = m_pixel_bytes;
+  s.pixel_entries = m_pixel_entries;
   s.pixel_memory_bytes = pixel_bytes;
   s.memory_bytes = pixel_bytes + m_queue.memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
                    m_free_records.capacity() * sizeof(uint32_t) +

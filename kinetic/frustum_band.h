@@ -95,7 +95,9 @@ class FrustumBand {
   };
   struct TriangleState {
     uint32_t head = kNoRecord;  ///< first record of the triangle in this band
-    int8_t orientation = 0;     ///< sign of O just after the last update
+    /// Sign of O just after the last update; kept while the triangle has records, and for every
+    /// triangle of a present mesh with back-face culling.
+    int8_t orientation = 0;
     EventHandle event = kNoEvent;
   };
   struct MeshState {
@@ -146,6 +148,13 @@ class FrustumBand {
   void update_triangle_row(uint32_t tri, int row);
   [[nodiscard]] uint32_t find_record(uint32_t tri, int row) const;
   void scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns);
+  /// Creates the records of tri for the rows its vertices' patterns say it meets.
+  void scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p);
+  /// Back-face culling (GridScene::cull_sign): the triangle faces away, so it has no records.
+  [[nodiscard]] bool culled(uint32_t tri) const {
+    const int cull = m_scene.cull_sign_of_triangle(tri);
+    return cull != 0 && m_triangles[tri].orientation != cull;
+  }
 
   // Pixels.
   [[nodiscard]] PixelCell& cell(int column, int row) {
@@ -187,6 +196,8 @@ class FrustumBand {
   GridStats m_stats;
   bool m_front_changed = false;  ///< set by pixel changes during one event
   uint64_t m_live_boundaries = 0, m_live_vertices = 0, m_live_orientations = 0;
+  size_t m_pixel_bytes = 0;     ///< sum of the pixel orders' memory_bytes() and their keys
+  uint64_t m_pixel_entries = 0;  ///< sum of the pixel orders' sizes
 };
 
 }  // namespace kinray

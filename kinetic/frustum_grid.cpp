@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "kinetic/frustum_band.h"
@@ -206,8 +207,8 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
     }
     b.k1 = b.k0 + 1;
   }
-  // The depth of triangle `tri` along pixel (i, j)'s ray at now, from its interpolated vertices.
-  auto hit_depth = [&](uint32_t tri, int i, int j) {
+  // The plane of triangle `tri` at now, from its interpolated vertices.
+  auto plane_of = [&](uint32_t tri) {
     const uint32_t m = m_scene.mesh_of_triangle(tri);
     const GridMesh& mesh = m_scene.mesh(m);
     const auto& vs = mesh.triangles[tri - m_scene.triangle_begin(m)];
@@ -222,7 +223,7 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
         q[k] = a + b.alpha * (c - a);
       }
     }
-    return plane_depth(q[0], q[1], q[2], m_scene.column_x(i), m_scene.row_y(j));
+    return TrianglePlane(q[0], q[1], q[2]);
   };
   // A triangle in a pixel's order pierces its ray just after now; exactly at now it may not: when
   // its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers nothing at
@@ -233,12 +234,29 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
     m_bands->fronts(int(row_begin), int(row_end),
                     object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
     std::vector<uint32_t> members;
-    for (size_t j = row_begin; j < row_end; ++j)
+    for (size_t j = row_begin; j < row_end; ++j) {
+      const double y = m_scene.row_y(int(j));
+      // A triangle usually covers a run of pixels in a row: its plane is computed once per run.
+      uint32_t last = kNoGridHit, mesh_id = 0, local = 0;
+      std::optional<TrianglePlane> plane;
       for (int i = 0; i < w; ++i) {
         const size_t p = j * size_t(w) + size_t(i);
         uint32_t tri = object[p];
-        double z = tri == kNoGridHit ? 0.0 : hit_depth(tri, i, int(j));
-        if (tri != kNoGridHit && !pierces(z)) {
+        if (tri == kNoGridHit) {
+          prim[p] = kNoGridHit;
+          depth[p] = std::numeric_limits<float>::infinity();
+          continue;
+        }
+        const double x = m_scene.column_x(i);
+        if (tri != last) {
+          const uint32_t m = m_scene.mesh_of_triangle(tri);
+          mesh_id = m_scene.mesh(m).id;
+          local = tri - m_scene.triangle_begin(m);
+          plane.emplace(plane_of(tri));
+          last = tri;
+        }
+        double z = plane->depth(x, y);
+        if (!pierces(z)) {
           // The nearest member that pierces the ray at now; at equal depths the earlier one in
           // the order (the sorted list visits front to back).
           const uint32_t front = tri;
@@ -246,23 +264,28 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
           m_bands->members(i, int(j), members);
           for (uint32_t other : members) {
             if (other == front) continue;
-            const double zo = hit_depth(other, i, int(j));
+            const double zo = plane_of(other).depth(x, y);
             if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
               tri = other;
               z = zo;
             }
           }
-        }
-        if (tri == kNoGridHit) {
-          object[p] = prim[p] = kNoGridHit;
-          depth[p] = std::numeric_limits<float>::infinity();
+          if (tri == kNoGridHit) {
+            object[p] = prim[p] = kNoGridHit;
+            depth[p] = std::numeric_limits<float>::infinity();
+            continue;
+          }
+          const uint32_t m = m_scene.mesh_of_triangle(tri);
+          object[p] = m_scene.mesh(m).id;
+          prim[p] = tri - m_scene.triangle_begin(m);
+          depth[p] = float(z);
           continue;
         }
-        const uint32_t m = m_scene.mesh_of_triangle(tri);
-        object[p] = m_scene.mesh(m).id;
-        prim[p] = tri - m_scene.triangle_begin(m);
+        object[p] = mesh_id;
+        prim[p] = local;
         depth[p] = float(z);
       }
+    }
   });
   m_timings.readout += seconds_since(started);
 }

@@ -61,6 +61,16 @@ class GridScene {
   [[nodiscard]] PointMotion vertex_motion(uint32_t m, uint32_t local, const MeshSegment& seg) const;
   [[nodiscard]] TriangleMotion triangle_motion(uint32_t tri, const MeshSegment& seg) const;
 
+  /// Back-face culling of mesh m: 0 when off, else the sign of O (TriangleMotion::orientation)
+  /// of the triangles that face the eye. On only for a GridMesh::solid mesh that is a closed,
+  /// consistently oriented 2-manifold with a non-zero signed volume of one sign at every key and
+  /// whose every segment keeps the eye outside its bounding box: then every ray's first hit is
+  /// a triangle that faces the eye, and the others never show.
+  [[nodiscard]] int cull_sign(uint32_t m) const { return m_cull_sign[m]; }
+  [[nodiscard]] int cull_sign_of_triangle(uint32_t tri) const {
+    return m_cull_sign[m_triangle_mesh[tri]];
+  }
+
  private:
   GridInput m_input;
   std::vector<double> m_x, m_y;
@@ -68,6 +78,7 @@ class GridScene {
   std::vector<uint32_t> m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;  ///< global vertex ids
   std::vector<uint32_t> m_adjacency_begin, m_adjacency;
+  std::vector<int8_t> m_cull_sign;  ///< per mesh
 };
 
 }  // namespace kinray

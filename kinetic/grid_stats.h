@@ -47,6 +47,8 @@ struct GridStats {
   uint64_t records = 0;                ///< live (triangle, row) records
   uint64_t pixel_entries = 0;          ///< triangles held in the per-pixel orders
   uint64_t triangles_present = 0;
+  uint64_t meshes_culling = 0;    ///< present meshes with back-face culling (now)
+  uint64_t triangles_culled = 0;  ///< of their triangles: facing away now, so without records
   size_t memory_bytes = 0;             ///< now
   size_t pixel_memory_bytes = 0;       ///< of which: the per-pixel orders (instances + entries)
 
@@ -68,6 +70,8 @@ struct GridStats {
     records += o.records;
     pixel_entries += o.pixel_entries;
     triangles_present += o.triangles_present;
+    meshes_culling += o.meshes_culling;
+    triangles_culled += o.triangles_culled;
     memory_bytes += o.memory_bytes;
     pixel_memory_bytes += o.pixel_memory_bytes;
     return *this;

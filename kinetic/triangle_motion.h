@@ -133,11 +133,20 @@ struct DepthPolynomials {
 
 /// Camera-space depth of the ray d = (x, y, 1) on the plane of (p0, p1, p2), exactly as the
 /// Embree backend reports it: det(p0, p1, p2) / ((p1 - p0) x (p2 - p0)) . d, in double.
+/// plane_depth split into the triangle's part, computed once, and each ray's part: the same
+/// operations on the same values, so bit-identical to plane_depth for every ray.
+struct TrianglePlane {
+  TrianglePlane(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2)
+      : numerator(p0.dot(p1.cross(p2))), normal((p1 - p0).cross(p2 - p0)) {}
+  [[nodiscard]] double depth(double x, double y) const {
+    return numerator / normal.dot(Eigen::Vector3d(x, y, 1.0));
+  }
+  double numerator;
+  Eigen::Vector3d normal;
+};
 [[nodiscard]] inline double plane_depth(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                         const Eigen::Vector3d& p2, double x, double y) {
-  const double numerator = p0.dot(p1.cross(p2));
-  const double denominator = (p1 - p0).cross(p2 - p0).dot(Eigen::Vector3d(x, y, 1.0));
-  return numerator / denominator;
+  return TrianglePlane(p0, p1, p2).depth(x, y);
 }
 
 }  // namespace kinray

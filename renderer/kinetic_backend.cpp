@@ -26,6 +26,7 @@ GridInput grid_input(const CameraSpaceScene& scene, const BackendConfig& config)
     mesh.appear = cs.appear;
     mesh.disappear = cs.disappear;
     mesh.is_static = cs.is_static;
+    mesh.solid = cs.solid;
     input.meshes.push_back(mesh);
   }
   return input;
@@ -110,6 +111,8 @@ class KineticBackend final : public Backend {
         {"certificates_live", s.certificates_live},
         {"certificates_computed", s.certificates_computed},
         {"triangles_present", s.triangles_present},
+        {"meshes_culling", s.meshes_culling},
+        {"triangles_culled", s.triangles_culled},
         {"pixel_entries", s.pixel_entries},
         {"memory_bytes", s.memory_bytes},
         {"pixel_memory_bytes", s.pixel_memory_bytes},

@@ -110,6 +110,10 @@ TEST_P(BuiltinAgainstEmbree, EveryFrameAgreesUpToTies) {
     nlohmann::json stats;
     kinetic->write_stats(stats);
     EXPECT_GT(stats["events"]["total"].get<uint64_t>(), 0u);
+    // wavy-sphere is a declared solid under a fixed camera: culled, and still exact.
+    const bool solid = c.name == "wavy-sphere";
+    EXPECT_EQ(stats["kinetic"]["meshes_culling"].get<uint64_t>(), solid ? 1u : 0u);
+    EXPECT_EQ(stats["kinetic"]["triangles_culled"].get<uint64_t>() > 0, solid);
   }
 }
 
