@@ -126,20 +126,21 @@ void write_chart_png(const Chart& chart, const std::string& path, int width, int
       if ((chart.log_x && s.x[k] <= 0) || (chart.log_y && s.y[k] <= 0)) continue;
       points.emplace_back(px(s.x[k]), py(s.y[k]));
     }
-    for (size_t k = 1; k < points.size(); ++k) {
+    // A solid or dashed segment, so the legend shows the same stroke as the series.
+    auto stroke = [&](cv::Point2d a, cv::Point2d b) {
       if (!s.dashed) {
-        cv::line(image, points[k - 1], points[k], color, 2, cv::LINE_AA);
-        continue;
+        cv::line(image, a, b, color, 2, cv::LINE_AA);
+        return;
       }
-      const cv::Point2d a = points[k - 1], b = points[k];
       const double length = cv::norm(b - a);
       for (double d = 0; d < length; d += 12) {
         const cv::Point2d p = a + (b - a) * (d / length), q = a + (b - a) * (std::min(d + 6, length) / length);
         cv::line(image, p, q, color, 2, cv::LINE_AA);
       }
-    }
+    };
+    for (size_t k = 1; k < points.size(); ++k) stroke(points[k - 1], points[k]);
     for (const cv::Point& p : points) cv::circle(image, p, 3, color, cv::FILLED, cv::LINE_AA);
-    cv::line(image, {right + 15, legend_y}, {right + 45, legend_y}, color, 2, cv::LINE_AA);
+    stroke(cv::Point2d(right + 15, legend_y), cv::Point2d(right + 45, legend_y));
     cv::putText(image, s.label, {right + 52, legend_y + 5}, font, 0.45, ink, 1, cv::LINE_AA);
     legend_y += 22;
   }

@@ -36,13 +36,16 @@ bool Progress::stderr_is_terminal() {
 std::string Progress::format(size_t done, size_t total, double elapsed_s, int width) {
   const double fraction = total == 0 ? 1.0 : double(done) / double(total);
   const int filled = int(std::lround(fraction * width));
-  std::string bar =
-      "[" + std::string(size_t(filled), '#') + std::string(size_t(width - filled), '.') + "]";
   const double left = done == 0 ? NAN : elapsed_s * double(total - done) / double(done);
   char counts[64];
-  std::snprintf(counts, sizeof counts, " %zu/%zu frames", done, total);
-  return bar + counts + "  " + format_seconds(elapsed_s) + " elapsed  " + format_seconds(left) +
-         " left";
+  std::snprintf(counts, sizeof counts, " %zu/%zu frames  ", done, total);
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "[" + std::string.
+  std::string line;
+  line.reserve(size_t(width) + 80);
+  line.append(1, '[').append(size_t(filled), '#').append(size_t(width - filled), '.').append(1, ']');
+  line.append(counts).append(format_seconds(elapsed_s)).append(" elapsed  ");
+  line.append(format_seconds(left)).append(" left");
+  return line;
 }
 
 void Progress::update(size_t done) {
