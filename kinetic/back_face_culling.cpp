@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -15,6 +16,7 @@ namespace kinray {
 namespace {
 
 using Vec = Eigen::Vector3d;
+using Triangle = std::array<uint32_t, 3>;
 
 // Rounding moves a determinant of vectors of lengths a, b, c by a few 1e-16 a b c, and the grid
 // and Embree each place a vertex within an ulp or two of its chord: a coefficient must clear
@@ -26,10 +28,10 @@ constexpr int kSubdivisionDepth = 4;
 
 // Every undirected edge used by exactly two triangles, once in each direction; no triangle
 // repeats a vertex.
-bool closed_oriented_manifold(const GridMesh& mesh) {
+bool closed_oriented_manifold(std::span<const Triangle> triangles) {
   std::vector<uint64_t> directed;
-  directed.reserve(3 * mesh.triangles.size());
-  for (const auto& tri : mesh.triangles)
+  directed.reserve(3 * triangles.size());
+  for (const auto& tri : triangles)
     for (int e = 0; e < 3; ++e) {
       const uint32_t a = tri[size_t(e)], b = tri[size_t((e + 1) % 3)];
       if (a == b) return false;
@@ -46,25 +48,61 @@ double det(const Vec& a, const Vec& b, const Vec& c) { return a.dot(b.cross(c));
 
 // Connected components of the triangles (through shared vertices): the component of each vertex
 // that a triangle uses, -1 for an unused vertex; returns the number of components.
-uint32_t components(const GridMesh& mesh, std::vector<int32_t>& component) {
+uint32_t components(const GridMesh& mesh, std::span<const Triangle> triangles,
+                    std::vector<int32_t>& component) {
   std::vector<uint32_t> parent(mesh.vertex_count);
   std::iota(parent.begin(), parent.end(), 0u);
   const auto find = [&](uint32_t v) {
     while (parent[v] != v) v = parent[v] = parent[parent[v]];
     return v;
   };
-  for (const auto& tri : mesh.triangles)
+  for (const auto& tri : triangles)
     for (int k = 1; k < 3; ++k) parent[find(tri[size_t(k)])] = find(tri[0]);
   component.assign(mesh.vertex_count, -1);
   std::vector<int32_t> label(mesh.vertex_count, -1);
   uint32_t count = 0;
-  for (const auto& tri : mesh.triangles)
+  for (const auto& tri : triangles)
     for (uint32_t v : tri) {
       const uint32_t root = find(v);
       if (label[root] < 0) label[root] = int32_t(count++);
       component[v] = label[root];
     }
   return count;
+}
+
+// The triangles with every vertex replaced by the first vertex at the same position at every
+// key: loaders split vertices along seams of normals and texture coordinates, and such copies
+// move together (the same arithmetic on the same keys), so the welded mesh is the same surface.
+// A triangle left with a repeated vertex is a segment at every instant (the poles of a UV
+// sphere): it covers no pixel, Embree never hits it, and it leaves out an edge in both
+// directions, so it is dropped.
+std::vector<Triangle> welded(const GridMesh& mesh, size_t keys) {
+  std::vector<uint32_t> order(mesh.vertex_count);
+  std::iota(order.begin(), order.end(), 0u);
+  const auto less = [&](uint32_t a, uint32_t b) {
+    for (size_t k = 0; k < keys; ++k) {
+      const Vec &p = mesh.key_position(k, a), &q = mesh.key_position(k, b);
+      for (int i = 0; i < 3; ++i)
+        if (p[i] != q[i]) return p[i] < q[i];
+    }
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  const auto same = [&](uint32_t a, uint32_t b) {
+    for (size_t k = 0; k < keys; ++k)
+      if (mesh.key_position(k, a) != mesh.key_position(k, b)) return false;
+    return true;
+  };
+  std::vector<uint32_t> canonical(mesh.vertex_count);
+  for (size_t i = 0; i < order.size(); ++i)
+    canonical[order[i]] = i > 0 && same(order[i - 1], order[i]) ? canonical[order[i - 1]] : order[i];
+  std::vector<Triangle> out;
+  out.reserve(mesh.triangles.size());
+  for (const auto& tri : mesh.triangles) {
+    const Triangle w = {canonical[tri[0]], canonical[tri[1]], canonical[tri[2]]};
+    if (w[0] != w[1] && w[1] != w[2] && w[2] != w[0]) out.push_back(w);
+  }
+  return out;
 }
 
 }  // namespace
@@ -87,10 +125,11 @@ int cubic_sign_on_unit_interval(const std::array<double, 4>& b, double margin, i
 }
 
 int back_face_cull_sign(const GridMesh& mesh) {
-  if (!closed_oriented_manifold(mesh)) return 0;
-  std::vector<int32_t> component;
-  const uint32_t count = components(mesh, component);
   const size_t keys = mesh.is_static ? 1 : mesh.key_count();
+  const std::vector<Triangle> triangles = welded(mesh, keys);
+  if (!closed_oriented_manifold(triangles)) return 0;
+  std::vector<int32_t> component;
+  const uint32_t count = components(mesh, triangles, component);
 
   // c at each key: the centroid of the component's vertices (unused vertices do not count).
   std::vector<uint32_t> members(count, 0);
@@ -110,7 +149,7 @@ int back_face_cull_sign(const GridMesh& mesh) {
   int sigma = 0;
   for (size_t k1 = keys > 1 ? 1 : 0; k1 < keys; ++k1) {
     const size_t k0 = keys > 1 ? k1 - 1 : 0;
-    for (const auto& tri : mesh.triangles) {
+    for (const auto& tri : triangles) {
       const size_t comp = size_t(component[tri[0]]);
       std::array<Vec, 3> p, q;
       double bound = 1;
@@ -133,7 +172,7 @@ int back_face_cull_sign(const GridMesh& mesh) {
   // (3) at key 0: the angle each triangle spans at its vertex a, about the axis a - c, between
   // the directions to its two other vertices (in (0, pi) by (2)); summed per vertex.
   std::vector<double> turn(mesh.vertex_count, 0.0);
-  for (const auto& tri : mesh.triangles) {
+  for (const auto& tri : triangles) {
     const Vec& c = centre[size_t(component[tri[0]])];
     for (int i = 0; i < 3; ++i) {
       const Vec axis = mesh.key_position(0, tri[size_t(i)]) - c;

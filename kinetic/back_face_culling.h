@@ -6,7 +6,9 @@
 // component take c(t), the linear interpolation over each flightplan segment of the centroids of
 // its vertices at the segment's two keys (continuous, piecewise linear). Require
 //  (1) the mesh is a closed, consistently oriented 2-manifold (every directed edge once, its
-//      reverse once);
+//      reverse once), once the vertices at the same position at every key are welded into one
+//      (loaders split them along normal and texture seams; they move together) and the triangles
+//      left as segments are dropped;
 //  (2) on every segment, every triangle has det(v0 - c, v1 - c, v2 - c) of one strict sign sigma,
 //      the same for all triangles, throughout the segment (a cubic in t, proved by its Bernstein
 //      coefficients with a relative margin far above rounding, subdividing a few times);

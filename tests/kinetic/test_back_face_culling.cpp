@@ -122,6 +122,32 @@ TEST(BackFaceCulling, DeclinesATorus) {
   EXPECT_EQ(back_face_cull_sign(scene.input().meshes[0]), 0);
 }
 
+// A cube as a loader gives it: every face with its own four vertices (split along the normal
+// seams). Welding the copies that share a position at every key closes it: culled. When the
+// copies of one corner part at a key, the cube has a crack there: declined.
+TEST(BackFaceCulling, WeldsVerticesThatMoveTogether) {
+  OwnedMesh cube;
+  cube.times = {0.0, 1.0};
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.8, Vec(0.2, 1, 0.3).normalized()).toRotationMatrix();
+  for (int k = 0; k < 2; ++k)
+    for (int axis = 0; axis < 3; ++axis)
+      for (double sign : {1.0, -1.0}) {
+        const Vec n = sign * Vec::Unit(axis), u = Vec::Unit((axis + 1) % 3), v = n.cross(u);
+        for (const Vec& corner : {Vec(n - u - v), Vec(n + u - v), Vec(n + u + v), Vec(n - u + v)})
+          cube.positions.push_back(Vec(0.3, -0.2, 6) + (k == 0 ? corner : Vec(turn * corner)));
+      }
+  cube.vertex_count = 24;
+  for (uint32_t f = 0; f < 6; ++f) {
+    cube.triangles.push_back({4 * f, 4 * f + 1, 4 * f + 2});
+    cube.triangles.push_back({4 * f, 4 * f + 2, 4 * f + 3});
+  }
+  TestScene scene;
+  scene.meshes.push_back(cube);
+  EXPECT_EQ(back_face_cull_sign(scene.input().meshes[0]), -1);
+  scene.meshes[0].positions[24] += Vec(0, 0, 1e-9);  // one copy of a corner parts at key 1
+  EXPECT_EQ(back_face_cull_sign(scene.input().meshes[0]), 0);
+}
+
 // One mesh of two tumbling octahedra that pass through each other between keys: each component
 // is star-shaped around its own centroid, the eye is outside both, so the first hit is still a
 // face turned to the eye. Culled, and every frame equals the brute-force reference.
