@@ -38,9 +38,6 @@ struct GridMesh {
   double appear = -std::numeric_limits<double>::infinity();  ///< present on [appear, disappear)
   double disappear = std::numeric_limits<double>::infinity();
   bool is_static = false;  ///< positions equal at every key: emits no coverage events
-  /// The producer guarantees a solid without self-intersection at every instant; GridScene then
-  /// checks the rest of what back-face culling needs (closed, oriented, the eye outside).
-  bool solid = false;
 
   [[nodiscard]] size_t key_count() const { return key_times.size(); }
   [[nodiscard]] bool present(double t) const { return t >= appear && t < disappear; }

@@ -1,5 +1,7 @@
 #include "kinetic/grid_scene.h"
 
+#include "kinetic/back_face_culling.h"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -29,53 +31,6 @@ void validate(const GridInput& input) {
   }
   if (triangles >= (uint64_t{1} << 31) || vertices >= (uint64_t{1} << 31))
     throw std::invalid_argument("kinetic grid: more than 2^31 triangles or vertices");
-}
-
-// Every undirected edge used by exactly two triangles, once in each direction; no triangle
-// repeats a vertex.
-bool closed_oriented_manifold(const GridMesh& mesh) {
-  std::vector<uint64_t> directed;
-  directed.reserve(3 * mesh.triangles.size());
-  for (const auto& tri : mesh.triangles)
-    for (int e = 0; e < 3; ++e) {
-      const uint32_t a = tri[size_t(e)], b = tri[size_t((e + 1) % 3)];
-      if (a == b) return false;
-      directed.push_back((uint64_t{a} << 32) | b);
-    }
-  std::sort(directed.begin(), directed.end());
-  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) return false;
-  for (const uint64_t e : directed)
-    if (!std::binary_search(directed.begin(), directed.end(), (e << 32) | (e >> 32))) return false;
-  return !directed.empty();
-}
-
-// The sign of O of the triangles facing the eye, or 0 when culling is not sound (GridScene::
-// cull_sign). With outward normals (positive volume) a triangle faces the eye at the origin iff
-// ((v1 - v0) x (v2 - v0)) . (0 - v0) > 0, i.e. det(v0, v1, v2) < 0.
-int front_facing_sign(const GridMesh& mesh) {
-  if (!mesh.solid || !closed_oriented_manifold(mesh)) return 0;
-  const size_t keys = mesh.key_times.size();
-  int volume_sign = 0;
-  for (size_t k = 0; k < keys; ++k) {
-    double volume = 0;
-    for (const auto& tri : mesh.triangles) {
-      const Eigen::Vector3d& a = mesh.key_position(k, tri[0]);
-      volume += a.dot(mesh.key_position(k, tri[1]).cross(mesh.key_position(k, tri[2])));
-    }
-    const int sign = (volume > 0) - (volume < 0);
-    if (sign == 0 || (volume_sign != 0 && sign != volume_sign)) return 0;
-    volume_sign = sign;
-  }
-  // Positions are linear in time on a segment, so the box of its two end keys holds the solid
-  // (inside the convex hull of its vertices) at every instant of it; before the first and after
-  // the last key the mesh stands still at that key.
-  for (size_t k = 0; k < keys; ++k) {
-    Eigen::AlignedBox3d box;
-    for (size_t kk = k; kk < std::min(k + 2, keys); ++kk)
-      for (uint32_t v = 0; v < mesh.vertex_count; ++v) box.extend(mesh.key_position(kk, v));
-    if (box.contains(Eigen::Vector3d::Zero())) return 0;  // closed box: the eye on it declines
-  }
-  return -volume_sign;
 }
 
 }  // namespace
@@ -139,7 +94,7 @@ GridScene::GridScene(GridInput input) : m_input(std::move(input)) {
   m_adjacency.resize(out);
 
   m_cull_sign.resize(meshes);
-  for (uint32_t m = 0; m < meshes; ++m) m_cull_sign[m] = int8_t(front_facing_sign(m_input.meshes[m]));
+  for (uint32_t m = 0; m < meshes; ++m) m_cull_sign[m] = int8_t(back_face_cull_sign(m_input.meshes[m]));
 }
 
 MeshSegment GridScene::segment(uint32_t m, uint32_t index) const {

@@ -62,10 +62,8 @@ class GridScene {
   [[nodiscard]] TriangleMotion triangle_motion(uint32_t tri, const MeshSegment& seg) const;
 
   /// Back-face culling of mesh m: 0 when off, else the sign of O (TriangleMotion::orientation)
-  /// of the triangles that face the eye. On only for a GridMesh::solid mesh that is a closed,
-  /// consistently oriented 2-manifold with a non-zero signed volume of one sign at every key and
-  /// whose every segment keeps the eye outside its bounding box: then every ray's first hit is
-  /// a triangle that faces the eye, and the others never show.
+  /// of the triangles that face the eye. On only where back_face_cull_sign proves that every
+  /// ray's first hit on the mesh is a triangle facing the eye, so the others never show.
   [[nodiscard]] int cull_sign(uint32_t m) const { return m_cull_sign[m]; }
   [[nodiscard]] int cull_sign_of_triangle(uint32_t tri) const {
     return m_cull_sign[m_triangle_mesh[tri]];

@@ -26,7 +26,6 @@ GridInput grid_input(const CameraSpaceScene& scene, const BackendConfig& config)
     mesh.appear = cs.appear;
     mesh.disappear = cs.disappear;
     mesh.is_static = cs.is_static;
-    mesh.solid = cs.solid;
     input.meshes.push_back(mesh);
   }
   return input;

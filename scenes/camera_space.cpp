@@ -110,7 +110,6 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene) {
       }
     });
     cs.is_static = nk == 1;
-    cs.solid = object.solid && !camera_moves;
   }
   return result;
 }

@@ -40,9 +40,6 @@ struct CameraSpaceObject {
   std::vector<Eigen::Vector3f> normals;  ///< [key * vertex_count + v], unit, true camera space
   size_t vertex_count = 0;
   bool is_static = false;           ///< camera-space positions equal at every key
-  /// Object::solid, kept only under a fixed camera: a moving camera resamples the flightplans in
-  /// camera space, where the interpolated surface is no longer the world one under one map.
-  bool solid = false;
   double appear = -kInfinity, disappear = kInfinity;
 
   [[nodiscard]] std::span<const Vec3> key(size_t k) const {

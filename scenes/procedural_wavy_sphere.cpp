@@ -52,12 +52,6 @@ Scene make_wavy_sphere(const ProceduralParams& params) {
           out[v] = spin * (height * p);
         }
       }));
-  // A radial surface r(dir) > 0 over the cube-sphere triangulation of directions bounds a
-  // star-shaped solid: each flat triangle stays in its own cone of directions. Between two keys a
-  // vertex moves on the chord of its two spun, rescaled positions; its direction departs from one
-  // common spin by at most about (spin per key 0.0075 rad) x (radius change per key, ~1%), far
-  // below the triangles' angular size (about 0.02 rad at 40000 triangles).
-  scene.objects.back().solid = true;
   const Vec3 eye = kCameraDistance * Vec3(0.35, 0.45, -1.0).normalized();
   scene.camera.keys = {Camera::look_at(0, eye, Vec3::Zero(), Vec3::UnitY(), 45)};
   return scene;

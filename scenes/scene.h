@@ -48,10 +48,6 @@ struct Object {
   uint32_t material = 0;
   double appear = -kInfinity;    ///< visible on [appear, disappear)
   double disappear = kInfinity;
-  /// Set only by a producer that guarantees it: at every instant of the flightplans the mesh is
-  /// the boundary of a solid and does not intersect itself (e.g. a radial surface r(dir) > 0).
-  /// Lets the kinetic backend cull back faces (docs/kinetic_grid.md, "Back-face culling").
-  bool solid = false;
 
   [[nodiscard]] size_t vertex_count() const { return key_positions.empty() ? 0 : key_positions[0].size(); }
   [[nodiscard]] size_t key_count() const { return key_times.size(); }

@@ -27,7 +27,6 @@ struct OwnedMesh {
   double appear = -std::numeric_limits<double>::infinity();
   double disappear = std::numeric_limits<double>::infinity();
   bool is_static = false;
-  bool solid = false;  ///< GridMesh::solid
 };
 
 /// A triangle per key: keys[k] = the three vertices at times[k].
@@ -63,7 +62,6 @@ struct TestScene {
       g.appear = o.appear;
       g.disappear = o.disappear;
       g.is_static = o.is_static;
-      g.solid = o.solid;
       in.meshes.push_back(g);
     }
     return in;
