@@ -17,6 +17,8 @@ namespace kinray {
 
 namespace {
 
+constexpr int kBandsPerThread = 4;
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -75,10 +77,10 @@ class BandsOf final : public FrustumGrid::Bands {
     m_row_begin.push_back(h);
   }
   void start(double t0, int threads) override {
-    parallel_for(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
   }
   void advance_to(double t, int threads) override {
-    parallel_for(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
   }
   void fronts(int row_begin, int row_end, std::span<uint32_t> out) const override {
     for (int j = row_begin; j < row_end; ++j) {
@@ -99,7 +101,7 @@ class BandsOf final : public FrustumGrid::Bands {
   }
   std::vector<std::string> audit(double t, int threads) const override {
     std::vector<std::vector<std::string>> found(m_bands.size());
-    parallel_for(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
     std::vector<std::string> all;
     for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
     return all;
@@ -126,7 +128,11 @@ FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridCo
     : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input)), m_config(config),
       m_now(start_time) {
   m_threads = resolve_threads(config.threads);
-  const int bands = std::clamp(config.bands > 0 ? config.bands : m_threads, 1, m_scene.height());
+  // The events gather where the geometry moves (a horizon, a fold of the cloth), so with several
+  // threads the rows are split into more bands than threads, handed out dynamically: a band
+  // costs a little (its vertex and orientation certificates), an idle thread much more.
+  const int automatic = m_threads == 1 ? 1 : kBandsPerThread * m_threads;
+  const int bands = std::clamp(config.bands > 0 ? config.bands : automatic, 1, m_scene.height());
   switch (config.sort) {
     case DepthSortKind::kList:
       m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit);
