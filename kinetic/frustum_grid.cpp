@@ -84,9 +84,9 @@ class BandsOf final : public FrustumGrid::Bands {
   }
   void fronts(int row_begin, int row_end, std::span<uint32_t> out) const override {
     for (int j = row_begin; j < row_end; ++j) {
-      const FrustumBand<Sort>& band = *m_bands[band_of(j)];
-      uint32_t* row = out.data() + size_t(j - row_begin) * size_t(m_width);
-      for (int i = 0; i < m_width; ++i) row[i] = band.front(i, j).value_or(kNoGridHit);
+      static_assert(kNoFront == kNoGridHit);
+      const uint32_t* fronts = m_bands[band_of(j)]->front_row(j);
+      std::copy(fronts, fronts + m_width, out.begin() + ptrdiff_t(size_t(j - row_begin) * size_t(m_width)));
     }
   }
   uint32_t front(int i, int j) const override {
