@@ -67,7 +67,7 @@ EventHandle EventQueue::push(const EventKey& key, uint64_t payload) {
   }
   m_slots[h].key = key;
   m_slots[h].payload = payload;
-  const Node node{key.time, h, 0};
+  const Node node{key.time, h, uint32_t(payload)};
   if (key.time > m_horizon) {
     add_far(node);
     settle();
@@ -84,7 +84,7 @@ void EventQueue::update(EventHandle h, const EventKey& key) {
   const bool up = key < m_slots[h].key;
   m_slots[h].key = key;
   const uint32_t pos = m_pos[h];
-  const Node node{key.time, h, 0};
+  const Node node{key.time, h, uint32_t(m_slots[h].payload)};
   const bool far = key.time > m_horizon;
   if ((pos & kFar) != 0) {
     if (far) {
@@ -235,6 +235,7 @@ void EventQueue::audit() const {
     const EventHandle h = node.handle;
     KINRAY_CHECK(h < m_slots.size() && m_pos[h] == r);
     KINRAY_CHECK(node.time == m_slots[h].key.time);
+    KINRAY_CHECK(node.hint == uint32_t(m_slots[h].payload));
     if (r > 0) KINRAY_CHECK(!less(node, m_heap[(r - 1) / kArity + kOffset]));
     KINRAY_CHECK(node.time <= m_horizon);
   }
@@ -244,6 +245,7 @@ void EventQueue::audit() const {
     const EventHandle h = node.handle;
     KINRAY_CHECK(h < m_slots.size() && m_pos[h] == (kFar | i));
     KINRAY_CHECK(node.time == m_slots[h].key.time);
+    KINRAY_CHECK(node.hint == uint32_t(m_slots[h].payload));
     KINRAY_CHECK(node.time > m_horizon);
   }
   size_t free_count = 0;

@@ -58,12 +58,20 @@ class EventQueue {
   void set_payload(EventHandle h, uint64_t payload) {       ///< O(1)
     KINRAY_DCHECK(contains(h));
     m_slots[h].payload = payload;
+    const uint32_t pos = m_pos[h];
+    ((pos & kFar) != 0 ? m_far[pos & ~kFar] : m_heap[pos + kOffset]).hint = uint32_t(payload);
   }
 
   [[nodiscard]] bool empty() const { return m_size == 0 && m_far.empty(); }
   [[nodiscard]] size_t size() const { return m_size + m_far.size(); }
   [[nodiscard]] const EventKey& top_key() const { return m_slots[top()].key; }
   [[nodiscard]] uint64_t top_payload() const { return m_slots[top()].payload; }
+  /// The low 32 bits of top_payload(), from the heap itself: enough for the owner to prefetch
+  /// what the next event will touch while the current one is processed.
+  [[nodiscard]] uint32_t top_payload_hint() const {
+    KINRAY_DCHECK(m_size > 0);
+    return m_heap[kOffset].hint;
+  }
   [[nodiscard]] EventHandle top() const {
     KINRAY_DCHECK(m_size > 0);  // settle() keeps the heap non-empty while the far list is not
     return m_heap[kOffset].handle;
@@ -108,7 +116,7 @@ class EventQueue {
   struct Node {
     double time;
     EventHandle handle;
-    uint32_t unused;
+    uint32_t hint;  ///< the payload's low 32 bits, readable at the top without the slot
   };
   struct alignas(32) Slot {
     EventKey key;

@@ -648,6 +648,13 @@ void FrustumBand<Sort>::advance_to(double t) {
     const uint64_t payload = m_queue.top_payload();
     KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
     m_queue.pop();
+    if (!m_queue.empty()) {
+      // Most events are boundary events, whose payload names their record: fetch the next
+      // event's slot and record while this one is processed (a wrong guess costs one prefetch).
+      m_queue.prefetch(m_queue.top());
+      const uint32_t rec = m_queue.top_payload_hint() >> 1;
+      if (rec < m_records.size()) __builtin_prefetch(&m_records[rec]);
+    }
     m_now = key.time;
     m_front_changed = false;
     handle(key, payload);

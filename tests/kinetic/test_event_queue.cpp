@@ -83,6 +83,10 @@ TEST(EventQueue, RandomOperationsAgainstMultiset) {
       model.erase({old.time, old.kind, old.a, old.b, h});
       q.update(h, k);
       model.insert({k.time, k.kind, k.a, k.b, h});
+      if (op == 5) {  // a new payload (with high bits, which the hint drops)
+        payload_of[h] = (next_payload++) | (uint64_t{h} << 40);
+        q.set_payload(h, payload_of[h]);
+      }
     } else if (op < 8) {
       const size_t i = rng() % live.size();
       const EventHandle h = live[i];
@@ -101,6 +105,7 @@ TEST(EventQueue, RandomOperationsAgainstMultiset) {
       // Equal full keys may come out in any handle order; compare keys, then drop that handle.
       const EventHandle h = q.top();
       ASSERT_EQ(q.top_payload(), payload_of[h]);
+      ASSERT_EQ(q.top_payload_hint(), uint32_t(payload_of[h]));
       model.erase({time, kind, a, b, h});
       q.pop();
       live.erase(std::find(live.begin(), live.end(), h));
