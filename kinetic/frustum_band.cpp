@@ -647,6 +647,19 @@ void FrustumBand<Sort>::advance_to(double t) {
     const EventKey key = m_queue.top_key();
     const uint64_t payload = m_queue.top_payload();
     KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
+    if (key.kind == kGridBoundary) {
+      // Its record was prefetched with the previous event: fetch the triangle's vertex ids and
+      // state, and the two pixels the boundary watches (one of them may change), while the
+      // queue is popped.
+      const RowRecord& r = m_records[payload >> 1];
+      __builtin_prefetch(&m_scene.triangle_vertices(r.triangle));
+      __builtin_prefetch(&m_triangles[r.triangle]);
+      const int slot = r.boundary[payload & 1].slot;
+      if (slot > 0) {
+        __builtin_prefetch(&cell(slot - 1, r.row).order);
+        __builtin_prefetch(&cell(slot, r.row).order);
+      }
+    }
     m_queue.pop();
     if (!m_queue.empty()) {
       // Most events are boundary events, whose payload names their record: fetch the next
