@@ -18,6 +18,7 @@ namespace kinray {
 namespace {
 
 constexpr int kBandsPerThread = 4;
+constexpr size_t kPlaneCache = 1024;  ///< read-out: planes kept per thread (a few rows' runs)
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -240,11 +241,18 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
     m_bands->fronts(int(row_begin), int(row_end),
                     object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
     std::vector<uint32_t> members;
+    // A triangle meets a few consecutive rows: the planes of the runs of recent rows are kept in
+    // a small direct-mapped cache (the same plane_of values, so the same depths bit for bit).
+    struct CachedPlane {
+      uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
+      TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    };
+    std::vector<CachedPlane> cache(kPlaneCache);
     for (size_t j = row_begin; j < row_end; ++j) {
       const double y = m_scene.row_y(int(j));
       // A triangle usually covers a run of pixels in a row: its plane is computed once per run.
       uint32_t last = kNoGridHit, mesh_id = 0, local = 0;
-      std::optional<TrianglePlane> plane;
+      const TrianglePlane* plane = nullptr;
       for (int i = 0; i < w; ++i) {
         const size_t p = j * size_t(w) + size_t(i);
         uint32_t tri = object[p];
@@ -255,10 +263,17 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
         }
         const double x = m_scene.column_x(i);
         if (tri != last) {
-          const uint32_t m = m_scene.mesh_of_triangle(tri);
-          mesh_id = m_scene.mesh(m).id;
-          local = tri - m_scene.triangle_begin(m);
-          plane.emplace(plane_of(tri));
+          CachedPlane& c = cache[tri % kPlaneCache];
+          if (c.tri != tri) {
+            const uint32_t m = m_scene.mesh_of_triangle(tri);
+            c.tri = tri;
+            c.mesh_id = m_scene.mesh(m).id;
+            c.local = tri - m_scene.triangle_begin(m);
+            c.plane = plane_of(tri);
+          }
+          mesh_id = c.mesh_id;
+          local = c.local;
+          plane = &c.plane;
           last = tri;
         }
         double z = plane->depth(x, y);
