@@ -33,6 +33,19 @@ namespace kinray {
   return sign_plus(n.perturbed(x, y), s);
 }
 
+/// CoverageRule(m, s, orientation_sign).covers_in_row(x, y, a, b) for a single ray, building only
+/// the two edge normals it tests (`known`, when given, is edge `known_edge` already built): the
+/// same operations on the same values, so the same answer bit for bit.
+[[nodiscard]] inline bool covers_in_row(const TriangleMotion& m, double s, int orientation_sign,
+                                        double x, double y, int a, int b,
+                                        const EdgeNormal* known = nullptr, int known_edge = -1) {
+  if (orientation_sign == 0) return false;
+  auto sign_of = [&](int e) {
+    return e == known_edge ? edge_sign(*known, x, y, s) : edge_sign(m.edge(e), x, y, s);
+  };
+  return sign_of(a) == orientation_sign && sign_of(b) == orientation_sign;
+}
+
 /// The sign rule at one instant for many rays of one triangle: the orientation's sign is taken
 /// once, the edge functions per ray.
 class CoverageRule {

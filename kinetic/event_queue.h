@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "kinetic/check.h"
@@ -34,6 +35,14 @@ inline constexpr EventHandle kNoEvent = ~0u;
 /// bytes, each group of eight siblings in one aligned pair of cache lines; the full keys and payloads live
 /// in a slot per handle (consulted for ties in time only). Handles of popped or erased events are
 /// recycled by later pushes.
+///
+/// Most certificates fail long after the events being processed (a boundary crosses its next
+/// column centre frames later), so only the events up to a horizon are kept in the heap: the rest
+/// wait unsorted in a far list (push, update and erase there are O(1)). When the heap runs dry the
+/// horizon moves on to about the earliest eighth of the far list (a quantile of a sample of it),
+/// whose events are then heapified. The heap stays small enough for the cache, and the order of
+/// the events is exactly that of one heap: every far event is later than the horizon, every heap
+/// event no later.
 class EventQueue {
  public:
   EventQueue() = default;
@@ -49,14 +58,22 @@ class EventQueue {
   void set_payload(EventHandle h, uint64_t payload) {       ///< O(1)
     KINRAY_DCHECK(contains(h));
     m_slots[h].payload = payload;
+    const uint32_t pos = m_pos[h];
+    ((pos & kFar) != 0 ? m_far[pos & ~kFar] : m_heap[pos + kOffset]).hint = uint32_t(payload);
   }
 
-  [[nodiscard]] bool empty() const { return m_size == 0; }
-  [[nodiscard]] size_t size() const { return m_size; }
+  [[nodiscard]] bool empty() const { return m_size == 0 && m_far.empty(); }
+  [[nodiscard]] size_t size() const { return m_size + m_far.size(); }
   [[nodiscard]] const EventKey& top_key() const { return m_slots[top()].key; }
   [[nodiscard]] uint64_t top_payload() const { return m_slots[top()].payload; }
-  [[nodiscard]] EventHandle top() const {
+  /// The low 32 bits of top_payload(), from the heap itself: enough for the owner to prefetch
+  /// what the next event will touch while the current one is processed.
+  [[nodiscard]] uint32_t top_payload_hint() const {
     KINRAY_DCHECK(m_size > 0);
+    return m_heap[kOffset].hint;
+  }
+  [[nodiscard]] EventHandle top() const {
+    KINRAY_DCHECK(m_size > 0);  // settle() keeps the heap non-empty while the far list is not
     return m_heap[kOffset].handle;
   }
   void pop();  ///< removes the top event; its handle becomes invalid
@@ -88,6 +105,7 @@ class EventQueue {
 
  private:
   static constexpr uint32_t kFreeSlot = ~0u;
+  static constexpr uint32_t kFar = 1u << 31;  ///< m_pos bit: the index is into m_far
  public:
   static constexpr uint32_t kArity = 8;  ///< children per node
 
@@ -98,7 +116,7 @@ class EventQueue {
   struct Node {
     double time;
     EventHandle handle;
-    uint32_t unused;
+    uint32_t hint;  ///< the payload's low 32 bits, readable at the top without the slot
   };
   struct alignas(32) Slot {
     EventKey key;
@@ -114,15 +132,35 @@ class EventQueue {
   }
   void sift_up(uint32_t r, Node node);
   void sift_down(uint32_t r, Node node);
-  void remove_at(uint32_t r);
+  /// Takes the node at heap index r out of the heap (its handle stays allocated).
+  void detach_heap(uint32_t r);
+  /// Takes the node at far index i out of the far list (its handle stays allocated).
+  void detach_far(uint32_t i);
+  void add_far(const Node& node) {
+    m_pos[node.handle] = kFar | uint32_t(m_far.size());
+    m_far.push_back(node);
+  }
+  void free_handle(EventHandle h) {
+    m_pos[h] = kFreeSlot;
+    m_slots[h].payload = m_free;
+    m_free = h;
+  }
+  /// Restores "the heap is empty only if the far list is" by moving the horizon on.
+  void settle() {
+    if (m_size == 0 && !m_far.empty()) refill();
+  }
+  void refill();
   void grow(size_t capacity);
 
   Node* m_heap = nullptr;  ///< 64-byte aligned, m_capacity + kOffset + 1 nodes
   size_t m_capacity = 0;
   uint32_t m_size = 0;
   std::vector<Slot> m_slots;     ///< per handle: key and payload (two slots per cache line)
-  std::vector<uint32_t> m_pos;  ///< per handle: heap index r of the event, kFreeSlot if free
+  std::vector<uint32_t> m_pos;  ///< per handle: heap index r, kFar | far index, or kFreeSlot
   uint32_t m_free = kNoEvent;
+  std::vector<Node> m_far;  ///< the events later than m_horizon, unsorted
+  /// Heap events are at or before it, far events after it; it only moves forward.
+  double m_horizon = -std::numeric_limits<double>::infinity();
 };
 
 }  // namespace kinray

@@ -57,6 +57,7 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
     for (int i = 0; i < m_width; ++i)
       m_pixels.emplace_back(&m_motion, i, j, m_queue,
                             uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
+  m_fronts.assign(pixels, kNoFront);
   for (const PixelCell& p : m_pixels) m_pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
 }
 
@@ -265,26 +266,24 @@ void FrustumBand<Sort>::schedule_flightplan(uint32_t m) {
 template <class Sort>
 void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
-  const std::optional<uint32_t> before = p.order.front();
   const size_t bytes = p.order.memory_bytes();
   p.order.insert(tri, m_now);
   m_pixel_bytes += p.order.memory_bytes() - bytes;
   ++m_pixel_entries;
   ++m_stats.coverage_changes;
-  if (p.order.front() != before) m_front_changed = true;
+  if (refresh_front(column, row)) m_front_changed = true;
   if (m_config.audit) p.order.audit(m_now);
 }
 
 template <class Sort>
 void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
-  const std::optional<uint32_t> before = p.order.front();
   const size_t bytes = p.order.memory_bytes();
   p.order.erase(tri, m_now);
   m_pixel_bytes -= bytes - p.order.memory_bytes();
   --m_pixel_entries;
   ++m_stats.coverage_changes;
-  if (p.order.front() != before) m_front_changed = true;
+  if (refresh_front(column, row)) m_front_changed = true;
   if (m_config.audit) p.order.audit(m_now);
 }
 
@@ -415,13 +414,14 @@ void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool
 }
 
 template <class Sort>
-void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
+void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow& tn,
+                                     const EdgeNormal* known, int known_edge) {
   RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
   // this very instant is still pending and rebuilds the record when processed).
-  const CoverageRule rule(tn.motion, tn.s, m_triangles[r.triangle].orientation);
-  const bool covered = rule.covers_in_row(m_scene.column_x(column), m_scene.row_y(r.row),
-                                          r.boundary[0].edge, r.boundary[1].edge);
+  const bool covered = covers_in_row(tn.motion, tn.s, m_triangles[r.triangle].orientation,
+                                     m_scene.column_x(column), m_scene.row_y(r.row),
+                                     r.boundary[0].edge, r.boundary[1].edge, known, known_edge);
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
   if (covered) {
@@ -510,8 +510,8 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
   schedule_boundary(rec, bi, tn, &edge);
   // At the instant of the re-tie the boundary is the vertex itself; a vertex exactly on a
   // pixel-centre ray may change that pixel, so the two watched columns are re-evaluated.
-  update_pixel(rec, lo, tn);
-  if (hi != lo) update_pixel(rec, hi, tn);
+  update_pixel(rec, lo, tn, &edge, b.edge);
+  if (hi != lo) update_pixel(rec, hi, tn, &edge, b.edge);
 }
 
 template <class Sort>
@@ -647,7 +647,27 @@ void FrustumBand<Sort>::advance_to(double t) {
     const EventKey key = m_queue.top_key();
     const uint64_t payload = m_queue.top_payload();
     KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
+    if (key.kind == kGridBoundary) {
+      // Its record was prefetched with the previous event: fetch the triangle's vertex ids and
+      // state, and the two pixels the boundary watches (one of them may change), while the
+      // queue is popped.
+      const RowRecord& r = m_records[payload >> 1];
+      __builtin_prefetch(&m_scene.triangle_vertices(r.triangle));
+      __builtin_prefetch(&m_triangles[r.triangle]);
+      const int slot = r.boundary[payload & 1].slot;
+      if (slot > 0) {
+        __builtin_prefetch(&cell(slot - 1, r.row).order);
+        __builtin_prefetch(&cell(slot, r.row).order);
+      }
+    }
     m_queue.pop();
+    if (!m_queue.empty()) {
+      // Most events are boundary events, whose payload names their record: fetch the next
+      // event's slot and record while this one is processed (a wrong guess costs one prefetch).
+      m_queue.prefetch(m_queue.top());
+      const uint32_t rec = m_queue.top_payload_hint() >> 1;
+      if (rec < m_records.size()) __builtin_prefetch(&m_records[rec]);
+    }
     m_now = key.time;
     m_front_changed = false;
     handle(key, payload);
@@ -722,7 +742,10 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
         schedule_boundary(rec, 0, tn);
         schedule_boundary(rec, 1, tn);
         const RowRecord& r = m_records[rec];
-        for (int c = r.lo; c <= r.hi; ++c) cell(c, r.row).order.replace_motion(tri, m_now);
+        for (int c = r.lo; c <= r.hi; ++c) {
+          cell(c, r.row).order.replace_motion(tri, m_now);
+          refresh_front(c, r.row);
+        }
       }
     }
   }
@@ -785,7 +808,7 @@ void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
   if (lo == hi) {  // a one-column image: the only slot is off
     b.sign_lo = b.sign_hi = int8_t(gl);
     schedule_boundary(rec, bi, tn, &edge);
-    update_pixel(rec, lo, tn);
+    update_pixel(rec, lo, tn, &edge, b.edge);
     return;
   }
   if (changed_lo && changed_hi) {
@@ -807,7 +830,7 @@ void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
   b.sign_lo = int8_t(sl);
   b.sign_hi = int8_t(sh);
   schedule_boundary(rec, bi, tn, &edge);
-  update_pixel(rec, column, tn);
+  update_pixel(rec, column, tn, &edge, b.edge);
 }
 
 template <class Sort>
@@ -899,17 +922,17 @@ template <class Sort>
 void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   const int row = int(key.a / uint32_t(m_width)), column = int(key.a % uint32_t(m_width));
   PixelCell& p = cell(column, row);
-  const std::optional<uint32_t> before = p.order.front();
   const uint64_t events_before = m_sort_stats.events();
   const size_t bytes = p.order.memory_bytes();
   p.order.handle_event(payload, m_now);
   m_pixel_bytes = m_pixel_bytes - bytes + p.order.memory_bytes();
+  const bool front_changed = refresh_front(column, row);
   if (m_sort_stats.events() == events_before) {
     ++m_stats.renewals;
     return;
   }
   ++m_stats.events.swap;
-  ++(p.order.front() != before ? m_stats.events_external : m_stats.events_internal);
+  ++(front_changed ? m_stats.events_external : m_stats.events_internal);
   if (m_config.audit) p.order.audit(m_now);
 }
 
@@ -1034,6 +1057,9 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
         report("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                ") holds triangles that do not cover it");
       p.order.audit(t);
+      if (m_fronts[pixel_index(i, j)] != p.order.front().value_or(kNoFront))
+        report("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
+               ") has a stale front in the band's front array");
     }
   return problems;
 }

@@ -30,6 +30,9 @@ namespace kinray {
 /// EventKey::kind of the grid's events; at equal times they are processed in this order, so a
 /// flightplan update (which recomputes certificates) precedes the failures computed on the old
 /// segment that end there.
+/// FrustumBand::front_row's value for a pixel no triangle covers.
+inline constexpr uint32_t kNoFront = ~0u;
+
 enum GridEventKind : uint32_t {
   kGridFlightplan = 0,
   kGridRemove = 1,
@@ -66,7 +69,13 @@ class FrustumBand {
 
   /// The front triangle (global id) of pixel (column, row) of this band.
   [[nodiscard]] std::optional<uint32_t> front(int column, int row) const {
-    return cell(column, row).order.front();
+    const uint32_t tri = m_fronts[pixel_index(column, row)];
+    return tri == kNoFront ? std::nullopt : std::optional<uint32_t>(tri);
+  }
+  /// The front triangles of row `row` of this band (kNoFront where empty), one per column: the
+  /// read-out copies them without visiting the pixel orders.
+  [[nodiscard]] const uint32_t* front_row(int row) const {
+    return m_fronts.data() + pixel_index(0, row);
   }
   /// f(global id) for every triangle in pixel (column, row)'s depth order: front to back for the
   /// sorted list, the front first but otherwise unsorted for the tournament and the heap.
@@ -143,7 +152,9 @@ class FrustumBand {
   uint32_t create_record(uint32_t tri, int row, int edge_a, int edge_b, const TriangleNow& tn);
   void kill_record(uint32_t rec);
   void rebuild_record(uint32_t rec, const TriangleNow& tn, bool full);
-  void update_pixel(uint32_t rec, int column, const TriangleNow& tn);
+  /// Re-evaluates one column of a record; `known` is edge `known_edge`'s normal if already built.
+  void update_pixel(uint32_t rec, int column, const TriangleNow& tn,
+                    const EdgeNormal* known = nullptr, int known_edge = -1);
   void set_coverage(uint32_t rec, int lo, int hi);
   void update_triangle_row(uint32_t tri, int row);
   [[nodiscard]] uint32_t find_record(uint32_t tri, int row) const;
@@ -157,11 +168,21 @@ class FrustumBand {
   }
 
   // Pixels.
-  [[nodiscard]] PixelCell& cell(int column, int row) {
-    return m_pixels[size_t(row - m_row_begin) * size_t(m_width) + size_t(column)];
+  [[nodiscard]] size_t pixel_index(int column, int row) const {
+    return size_t(row - m_row_begin) * size_t(m_width) + size_t(column);
   }
+  [[nodiscard]] PixelCell& cell(int column, int row) { return m_pixels[pixel_index(column, row)]; }
   [[nodiscard]] const PixelCell& cell(int column, int row) const {
-    return m_pixels[size_t(row - m_row_begin) * size_t(m_width) + size_t(column)];
+    return m_pixels[pixel_index(column, row)];
+  }
+  /// Copies pixel (column, row)'s front into m_fronts after a change of its order; true if the
+  /// front changed.
+  bool refresh_front(int column, int row) {
+    const size_t k = pixel_index(column, row);
+    const uint32_t tri = m_pixels[k].order.front().value_or(kNoFront);
+    const bool changed = tri != m_fronts[k];
+    m_fronts[k] = tri;
+    return changed;
   }
   void pixel_insert(uint32_t tri, int column, int row);
   void pixel_erase(uint32_t tri, int column, int row);
@@ -192,6 +213,7 @@ class FrustumBand {
   std::vector<uint32_t> m_free_records;
   KineticSortStats m_sort_stats;
   std::vector<PixelCell> m_pixels;  ///< reserved once: the orders point at their keys
+  std::vector<uint32_t> m_fronts;   ///< per pixel: its order's front, or kNoFront
 
   GridStats m_stats;
   bool m_front_changed = false;  ///< set by pixel changes during one event

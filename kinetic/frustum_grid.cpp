@@ -17,6 +17,9 @@ namespace kinray {
 
 namespace {
 
+constexpr int kBandsPerThread = 4;
+constexpr size_t kPlaneCache = 1024;  ///< read-out: planes kept per thread (a few rows' runs)
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -75,16 +78,16 @@ class BandsOf final : public FrustumGrid::Bands {
     m_row_begin.push_back(h);
   }
   void start(double t0, int threads) override {
-    parallel_for(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
   }
   void advance_to(double t, int threads) override {
-    parallel_for(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
   }
   void fronts(int row_begin, int row_end, std::span<uint32_t> out) const override {
     for (int j = row_begin; j < row_end; ++j) {
-      const FrustumBand<Sort>& band = *m_bands[band_of(j)];
-      uint32_t* row = out.data() + size_t(j - row_begin) * size_t(m_width);
-      for (int i = 0; i < m_width; ++i) row[i] = band.front(i, j).value_or(kNoGridHit);
+      static_assert(kNoFront == kNoGridHit);
+      const uint32_t* fronts = m_bands[band_of(j)]->front_row(j);
+      std::copy(fronts, fronts + m_width, out.begin() + ptrdiff_t(size_t(j - row_begin) * size_t(m_width)));
     }
   }
   uint32_t front(int i, int j) const override {
@@ -99,7 +102,7 @@ class BandsOf final : public FrustumGrid::Bands {
   }
   std::vector<std::string> audit(double t, int threads) const override {
     std::vector<std::vector<std::string>> found(m_bands.size());
-    parallel_for(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
     std::vector<std::string> all;
     for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
     return all;
@@ -126,7 +129,11 @@ FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridCo
     : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input)), m_config(config),
       m_now(start_time) {
   m_threads = resolve_threads(config.threads);
-  const int bands = std::clamp(config.bands > 0 ? config.bands : m_threads, 1, m_scene.height());
+  // The events gather where the geometry moves (a horizon, a fold of the cloth), so with several
+  // threads the rows are split into more bands than threads, handed out dynamically: a band
+  // costs a little (its vertex and orientation certificates), an idle thread much more.
+  const int automatic = m_threads == 1 ? 1 : kBandsPerThread * m_threads;
+  const int bands = std::clamp(config.bands > 0 ? config.bands : automatic, 1, m_scene.height());
   switch (config.sort) {
     case DepthSortKind::kList:
       m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit);
@@ -234,11 +241,18 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
     m_bands->fronts(int(row_begin), int(row_end),
                     object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
     std::vector<uint32_t> members;
+    // A triangle meets a few consecutive rows: the planes of the runs of recent rows are kept in
+    // a small direct-mapped cache (the same plane_of values, so the same depths bit for bit).
+    struct CachedPlane {
+      uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
+      TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    };
+    std::vector<CachedPlane> cache(kPlaneCache);
     for (size_t j = row_begin; j < row_end; ++j) {
       const double y = m_scene.row_y(int(j));
       // A triangle usually covers a run of pixels in a row: its plane is computed once per run.
       uint32_t last = kNoGridHit, mesh_id = 0, local = 0;
-      std::optional<TrianglePlane> plane;
+      const TrianglePlane* plane = nullptr;
       for (int i = 0; i < w; ++i) {
         const size_t p = j * size_t(w) + size_t(i);
         uint32_t tri = object[p];
@@ -249,10 +263,17 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
         }
         const double x = m_scene.column_x(i);
         if (tri != last) {
-          const uint32_t m = m_scene.mesh_of_triangle(tri);
-          mesh_id = m_scene.mesh(m).id;
-          local = tri - m_scene.triangle_begin(m);
-          plane.emplace(plane_of(tri));
+          CachedPlane& c = cache[tri % kPlaneCache];
+          if (c.tri != tri) {
+            const uint32_t m = m_scene.mesh_of_triangle(tri);
+            c.tri = tri;
+            c.mesh_id = m_scene.mesh(m).id;
+            c.local = tri - m_scene.triangle_begin(m);
+            c.plane = plane_of(tri);
+          }
+          mesh_id = c.mesh_id;
+          local = c.local;
+          plane = &c.plane;
           last = tri;
         }
         double z = plane->depth(x, y);

@@ -33,7 +33,7 @@ enum class DepthSortKind { kList, kTournament, kHeap };
 
 struct FrustumGridConfig {
   int threads = 0;  ///< worker threads; 0: all cores
-  int bands = 0;    ///< bands of rows; 0: one per thread
+  int bands = 0;    ///< bands of rows; 0: one with one thread, four per thread with several
   DepthSortKind sort = DepthSortKind::kList;
   /// Audit every invariant after each advance (and every touched pixel order after each
   /// change); a violation throws std::logic_error.

@@ -1,7 +1,9 @@
 #pragma once
 // A minimal fork-join loop over [0, n) in contiguous chunks; the callers' work items (rows,
-// bands, keys) are coarse, so no work stealing is needed.
+// bands, keys) are coarse, so no work stealing is needed. Items of very uneven cost (the bands of
+// the kinetic grid: the events gather where the geometry moves) are handed out one at a time.
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <thread>
 #include <vector>
@@ -36,6 +38,18 @@ template <class F>
 void parallel_for(size_t n, int threads, F&& f) {
   parallel_chunks(n, threads, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) f(i);
+  });
+}
+
+/// Calls f(i) for every i in [0, n) on `threads` workers, each taking the next unclaimed i: for
+/// items whose costs are unknown and uneven.
+template <class F>
+void parallel_for_dynamic(size_t n, int threads, F&& f) {
+  std::atomic<size_t> next{0};
+  parallel_chunks(size_t(resolve_threads(threads)), threads, [&](size_t, size_t) {
+    for (size_t i = next.fetch_add(1, std::memory_order_relaxed); i < n;
+         i = next.fetch_add(1, std::memory_order_relaxed))
+      f(i);
   });
 }
 
