@@ -1,8 +1,10 @@
 #include "tools/cli_options.h"
 
+#include <system_error>
 #include <tuple>
 
 #include "renderer/frame_schedule.h"
+#include "scenes/error.h"
 
 namespace kinray {
 
@@ -116,6 +118,15 @@ void add_render_options(CLI::App& command, RenderOptions& options) {
   add_frame_options(command, options);
   add_backend_options(command, options);
   add_output_options(command, options);
+}
+
+void create_folder(const std::filesystem::path& folder, const char* flag) {
+  if (folder.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error)
+    throw InputError(flag,
+                     "cannot create the folder '" + folder.string() + "': " + error.message());
 }
 
 }  // namespace kinray

@@ -2,6 +2,7 @@
 // The flags that `kinray render`, `diff` and `bench` share, defined once so that they stay
 // identical: each command adds the groups it needs and turns what was parsed into RenderParams.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <string>
 
 #include "renderer/render_job.h"
@@ -35,5 +36,9 @@ void add_backend_options(CLI::App& command, RenderOptions& options);
 void add_output_options(CLI::App& command, RenderOptions& options);
 /// All of the above: the flags of `kinray render`.
 void add_render_options(CLI::App& command, RenderOptions& options);
+
+/// Creates `folder` (and its parents) for the output named by `flag`; an empty path is the
+/// working folder. Throws InputError naming the flag when it cannot.
+void create_folder(const std::filesystem::path& folder, const char* flag);
 
 }  // namespace kinray

@@ -81,15 +81,6 @@ std::string numbered(const char* prefix, size_t index) {
   return name;
 }
 
-void create_folder(const fs::path& folder, const char* flag) {
-  if (folder.empty()) return;
-  std::error_code error;
-  fs::create_directories(folder, error);
-  if (error)
-    throw InputError(flag,
-                     "cannot create the folder '" + folder.string() + "': " + error.message());
-}
-
 void run_diff(const DiffOptions& options) {
   const RenderParams params = options.render.resolve();
   if (options.against != "embree" && options.against != "osmesa")

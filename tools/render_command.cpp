@@ -56,15 +56,6 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
   }
 }
 
-void create_folder(const fs::path& folder, const char* flag) {
-  if (folder.empty()) return;
-  std::error_code error;
-  fs::create_directories(folder, error);
-  if (error)
-    throw InputError(flag,
-                     "cannot create the folder '" + folder.string() + "': " + error.message());
-}
-
 void run_render(const RenderParams& params) {
   RenderJob job(params);
   std::unique_ptr<Backend> backend = job.make_backend();
