@@ -523,6 +523,56 @@ void FrustumBand<Sort>::scan_triangle(uint32_t tri, const std::vector<RowPattern
 }
 
 template <class Sort>
+bool FrustumBand<Sort>::meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const {
+  const auto& vs = m_scene.triangle_vertices(tri);
+  if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return false;
+  // The signs are constant between consecutive slots: one row of each run decides.
+  int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
+  std::sort(cuts, cuts + 5);
+  for (int k = 0; k + 1 < 5; ++k) {
+    const int a = cuts[k];
+    if (a >= cuts[k + 1]) continue;
+    const int s0 = p[0].sign(a);
+    if (p[1].sign(a) != s0 || p[2].sign(a) != s0) return true;
+  }
+  return false;
+}
+
+template <class Sort>
+std::array<typename FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::tracked_patterns(
+    uint32_t tri) const {
+  const auto& vs = m_scene.triangle_vertices(tri);
+  std::array<RowPattern, 3> p;
+  for (int k = 0; k < 3; ++k) {
+    const SlotTracker& st = m_vertices[vs[size_t(k)]];
+    p[size_t(k)] = RowPattern{st.slot, st.sign_lo, st.sign_hi};
+  }
+  return p;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::watch(uint32_t tri, const std::array<RowPattern, 3>& p) {
+  const TriangleNow tn = triangle_now(tri);
+  TriangleState& ts = m_triangles[tri];
+  ts.watched = true;
+  ts.orientation = int8_t(sign_after(tn.motion.orientation(), tn.s));
+  if (tn.moving) ++m_live_orientations;
+  schedule_orientation(tri, tn);
+  if (ts.orientation == m_scene.cull_sign_of_triangle(tri)) scan_rows(tri, p);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::unwatch(uint32_t tri) {
+  TriangleState& ts = m_triangles[tri];
+  while (ts.head != kNoRecord) kill_record(ts.head);
+  if (ts.event != kNoEvent) m_queue.erase(ts.event);
+  ts.event = kNoEvent;
+  ts.orientation = 0;
+  ts.watched = false;
+  if (!m_scene.mesh(m_scene.mesh_of_triangle(tri)).is_static) --m_live_orientations;
+}
+
+template <class Sort>
 void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p) {
   int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
   std::sort(cuts, cuts + 5);
@@ -567,16 +617,17 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m) {
   }
   const int cull = m_scene.cull_sign(m);
   for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
-    if (cull != 0) {
-      // Culling: every triangle keeps its orientation, which turns its records on and off.
-      const TriangleNow tn = triangle_now(tri);
-      TriangleState& ts = m_triangles[tri];
-      ts.orientation = int8_t(sign_after(tn.motion.orientation(), tn.s));
-      if (tn.moving) ++m_live_orientations;
-      schedule_orientation(tri, tn);
-      if (ts.orientation != cull) continue;
+    if (cull == 0) {
+      scan_triangle(tri, patterns);
+      continue;
     }
-    scan_triangle(tri, patterns);
+    // Culling: a triangle that meets the band's rows keeps its orientation, which turns its
+    // records on and off; the others need none until a vertex-row event brings them in.
+    const auto& vs = m_scene.triangle_vertices(tri);
+    const uint32_t base = vb;
+    const std::array<RowPattern, 3> p = {patterns[vs[0] - base], patterns[vs[1] - base],
+                                         patterns[vs[2] - base]};
+    if (meets_rows(tri, p)) watch(tri, p);
   }
   schedule_flightplan(m);
   double remove_at = kInf;
@@ -590,13 +641,11 @@ void FrustumBand<Sort>::remove_mesh(uint32_t m) {
   MeshState& ms = m_meshes[m];
   if (!ms.present) return;
   for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
+    if (m_triangles[tri].watched) {
+      unwatch(tri);
+      continue;
+    }
     while (m_triangles[tri].head != kNoRecord) kill_record(m_triangles[tri].head);
-    if (m_scene.cull_sign(m) == 0) continue;
-    TriangleState& ts = m_triangles[tri];
-    if (ts.event != kNoEvent) m_queue.erase(ts.event);
-    ts.event = kNoEvent;
-    ts.orientation = 0;
-    if (!mesh.is_static) --m_live_orientations;
   }
   if (!mesh.is_static)
     for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v) {
@@ -733,9 +782,8 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
     if (moving)
       for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v)
         if (!m_scene.triangles_of_vertex(v).empty()) schedule_vertex(v);
-    const int cull = m_scene.cull_sign(m);
     for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
-      if (m_triangles[tri].head == kNoRecord && cull == 0) continue;
+      if (m_triangles[tri].head == kNoRecord && !m_triangles[tri].watched) continue;
       const TriangleNow tn = triangle_now(tri);
       schedule_orientation(tri, tn);
       for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
@@ -867,12 +915,30 @@ void FrustumBand<Sort>::handle_vertex(uint32_t v) {
   st.sign_lo = int8_t(after.sign_lo);
   st.sign_hi = int8_t(after.sign_hi);
   schedule_vertex(v);
+  if (m_scene.cull_sign(m_scene.mesh_of_vertex(v)) != 0) {
+    // Culling: a triangle that starts meeting the band's rows starts being watched, with its
+    // records for every row it meets; one that stops meeting them stops (update_triangle_row
+    // skips both, and the triangles that are not watched).
+    for (uint32_t tri : m_scene.triangles_of_vertex(v)) {
+      const std::array<RowPattern, 3> patterns = tracked_patterns(tri);
+      const bool meets = meets_rows(tri, patterns);
+      if (meets == m_triangles[tri].watched) continue;
+      if (meets)
+        watch(tri, patterns);
+      else
+        unwatch(tri);
+      m_watch_changed.push_back(tri);
+    }
+  }
   for (int q = 0; q < m_rows.count; ++q) {
     if (simple && q != lo && q != hi) continue;
     if (before.sign(q) == after.sign(q)) continue;
     ++m_stats.events.vertex_row;
-    for (uint32_t tri : m_scene.triangles_of_vertex(v)) update_triangle_row(tri, m_row_begin + q);
+    for (uint32_t tri : m_scene.triangles_of_vertex(v))
+      if (std::find(m_watch_changed.begin(), m_watch_changed.end(), tri) == m_watch_changed.end())
+        update_triangle_row(tri, m_row_begin + q);
   }
+  m_watch_changed.clear();
 }
 
 template <class Sort>
@@ -892,14 +958,8 @@ void FrustumBand<Sort>::handle_orientation(uint32_t tri) {
     // slots) or away (its records die); counted per record, like a rebuild.
     ts.orientation = int8_t(o);
     if (o == cull) {
-      const auto& vs = m_scene.triangle_vertices(tri);
-      std::array<RowPattern, 3> p;
-      for (int k = 0; k < 3; ++k) {
-        const SlotTracker& st = m_vertices[vs[size_t(k)]];
-        p[size_t(k)] = RowPattern{st.slot, st.sign_lo, st.sign_hi};
-      }
       const uint64_t born = m_stats.records_born;
-      scan_rows(tri, p);
+      scan_rows(tri, tracked_patterns(tri));
       m_stats.events.orientation += m_stats.records_born - born;
     } else {
       while (ts.head != kNoRecord) {
@@ -1038,7 +1098,13 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
       }
       std::sort(held.begin(), held.end());
       if (held != rows) report(where(tri, -1) + "records do not match the rows the triangle meets");
-      if ((!held.empty() || cull != 0) && m_triangles[tri].orientation != rule.orientation_sign())
+      // With culling the orientation is kept exactly for the triangles that meet the band's rows.
+      const bool watched = cull != 0 && meets_rows(tri, {patterns[vs[0] - vb], patterns[vs[1] - vb],
+                                                          patterns[vs[2] - vb]});
+      if (m_triangles[tri].watched != watched)
+        report(where(tri, -1) + (watched ? "meets the band's rows but its orientation is not kept"
+                                         : "orientation kept but the triangle meets no row"));
+      if ((!held.empty() || watched) && m_triangles[tri].orientation != rule.orientation_sign())
         report(where(tri, -1) + "wrong orientation sign");
     }
   }
@@ -1068,12 +1134,8 @@ template <class Sort>
 GridStats FrustumBand<Sort>::stats() const {
   GridStats s = m_stats;
   if (m_config.counts_meshes)
-    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
-      if (m_scene.cull_sign(m) == 0 || !m_meshes[m].present) continue;
-      ++s.meshes_culling;
-      for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
-        s.triangles_culled += culled(tri) ? 1 : 0;
-    }
+    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
+      if (m_scene.cull_sign(m) != 0 && m_meshes[m].present) ++s.meshes_culling;
   s.certificates_computed += m_sort_stats.work;
   s.certificates_live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
                         m_sort_stats.certificates_live;

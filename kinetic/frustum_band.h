@@ -104,9 +104,13 @@ class FrustumBand {
   };
   struct TriangleState {
     uint32_t head = kNoRecord;  ///< first record of the triangle in this band
-    /// Sign of O just after the last update; kept while the triangle has records, and for every
-    /// triangle of a present mesh with back-face culling.
+    /// Sign of O just after the last update; kept while the triangle has records, and while
+    /// `watched` with back-face culling.
     int8_t orientation = 0;
+    /// Back-face culling: the triangle meets the band's rows (its vertices' row slots differ on
+    /// some row plane), so its orientation decides whether it has records there. Elsewhere it has
+    /// none whichever way it faces, and its orientation is not kept.
+    bool watched = false;
     EventHandle event = kNoEvent;
   };
   struct MeshState {
@@ -161,10 +165,23 @@ class FrustumBand {
   void scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns);
   /// Creates the records of tri for the rows its vertices' patterns say it meets.
   void scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p);
-  /// Back-face culling (GridScene::cull_sign): the triangle faces away, so it has no records.
+  /// True if tri, with these vertex patterns, meets some row of the band (never if two of its
+  /// vertices are one: it covers nothing).
+  [[nodiscard]] bool meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const;
+  /// The row patterns of a moving triangle's vertices, from their slot trackers.
+  [[nodiscard]] std::array<RowPattern, 3> tracked_patterns(uint32_t tri) const;
+  /// Back-face culling: starts keeping the orientation of a triangle that comes to meet the
+  /// band's rows, and creates its records (rows from `p`) if it faces the eye.
+  void watch(uint32_t tri, const std::array<RowPattern, 3>& p);
+  /// Back-face culling: the triangle no longer meets the band's rows; its records die and its
+  /// orientation is no longer kept.
+  void unwatch(uint32_t tri);
+  /// Back-face culling (GridScene::cull_sign): the triangle meets no row of the band or faces
+  /// away, so it has no records.
   [[nodiscard]] bool culled(uint32_t tri) const {
     const int cull = m_scene.cull_sign_of_triangle(tri);
-    return cull != 0 && m_triangles[tri].orientation != cull;
+    const TriangleState& ts = m_triangles[tri];
+    return cull != 0 && (!ts.watched || ts.orientation != cull);
   }
 
   // Pixels.
@@ -217,6 +234,7 @@ class FrustumBand {
 
   GridStats m_stats;
   bool m_front_changed = false;  ///< set by pixel changes during one event
+  std::vector<uint32_t> m_watch_changed;  ///< handle_vertex: triangles (un)watched by this event
   uint64_t m_live_boundaries = 0, m_live_vertices = 0, m_live_orientations = 0;
   size_t m_pixel_bytes = 0;     ///< sum of the pixel orders' memory_bytes() and their keys
   uint64_t m_pixel_entries = 0;  ///< sum of the pixel orders' sizes

@@ -12,6 +12,7 @@
 #include "kinetic/kinetic_sorted_list.h"
 #include "kinetic/kinetic_tournament.h"
 #include "kinetic/parallel.h"
+#include "kinetic/root_finding.h"
 
 namespace kinray {
 
@@ -147,7 +148,7 @@ FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridCo
   }
   m_bands->start(start_time, m_threads);
   m_timings.init = seconds_since(m_created);
-  m_memory_peak = stats().memory_bytes;
+  m_memory_peak = m_bands->stats().memory_bytes;
   if (config.audit) {
     const auto problems = audit();
     if (!problems.empty()) throw std::logic_error("kinetic grid audit at start: " + problems.front());
@@ -164,7 +165,7 @@ void FrustumGrid::advance_to(double t) {
   m_bands->advance_to(t, m_threads);
   m_now = t;
   m_timings.events += seconds_since(started);
-  m_memory_peak = std::max(m_memory_peak, stats().memory_bytes);
+  m_memory_peak = std::max(m_memory_peak, m_bands->stats().memory_bytes);
   if (m_config.audit) {
     const auto problems = audit();
     if (!problems.empty()) {
@@ -315,11 +316,22 @@ std::vector<std::string> FrustumGrid::audit() const { return m_bands->audit(m_no
 
 GridStats FrustumGrid::stats() const {
   GridStats s = m_bands->stats();
-  uint64_t present = 0;
-  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
-    if (m_scene.mesh(m).present(m_now)) present += m_scene.triangle_end(m) - m_scene.triangle_begin(m);
+  uint64_t present = 0, culled = 0;
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
+    if (!m_scene.mesh(m).present(m_now)) continue;
+    present += m_scene.triangle_end(m) - m_scene.triangle_begin(m);
+    const int cull = m_scene.cull_sign(m);
+    if (cull == 0) continue;
+    const MeshSegment seg = m_scene.segment_at(m, m_now);
+    for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+      if (sign_after(m_scene.triangle_motion(tri, seg).orientation(), m_now - seg.origin) != cull)
+        ++culled;
+  }
   s.triangles_present = present;
+  s.triangles_culled = culled;
   return s;
 }
+
+uint64_t FrustumGrid::event_count() const { return m_bands->stats().events.total(); }
 
 }  // namespace kinray

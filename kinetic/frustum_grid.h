@@ -80,7 +80,11 @@ class FrustumGrid {
 
   /// Every invariant checked by brute force at now(); the problems found (empty: none).
   [[nodiscard]] std::vector<std::string> audit() const;
+  /// Every counter; triangles_culled is found from the geometry at now() (bands keep the
+  /// orientation only of the triangles that meet their rows), one pass over the culled meshes.
   [[nodiscard]] GridStats stats() const;
+  /// stats().events.total() without that pass, for callers that count events every frame.
+  [[nodiscard]] uint64_t event_count() const;
   [[nodiscard]] const GridTimings& timings() const { return m_timings; }
   /// Largest memory_bytes seen after initialisation and after each advance.
   [[nodiscard]] size_t memory_bytes_peak() const { return m_memory_peak; }

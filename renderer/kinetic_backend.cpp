@@ -53,7 +53,7 @@ class KineticBackend final : public Backend {
       frame.resize(m_config.width, m_config.height);
     frame.time = t;
     const auto start = std::chrono::steady_clock::now();
-    const uint64_t events_before = m_grid ? m_grid->stats().events.total() : 0;
+    const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
     if (!m_grid) {
       m_grid = std::make_unique<FrustumGrid>(grid_input(m_scene, m_config), t, m_grid_config);
     } else {
@@ -64,7 +64,7 @@ class KineticBackend final : public Backend {
     const auto done = std::chrono::steady_clock::now();
     m_events_s.push_back(std::chrono::duration<double>(advanced - start).count());
     m_readout_s.push_back(std::chrono::duration<double>(done - advanced).count());
-    m_events.push_back(m_grid->stats().events.total() - events_before);
+    m_events.push_back(m_grid->event_count() - events_before);
   }
 
   void write_stats(nlohmann::json& stats) const override {
