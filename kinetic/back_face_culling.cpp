@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "kinetic/parallel.h"
 #include "kinetic/polynomial.h"
 
 namespace kinray {
@@ -26,9 +27,35 @@ constexpr double kRelativeMargin = 1e-12;
 // up on (16 pieces).
 constexpr int kSubdivisionDepth = 4;
 
+// Work items per block of the parallel loops: a fixed partition, so that no result depends on
+// the number of threads.
+constexpr size_t kBlock = 4096;
+
+size_t block_count(size_t n) { return (n + kBlock - 1) / kBlock; }
+
+// Whether pred(i) holds for every i in [0, n), tried in parallel blocks.
+template <class Pred>
+bool all_of_parallel(size_t n, int threads, Pred&& pred) {
+  std::vector<char> ok(block_count(n), 1);
+  parallel_for_dynamic(ok.size(), threads, [&](size_t b) {
+    for (size_t i = b * kBlock, end = std::min(n, (b + 1) * kBlock); i < end && ok[b]; ++i) ok[b] = pred(i);
+  });
+  return std::all_of(ok.begin(), ok.end(), [](char o) { return o != 0; });
+}
+
+// std::sort in pieces on the workers, then merged: the sorted order is unique.
+void parallel_sort(std::vector<uint64_t>& values, int threads) {
+  const size_t pieces = size_t(resolve_threads(threads)), n = values.size();
+  const auto bound = [&](size_t i) { return values.begin() + std::ptrdiff_t(n * i / pieces); };
+  parallel_for(pieces, threads, [&](size_t i) { std::sort(bound(i), bound(i + 1)); });
+  for (size_t width = 1; width < pieces; width *= 2)
+    for (size_t i = 0; i + width < pieces; i += 2 * width)
+      std::inplace_merge(bound(i), bound(i + width), bound(std::min(pieces, i + 2 * width)));
+}
+
 // Every undirected edge used by exactly two triangles, once in each direction; no triangle
 // repeats a vertex.
-bool closed_oriented_manifold(std::span<const Triangle> triangles) {
+bool closed_oriented_manifold(std::span<const Triangle> triangles, int threads) {
   std::vector<uint64_t> directed;
   directed.reserve(3 * triangles.size());
   for (const auto& tri : triangles)
@@ -37,11 +64,13 @@ bool closed_oriented_manifold(std::span<const Triangle> triangles) {
       if (a == b) return false;
       directed.push_back((uint64_t{a} << 32) | b);
     }
-  std::sort(directed.begin(), directed.end());
+  parallel_sort(directed, threads);
   if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) return false;
-  for (const uint64_t e : directed)
-    if (!std::binary_search(directed.begin(), directed.end(), (e << 32) | (e >> 32))) return false;
-  return !directed.empty();
+  const bool paired = all_of_parallel(directed.size(), threads, [&](size_t i) {
+    const uint64_t e = directed[i];
+    return std::binary_search(directed.begin(), directed.end(), (e << 32) | (e >> 32));
+  });
+  return paired && !directed.empty();
 }
 
 double det(const Vec& a, const Vec& b, const Vec& c) { return a.dot(b.cross(c)); }
@@ -124,10 +153,10 @@ int cubic_sign_on_unit_interval(const std::array<double, 4>& b, double margin, i
   return a != 0 && cubic_sign_on_unit_interval(r, margin, depth - 1) == a ? a : 0;
 }
 
-int back_face_cull_sign(const GridMesh& mesh) {
+int back_face_cull_sign(const GridMesh& mesh, int threads) {
   const size_t keys = mesh.is_static ? 1 : mesh.key_count();
   const std::vector<Triangle> triangles = welded(mesh, keys);
-  if (!closed_oriented_manifold(triangles)) return 0;
+  if (!closed_oriented_manifold(triangles, threads)) return 0;
   std::vector<int32_t> component;
   const uint32_t count = components(mesh, triangles, component);
 
@@ -136,43 +165,65 @@ int back_face_cull_sign(const GridMesh& mesh) {
   for (uint32_t v = 0; v < mesh.vertex_count; ++v)
     if (component[v] >= 0) ++members[size_t(component[v])];
   std::vector<Vec> centre(keys * count, Vec::Zero());
-  for (size_t k = 0; k < keys; ++k)
+  parallel_for(keys, threads, [&](size_t k) {
     for (uint32_t v = 0; v < mesh.vertex_count; ++v)
       if (component[v] >= 0) centre[k * count + size_t(component[v])] += mesh.key_position(k, v);
-  for (size_t k = 0; k < keys; ++k)
     for (uint32_t i = 0; i < count; ++i) centre[k * count + i] /= double(members[i]);
+  });
 
   // (2) on every segment [key k0, key k1] (one constant "segment" for a standing mesh): the
   // cubic det(v0 - c, v1 - c, v2 - c) in the local time u in [0, 1]. Each v_i - c is
   // (1 - u) P_i + u Q_i, and det is trilinear, so its k-th Bernstein coefficient is the mean of
-  // the determinants taking Q in k of the three places and P in the others.
-  int sigma = 0;
-  for (size_t k1 = keys > 1 ? 1 : 0; k1 < keys; ++k1) {
-    const size_t k0 = keys > 1 ? k1 - 1 : 0;
-    for (const auto& tri : triangles) {
+  // the determinants taking Q in k of the three places and P in the others. Each block of
+  // triangles proves one sign over all segments (0: none), then the blocks must agree.
+  std::vector<int> block_sign(block_count(triangles.size()), 0);
+  parallel_for_dynamic(block_sign.size(), threads, [&](size_t block) {
+    int sigma = 0;
+    const size_t end = std::min(triangles.size(), (block + 1) * kBlock);
+    for (size_t t = block * kBlock; t < end; ++t) {
+      const Triangle& tri = triangles[t];
       const size_t comp = size_t(component[tri[0]]);
+      // The end of one segment starts the next: each key's offsets and lengths are found once.
       std::array<Vec, 3> p, q;
-      double bound = 1;
+      std::array<double, 3> p_norm, q_norm;
       for (int i = 0; i < 3; ++i) {
-        p[size_t(i)] = mesh.key_position(k0, tri[size_t(i)]) - centre[k0 * count + comp];
-        q[size_t(i)] = mesh.key_position(k1, tri[size_t(i)]) - centre[k1 * count + comp];
-        bound *= std::max(p[size_t(i)].norm(), q[size_t(i)].norm());
+        q[size_t(i)] = mesh.key_position(0, tri[size_t(i)]) - centre[comp];
+        q_norm[size_t(i)] = q[size_t(i)].norm();
       }
-      const std::array<double, 4> b = {
-          det(p[0], p[1], p[2]),
-          (det(q[0], p[1], p[2]) + det(p[0], q[1], p[2]) + det(p[0], p[1], q[2])) / 3,
-          (det(p[0], q[1], q[2]) + det(q[0], p[1], q[2]) + det(q[0], q[1], p[2])) / 3,
-          det(q[0], q[1], q[2])};
-      const int sign = cubic_sign_on_unit_interval(b, kRelativeMargin * bound, kSubdivisionDepth);
-      if (sign == 0 || (sigma != 0 && sign != sigma)) return 0;
-      sigma = sign;
+      for (size_t k1 = keys > 1 ? 1 : 0; k1 < keys; ++k1) {
+        p = q;
+        p_norm = q_norm;
+        double bound = 1;
+        for (int i = 0; i < 3; ++i) {
+          q[size_t(i)] = mesh.key_position(k1, tri[size_t(i)]) - centre[k1 * count + comp];
+          q_norm[size_t(i)] = q[size_t(i)].norm();
+          bound *= std::max(p_norm[size_t(i)], q_norm[size_t(i)]);
+        }
+        const std::array<double, 4> b = {
+            det(p[0], p[1], p[2]),
+            (det(q[0], p[1], p[2]) + det(p[0], q[1], p[2]) + det(p[0], p[1], q[2])) / 3,
+            (det(p[0], q[1], q[2]) + det(q[0], p[1], q[2]) + det(q[0], q[1], p[2])) / 3,
+            det(q[0], q[1], q[2])};
+        const int sign = cubic_sign_on_unit_interval(b, kRelativeMargin * bound, kSubdivisionDepth);
+        if (sign == 0 || (sigma != 0 && sign != sigma)) {
+          block_sign[block] = 0;
+          return;
+        }
+        sigma = sign;
+      }
     }
-  }
+    block_sign[block] = sigma;
+  });
+  const int sigma = block_sign.empty() ? 0 : block_sign[0];
+  if (sigma == 0 || std::any_of(block_sign.begin(), block_sign.end(), [&](int s) { return s != sigma; }))
+    return 0;
 
   // (3) at key 0: the angle each triangle spans at its vertex a, about the axis a - c, between
-  // the directions to its two other vertices (in (0, pi) by (2)); summed per vertex.
-  std::vector<double> turn(mesh.vertex_count, 0.0);
-  for (const auto& tri : triangles) {
+  // the directions to its two other vertices (in (0, pi) by (2)); summed per vertex, in triangle
+  // order (the sums are the same whatever the threads).
+  std::vector<std::array<double, 3>> angle(triangles.size());
+  parallel_for(triangles.size(), threads, [&](size_t t) {
+    const Triangle& tri = triangles[t];
     const Vec& c = centre[size_t(component[tri[0]])];
     for (int i = 0; i < 3; ++i) {
       const Vec axis = mesh.key_position(0, tri[size_t(i)]) - c;
@@ -180,22 +231,27 @@ int back_face_cull_sign(const GridMesh& mesh) {
       const Vec y = mesh.key_position(0, tri[size_t((i + 2) % 3)]) - c;
       const double axis2 = axis.squaredNorm();
       const Vec xp = x - (x.dot(axis) / axis2) * axis, yp = y - (y.dot(axis) / axis2) * axis;
-      turn[tri[size_t(i)]] += std::atan2(double(sigma) * det(axis, x, y) / std::sqrt(axis2), xp.dot(yp));
+      angle[t][size_t(i)] = std::atan2(double(sigma) * det(axis, x, y) / std::sqrt(axis2), xp.dot(yp));
     }
-  }
+  });
+  std::vector<double> turn(mesh.vertex_count, 0.0);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i) turn[triangles[t][size_t(i)]] += angle[t][size_t(i)];
   for (uint32_t v = 0; v < mesh.vertex_count; ++v)
     if (component[v] >= 0 && !(turn[v] < 3 * std::numbers::pi)) return 0;
 
   // (4) positions are linear on a segment, so the box of a component at its two end keys holds
   // the component throughout it; before the first and after the last key it stands still.
-  for (size_t k = 0; k < keys; ++k) {
+  std::vector<char> eye_outside(keys, 0);
+  parallel_for(keys, threads, [&](size_t k) {
     std::vector<Eigen::AlignedBox3d> boxes(count);
     for (size_t kk = k; kk < std::min(k + 2, keys); ++kk)
       for (uint32_t v = 0; v < mesh.vertex_count; ++v)
         if (component[v] >= 0) boxes[size_t(component[v])].extend(mesh.key_position(kk, v));
-    for (const auto& box : boxes)
-      if (box.contains(Vec::Zero())) return 0;  // closed box: the eye on it declines
-  }
+    // A closed box: the eye on it declines.
+    eye_outside[k] = std::none_of(boxes.begin(), boxes.end(), [](const auto& box) { return box.contains(Vec::Zero()); });
+  });
+  if (std::find(eye_outside.begin(), eye_outside.end(), 0) != eye_outside.end()) return 0;
   // sigma > 0: outward normals, and a triangle faces the eye at the origin iff
   // ((v1 - v0) x (v2 - v0)) . (0 - v0) > 0, i.e. det(v0, v1, v2) < 0.
   return -sigma;

@@ -127,7 +127,7 @@ class BandsOf final : public FrustumGrid::Bands {
 }  // namespace
 
 FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridConfig& config)
-    : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input)), m_config(config),
+    : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input), config.threads), m_config(config),
       m_now(start_time) {
   m_threads = resolve_threads(config.threads);
   // The events gather where the geometry moves (a horizon, a fold of the cloth), so with several

@@ -35,7 +35,7 @@ void validate(const GridInput& input) {
 
 }  // namespace
 
-GridScene::GridScene(GridInput input) : m_input(std::move(input)) {
+GridScene::GridScene(GridInput input, int threads) : m_input(std::move(input)) {
   validate(m_input);
   const PixelRays& rays = m_input.rays;
   m_x.resize(size_t(rays.width));
@@ -94,7 +94,7 @@ GridScene::GridScene(GridInput input) : m_input(std::move(input)) {
   m_adjacency.resize(out);
 
   m_cull_sign.resize(meshes);
-  for (uint32_t m = 0; m < meshes; ++m) m_cull_sign[m] = int8_t(back_face_cull_sign(m_input.meshes[m]));
+  for (uint32_t m = 0; m < meshes; ++m) m_cull_sign[m] = int8_t(back_face_cull_sign(m_input.meshes[m], threads));
 }
 
 MeshSegment GridScene::segment(uint32_t m, uint32_t index) const {

@@ -25,7 +25,8 @@ struct MeshSegment {
 
 class GridScene {
  public:
-  explicit GridScene(GridInput input);
+  /// `threads` (0: all cores) only speeds up the load-time proofs; the scene does not depend on it.
+  explicit GridScene(GridInput input, int threads = 1);
 
   [[nodiscard]] const PixelRays& rays() const { return m_input.rays; }
   [[nodiscard]] int width() const { return m_input.rays.width; }
