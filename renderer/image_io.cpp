@@ -110,9 +110,10 @@ cv::Mat depth_image(const Frame& frame) {
 
 void write_file_atomically(const std::string& path, std::string_view bytes) {
   const std::filesystem::path target(path);
-  const std::filesystem::path temporary =
-      target.parent_path() /
-      ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "." + std::string.
+  std::string name(1, '.');
+  name.append(target.filename().string()).append(".tmp").append(std::to_string(::getpid()));
+  const std::filesystem::path temporary = target.parent_path() / name;
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
   if (!file) throw InputError(path, std::string("cannot write: ") + std::strerror(errno));
   int error_number = 0;
