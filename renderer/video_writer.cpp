@@ -38,9 +38,10 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
   const std::filesystem::path target(m_path);
   const std::string extension = lower_extension(m_path);
   // The temporary name keeps the extension: OpenCV picks the container from it.
-  m_temporary = (target.parent_path() /
-                 ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + extension))
-                    .string();
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "." + std::string.
+  std::string name(1, '.');
+  name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid()));
+  m_temporary = (target.parent_path() / name.append(extension)).string();
   if (!(fps > 0) || !std::isfinite(fps)) fps = 24;
   const char* codecs_mp4[] = {"avc1", "mp4v"};
   const char* codecs_avi[] = {"MJPG"};
