@@ -1,11 +1,10 @@
 #include "kinetic/certificate_time.h"
 
 #include <algorithm>
-#include <bit>
-#include <cstdint>
 #include <cmath>
 #include <limits>
 
+#include "kinetic/double_steps.h"
 #include "kinetic/kinetic_sort.h"
 #include "kinetic/root_finding.h"
 
@@ -15,19 +14,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double next_up(double x) { return std::nextafter(x, kInf); }
-double next_down(double x) { return std::nextafter(x, -kInf); }
-
-// A point strictly between lo < hi that halves the bracket in the ordered bit space, so that a
-// bisection ends on adjacent doubles within 64 steps.
-double bit_midpoint(double lo, double hi) {
-  if (lo < 0 && hi > 0) return 0.0;
-  if (lo >= 0) {
-    const auto a = std::bit_cast<uint64_t>(lo == 0 ? 0.0 : lo), b = std::bit_cast<uint64_t>(hi);
-    return std::bit_cast<double>(a + (b - a) / 2);
-  }
-  return -bit_midpoint(-hi, -lo);
-}
+using detail::next_up;
 
 }  // namespace
 
@@ -55,36 +42,10 @@ std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now
   const double slack = 64 * std::numeric_limits<double>::epsilon() * std::max({std::fabs(r), std::fabs(s_now), 1e-300});
   if (r < s_now - slack) return std::nullopt;  // the crossing is behind us
   if (r > s_end + slack) return std::nullopt;  // beyond the segment
-  // Bracket [lo, hi]: lo not negative (s_now is positive just after), hi negative.
-  double g = std::clamp(r, next_up(s_now), s_end);
-  double lo, hi;
-  if (negative(g)) {
-    hi = g;
-    lo = next_down(g);
-    double step = slack;
-    while (lo > s_now && negative(lo)) {
-      hi = lo;
-      lo = std::max(s_now, lo - step);
-      step *= 2;
-    }
-    lo = std::max(lo, s_now);
-  } else {
-    lo = g;
-    hi = next_up(g);
-    double step = slack;
-    int tries = 0;
-    while (!negative(hi)) {
-      if (hi >= s_end || ++tries > 24) return first_failure(f, s_now, s_end);
-      lo = hi;
-      hi = std::min(s_end, hi + step);
-      step *= 2;
-    }
-  }
-  while (next_up(lo) < hi) {
-    const double m = bit_midpoint(lo, hi);
-    (negative(m) ? hi : lo) = m;
-  }
-  return hi;
+  // From the rounded root to the first double where f is negative, as Horner's values say.
+  const double g = std::clamp(r, next_up(s_now), s_end);
+  const std::optional<double> t = detail::first_negative_near(negative, g, s_now, s_end, slack, 24);
+  return t ? t : first_failure(f, s_now, s_end);
 }
 
 double certificate_failure_time(const Polynomial& f, double origin, double now, double end) {

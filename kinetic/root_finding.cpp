@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
 #include "kinetic/binomial.h"
 #include "kinetic/check.h"
+#include "kinetic/double_steps.h"
 
 // Root isolation in the Bernstein basis (Descartes' rule of signs, de Casteljau subdivision; see
 // Lane & Riesenfeld 1981, Mourrain, Rouillier & Roy 2005), with a running error bound on every
@@ -28,6 +28,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTailStart = 0x1p100;
 
 thread_local RootStats t_stats;
+
+using detail::bit_midpoint;
+using detail::first_negative_near;
+using detail::next_down;
+using detail::next_up;
 
 int sign_of(double x) { return (x > 0) - (x < 0); }
 
@@ -133,27 +138,6 @@ Classification classify(const Bernstein& bz) {
     c.kind = LeafKind::kRoot;
   }
   return c;
-}
-
-uint64_t bits_of(double x) { return std::bit_cast<uint64_t>(x); }
-
-// std::nextafter(x, +inf) / (x, -inf) for finite x, without the libm call.
-inline double next_up(double x) {
-  if (x == 0) return std::numeric_limits<double>::denorm_min();
-  const uint64_t b = bits_of(x);
-  return std::bit_cast<double>(x > 0 ? b + 1 : b - 1);
-}
-inline double next_down(double x) { return -next_up(-x); }
-
-// A point strictly between lo < hi (adjacent doubles excluded by the caller): bisection in the
-// ordered bit space, so that any bracket shrinks to adjacent doubles in at most 64 steps.
-double bit_midpoint(double lo, double hi) {
-  if (lo < 0 && hi > 0) return 0.0;
-  if (lo >= 0) {
-    const uint64_t a = bits_of(lo == 0 ? 0.0 : lo), b = bits_of(hi);
-    return std::bit_cast<double>(a + (b - a) / 2);
-  }
-  return -bit_midpoint(-hi, -lo);
 }
 
 // r in (lo, hi] with sign_after(f, r) == sigma, where sign_after(f, hi) == sigma is given and
@@ -370,36 +354,15 @@ std::optional<double> first_failure_linear(double c0, double c1, double s_now, d
   if (bounded && !neg(s_end)) return std::nullopt;
   const double top = bounded ? s_end : std::numeric_limits<double>::max();
   if (!neg(top)) return std::nullopt;
-  // Start at the rounded root and gallop to a bracket [lo, hi] of adjacent or nearby doubles.
+  // Start at the rounded root and gallop to a bracket [lo, hi] of adjacent or nearby doubles
+  // (neg(top) holds, so the gallop always ends there at the latest).
   double g = -c0 / c1;
   if (!(g > s_now)) g = next_up(s_now);
   if (!(g < top)) g = top;
-  double lo, hi;
-  double step = std::max(std::fabs(g), std::numeric_limits<double>::min()) * kUnitRoundoff;
-  if (neg(g)) {
-    hi = g;
-    lo = next_down(g);
-    while (lo > s_now && neg(lo)) {
-      hi = lo;
-      lo = std::max(s_now, lo - step);
-      step *= 2;
-    }
-    lo = std::max(lo, s_now);
-  } else {
-    lo = g;
-    hi = next_up(g);
-    while (hi < top && !neg(hi)) {
-      lo = hi;
-      hi = std::min(top, hi + step);
-      step *= 2;
-    }
-  }
-  while (next_up(lo) < hi) {
-    ++t_stats.refinements;
-    const double m = bit_midpoint(lo, hi);
-    (neg(m) ? hi : lo) = m;
-  }
-  return hi;
+  const double step = std::max(std::fabs(g), std::numeric_limits<double>::min()) * kUnitRoundoff;
+  return first_negative_near(neg, g, s_now, top, step, std::numeric_limits<int>::max(),
+                             &t_stats.refinements)
+      .value_or(top);
 }
 
 }  // namespace
