@@ -192,46 +192,16 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   const size_t n = size_t(w) * size_t(h);
   if (object.size() != n || prim.size() != n || depth.size() != n)
     throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
-  // Where each mesh is on its key grid at now, once per frame (GridMesh::position's arithmetic).
-  struct Blend {
-    size_t k0 = 0, k1 = 0;
-    double alpha = 0;
-    bool still = true;
-  };
-  std::vector<Blend> blends(m_scene.mesh_count());
-  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
-    const GridMesh& mesh = m_scene.mesh(m);
-    const size_t keys = mesh.key_times.size();
-    Blend& b = blends[m];
-    if (keys < 2 || m_now <= mesh.key_times[0]) continue;
-    b.still = false;
-    if (m_now >= mesh.key_times[keys - 1]) {
-      b.k0 = keys - 2;
-      b.alpha = 1.0;
-    } else {
-      b.k0 = size_t(std::upper_bound(mesh.key_times.begin(), mesh.key_times.end(), m_now) -
-                    mesh.key_times.begin()) - 1;
-      b.alpha = (m_now - mesh.key_times[b.k0]) / (mesh.key_times[b.k0 + 1] - mesh.key_times[b.k0]);
-    }
-    b.k1 = b.k0 + 1;
-  }
+  // Where each mesh is on its key grid at now, once per frame.
+  std::vector<GridMesh::KeyBlend> blends(m_scene.mesh_count());
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) blends[m] = m_scene.mesh(m).blend_at(m_now);
   // The plane of triangle `tri` at now, from its interpolated vertices.
   auto plane_of = [&](uint32_t tri) {
     const uint32_t m = m_scene.mesh_of_triangle(tri);
     const GridMesh& mesh = m_scene.mesh(m);
     const auto& vs = mesh.triangles[tri - m_scene.triangle_begin(m)];
-    const Blend& b = blends[m];
-    Eigen::Vector3d q[3];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d& a = mesh.key_position(b.k0, vs[size_t(k)]);
-      if (b.still) {
-        q[k] = a;
-      } else {
-        const Eigen::Vector3d& c = mesh.key_position(b.k1, vs[size_t(k)]);
-        q[k] = a + b.alpha * (c - a);
-      }
-    }
-    return TrianglePlane(q[0], q[1], q[2]);
+    return TrianglePlane(mesh.position(vs[0], blends[m]), mesh.position(vs[1], blends[m]),
+                         mesh.position(vs[2], blends[m]));
   };
   // A triangle in a pixel's order pierces its ray just after now; exactly at now it may not: when
   // its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers nothing at

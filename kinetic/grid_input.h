@@ -44,19 +44,34 @@ struct GridMesh {
   [[nodiscard]] const Eigen::Vector3d& key_position(size_t key, uint32_t v) const {
     return positions[key * vertex_count + v];
   }
-  /// Position of vertex v at t: exactly CameraSpaceObject::position's arithmetic.
-  [[nodiscard]] Eigen::Vector3d position(uint32_t v, double t) const {
+  /// Where t falls on the key grid: between keys k and k + 1 at fraction alpha, or `still` at key
+  /// 0 (before the first key, or a single key).
+  struct KeyBlend {
+    size_t k = 0;
+    double alpha = 0;
+    bool still = true;
+  };
+  [[nodiscard]] KeyBlend blend_at(double t) const {
     const size_t n = key_times.size();
-    if (n < 2 || t <= key_times[0]) return positions[v];
-    size_t k = n - 2;
-    double alpha = 1.0;
+    if (n < 2 || t <= key_times[0]) return {};
+    KeyBlend b{n - 2, 1.0, false};
     if (t < key_times[n - 1]) {
-      k = size_t(std::upper_bound(key_times.begin(), key_times.end(), t) - key_times.begin()) - 1;
-      alpha = (t - key_times[k]) / (key_times[k + 1] - key_times[k]);
+      b.k = size_t(std::upper_bound(key_times.begin(), key_times.end(), t) - key_times.begin()) - 1;
+      b.alpha = (t - key_times[b.k]) / (key_times[b.k + 1] - key_times[b.k]);
     }
-    const Eigen::Vector3d& a = positions[k * vertex_count + v];
-    const Eigen::Vector3d& b = positions[(k + 1) * vertex_count + v];
-    return a + alpha * (b - a);
+    return b;
+  }
+  /// Position of vertex v at a blend: exactly CameraSpaceObject::position's arithmetic (one blend
+  /// serves every vertex at one time).
+  [[nodiscard]] Eigen::Vector3d position(uint32_t v, const KeyBlend& b) const {
+    const Eigen::Vector3d& a = positions[b.k * vertex_count + v];
+    if (b.still) return a;
+    const Eigen::Vector3d& c = positions[(b.k + 1) * vertex_count + v];
+    return a + b.alpha * (c - a);
+  }
+  /// Position of vertex v at t.
+  [[nodiscard]] Eigen::Vector3d position(uint32_t v, double t) const {
+    return position(v, blend_at(t));
   }
 };
 
