@@ -518,8 +518,15 @@ template <class Sort>
 void FrustumBand<Sort>::scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns) {
   const auto vs = m_scene.triangle_vertices(tri);
   if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return;  // never covers anything
+  scan_rows(tri, mesh_patterns(tri, patterns));
+}
+
+template <class Sort>
+std::array<typename FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::mesh_patterns(
+    uint32_t tri, const std::vector<RowPattern>& patterns) const {
+  const auto& vs = m_scene.triangle_vertices(tri);
   const uint32_t base = m_scene.vertex_begin(m_scene.mesh_of_triangle(tri));
-  scan_rows(tri, {patterns[vs[0] - base], patterns[vs[1] - base], patterns[vs[2] - base]});
+  return {patterns[vs[0] - base], patterns[vs[1] - base], patterns[vs[2] - base]};
 }
 
 template <class Sort>
@@ -623,10 +630,7 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m) {
     }
     // Culling: a triangle that meets the band's rows keeps its orientation, which turns its
     // records on and off; the others need none until a vertex-row event brings them in.
-    const auto& vs = m_scene.triangle_vertices(tri);
-    const uint32_t base = vb;
-    const std::array<RowPattern, 3> p = {patterns[vs[0] - base], patterns[vs[1] - base],
-                                         patterns[vs[2] - base]};
+    const std::array<RowPattern, 3> p = mesh_patterns(tri, patterns);
     if (meets_rows(tri, p)) watch(tri, p);
   }
   schedule_flightplan(m);
@@ -1099,8 +1103,7 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
       std::sort(held.begin(), held.end());
       if (held != rows) report(where(tri, -1) + "records do not match the rows the triangle meets");
       // With culling the orientation is kept exactly for the triangles that meet the band's rows.
-      const bool watched = cull != 0 && meets_rows(tri, {patterns[vs[0] - vb], patterns[vs[1] - vb],
-                                                          patterns[vs[2] - vb]});
+      const bool watched = cull != 0 && meets_rows(tri, mesh_patterns(tri, patterns));
       if (m_triangles[tri].watched != watched)
         report(where(tri, -1) + (watched ? "meets the band's rows but its orientation is not kept"
                                          : "orientation kept but the triangle meets no row"));

@@ -170,6 +170,9 @@ class FrustumBand {
   [[nodiscard]] bool meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const;
   /// The row patterns of a moving triangle's vertices, from their slot trackers.
   [[nodiscard]] std::array<RowPattern, 3> tracked_patterns(uint32_t tri) const;
+  /// The row patterns of tri's vertices, from `patterns` (one per vertex of tri's mesh).
+  [[nodiscard]] std::array<RowPattern, 3> mesh_patterns(uint32_t tri,
+                                                        const std::vector<RowPattern>& patterns) const;
   /// Back-face culling: starts keeping the orientation of a triangle that comes to meet the
   /// band's rows, and creates its records (rows from `p`) if it faces the eye.
   void watch(uint32_t tri, const std::array<RowPattern, 3>& p);
