@@ -46,15 +46,15 @@ void check_one_of(const std::string& value, std::initializer_list<const char*> a
 
 }  // namespace
 
-std::pair<int, int> parse_size(const std::string& text) {
+std::pair<int, int> parse_size(const std::string& text, const char* flag) {
   const size_t x = text.find_first_of("xX");
   int width = 0, height = 0;
   if (x == std::string::npos || !parse_int(text.substr(0, x), width) ||
       !parse_int(text.substr(x + 1), height))
-    throw InputError("--size",
+    throw InputError(flag,
                      "expected WxH with two positive integers, e.g. 512x512, got '" + text + "'");
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
-    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
+    throw InputError(flag, "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
                                    ", got '" + text + "'");
   return {width, height};
 }

@@ -45,8 +45,8 @@ struct RenderParams {
 
 inline constexpr int kMaxImageSide = 16384;
 
-/// Parses "WxH" into width and height (1..kMaxImageSide each). Throws InputError naming --size.
-[[nodiscard]] std::pair<int, int> parse_size(const std::string& text);
+/// Parses "WxH" into width and height (1..kMaxImageSide each). Throws InputError naming `flag`.
+[[nodiscard]] std::pair<int, int> parse_size(const std::string& text, const char* flag = "--size");
 /// Parses "id,depth" (any of id, depth; no repeats). Throws InputError naming --aov.
 [[nodiscard]] std::vector<std::string> parse_aov(const std::string& text);
 

@@ -31,7 +31,7 @@ BenchParams resolve(const BenchOptions& options) {
   if (!options.triangles.empty()) params.triangles = parse_int_list(options.triangles, "--triangles");
   if (!options.sizes.empty()) {
     std::stringstream in(options.sizes);
-    for (std::string item; std::getline(in, item, ',');) params.sizes.push_back(parse_size(item));
+    for (std::string item; std::getline(in, item, ',');) params.sizes.push_back(parse_size(item, "--sizes"));
   }
   if (!options.thread_counts.empty()) params.threads = parse_int_list(options.thread_counts, "--thread-counts");
   if (!options.embree_modes.empty()) params.embree_modes = parse_embree_modes(options.embree_modes);
