@@ -17,8 +17,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-uint64_t boundary_code(uint32_t tri, int edge) { return (uint64_t{tri} << 2) | uint64_t(edge); }
-
 // The edges whose end points lie on different sides: none or two of them.
 int crossing_edges(const std::array<int, 3>& sides, int out[2]) {
   int n = 0;
@@ -47,6 +45,7 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
   m_meshes.resize(scene.mesh_count());
   m_triangles.resize(scene.triangle_count());
   m_vertices.resize(scene.vertex_count());
+  m_edge_heads.assign(scene.edge_count(), kNoBoundary);
   KineticSortConfig sort_config;
   sort_config.event_kind = kGridSwap;
   sort_config.audit = false;  // the band audits at consistent points (not mid flightplan batch)
@@ -76,6 +75,19 @@ typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t
 }
 
 template <class Sort>
+typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) const {
+  EdgeNow en;
+  const auto& ends = m_scene.edge_vertices(edge);
+  const uint32_t m = m_scene.mesh_of_vertex(ends[0]);
+  en.segment = m_motion.segment(m);
+  en.p = m_motion.vertex(ends[0]);
+  en.q = m_motion.vertex(ends[1]);
+  en.s = m_now - en.segment.origin;
+  en.moving = !m_scene.mesh(m).is_static;
+  return en;
+}
+
+template <class Sort>
 PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const {
   s = m_now - m_motion.segment(m_scene.mesh_of_vertex(v)).origin;
   return m_motion.vertex(v);
@@ -96,32 +108,56 @@ typename FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const Po
 }
 
 template <class Sort>
-Polynomial FrustumBand<Sort>::boundary_front(const TriangleNow& tn, int edge, int row) const {
-  const PointMotion& p = tn.motion.v[size_t(kEdgeStart[edge])];
-  const PointMotion& q = tn.motion.v[size_t(kEdgeEnd[edge])];
+Polynomial FrustumBand<Sort>::boundary_front(const EdgeNow& en, int row) const {
   const double y = m_scene.row_y(row);
-  const Polynomial z = boundary_depth(p, q, y);
-  return sign_plus(row_side(q, y), tn.s) > 0 ? z : -z;
+  const Polynomial z = boundary_depth(en.p, en.q, y);
+  return sign_plus(row_side(en.q, y), en.s) > 0 ? z : -z;
 }
 
 template <class Sort>
-void FrustumBand<Sort>::locate_boundary(SlotTracker& b, const TriangleNow& tn, int row) const {
-  if (sign_plus(boundary_front(tn, b.edge, row), tn.s) < 0) {
-    b.slot = kBehindEye;
-    b.sign_lo = b.sign_hi = 1;
+void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const {
+  SlotTracker& t = b.tracker;
+  if (sign_plus(boundary_front(en, b.row), en.s) < 0) {
+    t.slot = kBehindEye;
+    t.sign_lo = t.sign_hi = 1;
     return;
   }
-  const EdgeNormal edge = tn.motion.edge(b.edge);
-  const double y = m_scene.row_y(row);
-  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, tn.s); };
-  b.slot = m_columns.locate(sign_at);
-  const auto [lo, hi] = m_columns.watched(b.slot);
-  b.sign_lo = int8_t(sign_at(lo));
-  b.sign_hi = int8_t(lo == hi ? b.sign_lo : sign_at(hi));
+  const EdgeNormal edge = en.normal();
+  const double y = m_scene.row_y(b.row);
+  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
+  t.slot = m_columns.locate(sign_at);
+  const auto [lo, hi] = m_columns.watched(t.slot);
+  t.sign_lo = int8_t(sign_at(lo));
+  t.sign_hi = int8_t(lo == hi ? t.sign_lo : sign_at(hi));
   // A sign pattern that is not monotone (rounding of a nearly constant edge function) still
   // gets a consistent slot; the audit reports such rows if they ever matter.
-  if (!SlotCircle::consistent(b.slot, b.sign_lo, b.sign_hi))
-    b.sign_hi = int8_t(b.slot == 0 ? b.sign_lo : -b.sign_lo);
+  if (!SlotCircle::consistent(t.slot, t.sign_lo, t.sign_hi))
+    t.sign_hi = int8_t(t.slot == 0 ? t.sign_lo : -t.sign_lo);
+}
+
+template <class Sort>
+bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en,
+                                       const SlotTracker& hint) const {
+  // The new edge's point is the same point: on the same side of the eye, in the same slot.
+  SlotTracker& t = b.tracker;
+  const bool front = sign_plus(boundary_front(en, b.row), en.s) > 0;
+  if (hint.slot == kBehindEye) {
+    if (front) return false;
+    t.slot = kBehindEye;
+    t.sign_lo = t.sign_hi = 1;
+    return true;
+  }
+  if (!front) return false;
+  const EdgeNormal edge = en.normal();
+  const double y = m_scene.row_y(b.row);
+  const auto [lo, hi] = m_columns.watched(hint.slot);
+  const int sl = edge_sign(edge, m_scene.column_x(lo), y, en.s);
+  const int sh = lo == hi ? sl : edge_sign(edge, m_scene.column_x(hi), y, en.s);
+  if (!SlotCircle::consistent(hint.slot, sl, sh)) return false;
+  t.slot = hint.slot;
+  t.sign_lo = int8_t(sl);
+  t.sign_hi = int8_t(sh);
+  return true;
 }
 
 template <class Sort>
@@ -141,12 +177,13 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
     // Coverage is constant between consecutive cuts: the boundary slots and the image borders
     // (the covered columns end only where the ray passes a boundary point in front of the eye).
     // A boundary behind the eye changes no coverage where it crosses (no cut).
-    int cuts[4] = {0, std::max(r.boundary[0].slot, 0), std::max(r.boundary[1].slot, 0), m_width};
+    int cuts[4] = {0, std::max(m_boundaries[r.boundary[0]].tracker.slot, 0),
+                   std::max(m_boundaries[r.boundary[1]].tracker.slot, 0), m_width};
     std::sort(cuts, cuts + 4);
     for (int k = 0; k + 1 < 4; ++k) {
       const int a = cuts[k], b = cuts[k + 1];
       if (a >= b) continue;
-      if (rule.covers_in_row(m_scene.column_x(a), y, r.boundary[0].edge, r.boundary[1].edge)) {
+      if (rule.covers_in_row(m_scene.column_x(a), y, r.edge[0], r.edge[1])) {
         lo = std::min(lo, a);
         hi = std::max(hi, b - 1);
         count += b - a;
@@ -157,7 +194,7 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
   }
   lo = m_width, hi = -1, count = 0;
   for (int c = 0; c < m_width; ++c)
-    if (rule.covers_in_row(m_scene.column_x(c), y, r.boundary[0].edge, r.boundary[1].edge)) {
+    if (rule.covers_in_row(m_scene.column_x(c), y, r.edge[0], r.edge[1])) {
       lo = std::min(lo, c);
       hi = c;
       ++count;
@@ -200,26 +237,24 @@ void FrustumBand<Sort>::set_event(EventHandle& handle, double time, const EventK
 }
 
 template <class Sort>
-void FrustumBand<Sort>::schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn,
-                                          const EdgeNormal* known) {
-  RowRecord& r = m_records[rec];
-  SlotTracker& b = r.boundary[size_t(bi)];
-  if (!tn.moving) return;
+void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known) {
+  if (!en.moving) return;
+  EdgeBoundary& b = m_boundaries[id];
+  SlotTracker& st = b.tracker;
   double t;
-  if (b.slot == kBehindEye) {
-    t = failure_time(-1, boundary_front(tn, b.edge, r.row), tn.segment);
+  if (st.slot == kBehindEye) {
+    t = failure_time(-1, boundary_front(en, b.row), en.segment);
   } else {
-    const EdgeNormal edge = known ? *known : tn.motion.edge(b.edge);
-    const double y = m_scene.row_y(r.row);
-    const auto [lo, hi] = m_columns.watched(b.slot);
-    t = failure_time(b.sign_lo, edge.perturbed(m_scene.column_x(lo), y), tn.segment);
-    if (hi != lo) t = std::min(t, failure_time(b.sign_hi, edge.perturbed(m_scene.column_x(hi), y), tn.segment));
+    const EdgeNormal edge = known ? *known : en.normal();
+    const double y = m_scene.row_y(b.row);
+    const auto [lo, hi] = m_columns.watched(st.slot);
+    t = failure_time(st.sign_lo, edge.perturbed(m_scene.column_x(lo), y), en.segment);
+    if (hi != lo) t = std::min(t, failure_time(st.sign_hi, edge.perturbed(m_scene.column_x(hi), y), en.segment));
     // Only from the off slot (at infinity) can the point pass behind the eye.
-    if (b.slot == 0) t = std::min(t, failure_time(1, boundary_front(tn, b.edge, r.row), tn.segment));
+    if (st.slot == 0) t = std::min(t, failure_time(1, boundary_front(en, b.row), en.segment));
   }
   m_stats.certificates_computed += 2;
-  set_event(b.event, t, EventKey{0, kGridBoundary, uint32_t(r.row), boundary_code(r.triangle, b.edge)},
-            (uint64_t{rec} << 1) | uint64_t(bi));
+  set_event(st.event, t, EventKey{0, kGridBoundary, uint32_t(b.row), b.edge}, id);
 }
 
 template <class Sort>
@@ -331,11 +366,10 @@ uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int
   r.row = row;
   r.next = ts.head;
   ts.head = rec;
-  r.boundary[0].edge = uint8_t(edge_a);
-  r.boundary[1].edge = uint8_t(edge_b);
-  for (SlotTracker& b : r.boundary) locate_boundary(b, tn, row);
+  r.edge = {uint8_t(edge_a), uint8_t(edge_b)};
+  bind_boundary(rec, 0);
+  bind_boundary(rec, 1);
   ++m_stats.records_born;
-  if (tn.moving) m_live_boundaries += 2;
   const CoverageRule rule = first ? CoverageRule(tn.motion, tn.s)
                                   : CoverageRule(tn.motion, tn.s, ts.orientation);
   if (first) {
@@ -345,8 +379,6 @@ uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int
   }
   const auto [lo, hi] = scan_coverage(m_records[rec], rule, false);
   set_coverage(rec, lo, hi);
-  schedule_boundary(rec, 0, tn);
-  schedule_boundary(rec, 1, tn);
   return rec;
 }
 
@@ -356,12 +388,8 @@ void FrustumBand<Sort>::kill_record(uint32_t rec) {
   RowRecord& r = m_records[rec];
   const uint32_t tri = r.triangle;
   const bool moving = !m_scene.mesh(m_scene.mesh_of_triangle(tri)).is_static;
-  for (SlotTracker& b : r.boundary)
-    if (b.event != kNoEvent) {
-      m_queue.erase(b.event);
-      b.event = kNoEvent;
-    }
-  if (moving) m_live_boundaries -= 2;
+  release_boundary(rec, 0);
+  release_boundary(rec, 1);
   TriangleState& ts = m_triangles[tri];
   if (ts.head == rec) {
     ts.head = r.next;
@@ -385,43 +413,56 @@ void FrustumBand<Sort>::kill_record(uint32_t rec) {
 template <class Sort>
 void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full) {
   ++m_stats.row_rebuilds;
-  {
-    RowRecord& r = m_records[rec];
-    int crossing[2];
-    if (crossing_edges(row_sides(tn, r.row), crossing) == 2) {
-      // Keep a boundary whose edge still crosses; give the other the remaining crossing edge.
-      const int e0 = r.boundary[0].edge, e1 = r.boundary[1].edge;
-      auto crosses = [&](int e) { return e == crossing[0] || e == crossing[1]; };
-      auto remaining = [&](int e) { return e == crossing[0] ? crossing[1] : crossing[0]; };
-      if (!(crosses(e0) && crosses(e1) && e0 != e1)) {
-        if (crosses(e0)) {
-          r.boundary[1].edge = uint8_t(remaining(e0));
-        } else if (crosses(e1)) {
-          r.boundary[0].edge = uint8_t(remaining(e1));
-        } else {
-          r.boundary[0].edge = uint8_t(crossing[0]);
-          r.boundary[1].edge = uint8_t(crossing[1]);
-        }
-      }
+  int crossing[2];
+  if (crossing_edges(row_sides(tn, m_records[rec].row), crossing) == 2) {
+    // Keep a boundary whose edge still crosses; give the other the remaining crossing edge.
+    const int e0 = m_records[rec].edge[0], e1 = m_records[rec].edge[1];
+    auto crosses = [&](int e) { return e == crossing[0] || e == crossing[1]; };
+    auto remaining = [&](int e) { return e == crossing[0] ? crossing[1] : crossing[0]; };
+    std::array<int, 2> edges = {e0, e1};
+    if (!(crosses(e0) && crosses(e1) && e0 != e1)) {
+      if (crosses(e0))
+        edges[1] = remaining(e0);
+      else if (crosses(e1))
+        edges[0] = remaining(e1);
+      else
+        edges = {crossing[0], crossing[1]};
     }
-    for (SlotTracker& b : r.boundary) locate_boundary(b, tn, r.row);
+    for (int k = 0; k < 2; ++k) {
+      if (edges[size_t(k)] == m_records[rec].edge[size_t(k)]) continue;
+      release_boundary(rec, k);
+      m_records[rec].edge[size_t(k)] = uint8_t(edges[size_t(k)]);
+      bind_boundary(rec, k);
+    }
   }
-  const CoverageRule rule(tn.motion, tn.s);
-  const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
-  set_coverage(rec, lo, hi);
-  schedule_boundary(rec, 0, tn);
-  schedule_boundary(rec, 1, tn);
+  // An event of a boundary at this very instant may still be pending (a rebuild at an
+  // orientation event, when the plane sweeps through the eye and its boundaries with it): the
+  // scan starts from their slots, so they are located afresh.
+  for (int k = 0; k < 2; ++k) relocate_boundary(m_records[rec].boundary[size_t(k)], rec);
+  rescan_record(rec, tn, full);
 }
 
 template <class Sort>
-void FrustumBand<Sort>::update_pixel(uint32_t rec, int column, const TriangleNow& tn,
-                                     const EdgeNormal* known, int known_edge) {
-  RowRecord& r = m_records[rec];
+void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) {
+  const CoverageRule rule(tn.motion, tn.s);
+  const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
+  set_coverage(rec, lo, hi);
+}
+
+template <class Sort>
+bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, const TriangleNow& tn,
+                                   const EdgeNormal* known, int known_edge) const {
+  const RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
   // this very instant is still pending and rebuilds the record when processed).
-  const bool covered = covers_in_row(tn.motion, tn.s, m_triangles[r.triangle].orientation,
-                                     m_scene.column_x(column), m_scene.row_y(r.row),
-                                     r.boundary[0].edge, r.boundary[1].edge, known, known_edge);
+  return covers_in_row(tn.motion, tn.s, m_triangles[r.triangle].orientation,
+                       m_scene.column_x(column), m_scene.row_y(r.row), r.edge[0], r.edge[1], known,
+                       known_edge);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered, const TriangleNow& tn) {
+  const RowRecord& r = m_records[rec];
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
   if (covered) {
@@ -468,7 +509,7 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
     return;
   }
   RowRecord& r = m_records[rec];
-  const int e0 = r.boundary[0].edge, e1 = r.boundary[1].edge;
+  const int e0 = r.edge[0], e1 = r.edge[1];
   const bool has0 = e0 == crossing[0] || e0 == crossing[1];
   const bool has1 = e1 == crossing[0] || e1 == crossing[1];
   if (has0 && has1 && e0 != e1) return;  // this vertex was not an end of a crossing edge here
@@ -479,39 +520,25 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
     return;
   }
   // The boundary on the edge that stopped crossing moves on to the new edge through the vertex:
-  // the point is continuous, so its slot stays; only its certificates change.
+  // the point is continuous, so its slot stays (the new edge's boundary may already be held by
+  // the triangle across that edge); only its certificates change.
   const int bi = has0 ? 1 : 0;
-  const int other = r.boundary[size_t(1 - bi)].edge;
-  SlotTracker& b = r.boundary[size_t(bi)];
-  b.edge = uint8_t(crossing[0] == other ? crossing[1] : crossing[0]);
-  // The new edge's point is the same point: on the same side of the eye, in the same slot.
-  const bool front = sign_plus(boundary_front(tn, b.edge, row), tn.s) > 0;
-  if (b.slot == kBehindEye) {
-    if (front) {
-      ++m_stats.degenerate_rebuilds;
-      rebuild_record(rec, tn, true);
-      return;
-    }
-    schedule_boundary(rec, bi, tn);
-    return;
-  }
-  const EdgeNormal edge = tn.motion.edge(b.edge);
-  const double y = m_scene.row_y(row);
-  const auto [lo, hi] = m_columns.watched(b.slot);
-  const int sl = edge_sign(edge, m_scene.column_x(lo), y, tn.s);
-  const int sh = lo == hi ? sl : edge_sign(edge, m_scene.column_x(hi), y, tn.s);
-  if (!front || !SlotCircle::consistent(b.slot, sl, sh)) {
+  const int other = r.edge[size_t(1 - bi)];
+  const SlotTracker old = m_boundaries[r.boundary[size_t(bi)]].tracker;
+  release_boundary(rec, bi);
+  m_records[rec].edge[size_t(bi)] = uint8_t(crossing[0] == other ? crossing[1] : crossing[0]);
+  if (!bind_boundary(rec, bi, &old)) {
     ++m_stats.degenerate_rebuilds;
-    rebuild_record(rec, tn, true);
+    rescan_record(rec, tn, true);
     return;
   }
-  b.sign_lo = int8_t(sl);
-  b.sign_hi = int8_t(sh);
-  schedule_boundary(rec, bi, tn, &edge);
+  const int slot = m_boundaries[m_records[rec].boundary[size_t(bi)]].tracker.slot;
+  if (slot == kBehindEye) return;
   // At the instant of the re-tie the boundary is the vertex itself; a vertex exactly on a
   // pixel-centre ray may change that pixel, so the two watched columns are re-evaluated.
-  update_pixel(rec, lo, tn, &edge, b.edge);
-  if (hi != lo) update_pixel(rec, hi, tn, &edge, b.edge);
+  const auto [lo, hi] = m_columns.watched(slot);
+  update_pixel(rec, lo, tn);
+  if (hi != lo) update_pixel(rec, hi, tn);
 }
 
 template <class Sort>
@@ -593,6 +620,98 @@ void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>&
     if (!tn) tn = triangle_now(tri);
     for (int q = a; q < b; ++q) create_record(tri, m_row_begin + q, crossing[0], crossing[1], *tn);
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Boundaries.
+
+template <class Sort>
+bool FrustumBand<Sort>::bind_boundary(uint32_t rec, int k, const SlotTracker* hint) {
+  const uint32_t edge = m_scene.edge_of_triangle(m_records[rec].triangle, m_records[rec].edge[size_t(k)]);
+  const int row = m_records[rec].row;
+  uint32_t id = m_edge_heads[edge];
+  while (id != kNoBoundary && m_boundaries[id].row != row) id = m_boundaries[id].next;
+  bool agrees = true;
+  if (id == kNoBoundary) {
+    if (!m_free_boundaries.empty()) {
+      id = m_free_boundaries.back();
+      m_free_boundaries.pop_back();
+    } else {
+      id = uint32_t(m_boundaries.size());
+      m_boundaries.emplace_back();
+    }
+    EdgeBoundary& b = m_boundaries[id];
+    b = EdgeBoundary{};
+    b.edge = edge;
+    b.row = row;
+    b.next = m_edge_heads[edge];
+    m_edge_heads[edge] = id;
+    const EdgeNow en = edge_now(edge);
+    if (hint == nullptr || !place_boundary(b, en, *hint)) {
+      locate_boundary(b, en);
+      agrees = hint == nullptr || b.tracker.slot == hint->slot;
+    }
+    if (en.moving) ++m_live_boundaries;
+    schedule_boundary(id, en);
+  } else if (hint != nullptr) {
+    agrees = m_boundaries[id].tracker.slot == hint->slot;
+  }
+  EdgeBoundary& b = m_boundaries[id];
+  KINRAY_CHECK_MSG(b.records[1] == kNoRecord, "an edge boundary bounds at most two records");
+  (b.records[0] == kNoRecord ? b.records[0] : b.records[1]) = rec;
+  m_records[rec].boundary[size_t(k)] = id;
+  return agrees;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::release_boundary(uint32_t rec, int k) {
+  const uint32_t id = m_records[rec].boundary[size_t(k)];
+  m_records[rec].boundary[size_t(k)] = kNoBoundary;
+  EdgeBoundary& b = m_boundaries[id];
+  if (b.records[0] == rec)
+    b.records[0] = b.records[1];
+  b.records[1] = kNoRecord;
+  if (!b.unused()) return;
+  if (b.tracker.event != kNoEvent) m_queue.erase(b.tracker.event);
+  b.tracker.event = kNoEvent;
+  if (m_edge_heads[b.edge] == id) {
+    m_edge_heads[b.edge] = b.next;
+  } else {
+    uint32_t prev = m_edge_heads[b.edge];
+    while (m_boundaries[prev].next != id) prev = m_boundaries[prev].next;
+    m_boundaries[prev].next = b.next;
+  }
+  b.next = kNoBoundary;
+  if (!m_scene.mesh(m_scene.mesh_of_vertex(m_scene.edge_vertices(b.edge)[0])).is_static)
+    --m_live_boundaries;
+  m_free_boundaries.push_back(id);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::relocate_boundary(uint32_t id, uint32_t rec) {
+  const EdgeNow en = edge_now(m_boundaries[id].edge);
+  const SlotTracker before = m_boundaries[id].tracker;
+  locate_boundary(m_boundaries[id], en);
+  schedule_boundary(id, en);
+  const SlotTracker& after = m_boundaries[id].tracker;
+  if (after.slot == before.slot && after.sign_lo == before.sign_lo && after.sign_hi == before.sign_hi)
+    return;
+  // It moved without its event: the other record it bounds gets what that event would have done.
+  const std::array<uint32_t, 2> records = m_boundaries[id].records;
+  for (uint32_t other : records)
+    if (other != kNoRecord && other != rec)
+      rescan_record(other, triangle_now(m_records[other].triangle), true);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::rebuild_boundary(uint32_t id) {
+  ++m_stats.degenerate_rebuilds;
+  const EdgeNow en = edge_now(m_boundaries[id].edge);
+  locate_boundary(m_boundaries[id], en);
+  schedule_boundary(id, en);
+  const std::array<uint32_t, 2> records = m_boundaries[id].records;
+  for (uint32_t rec : records)
+    if (rec != kNoRecord) rescan_record(rec, triangle_now(m_records[rec].triangle), true);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -701,25 +820,27 @@ void FrustumBand<Sort>::advance_to(double t) {
     const uint64_t payload = m_queue.top_payload();
     KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
     if (key.kind == kGridBoundary) {
-      // Its record was prefetched with the previous event: fetch the triangle's vertex ids and
-      // state, and the two pixels the boundary watches (one of them may change), while the
-      // queue is popped.
-      const RowRecord& r = m_records[payload >> 1];
-      __builtin_prefetch(&m_scene.triangle_vertices(r.triangle));
-      __builtin_prefetch(&m_triangles[r.triangle]);
-      const int slot = r.boundary[payload & 1].slot;
+      // Its boundary was prefetched with the previous event: fetch the edge's end points, its
+      // records and the two pixels it watches (one of them changes), while the queue is popped.
+      const EdgeBoundary& b = m_boundaries[payload];
+      const auto& ends = m_scene.edge_vertices(b.edge);
+      __builtin_prefetch(&m_motion.vertex(ends[0]));
+      __builtin_prefetch(&m_motion.vertex(ends[1]));
+      for (uint32_t rec : b.records)
+        if (rec != kNoRecord) __builtin_prefetch(&m_records[rec]);
+      const int slot = b.tracker.slot;
       if (slot > 0) {
-        __builtin_prefetch(&cell(slot - 1, r.row).order);
-        __builtin_prefetch(&cell(slot, r.row).order);
+        __builtin_prefetch(&cell(slot - 1, b.row).order);
+        __builtin_prefetch(&cell(slot, b.row).order);
       }
     }
     m_queue.pop();
     if (!m_queue.empty()) {
-      // Most events are boundary events, whose payload names their record: fetch the next
-      // event's slot and record while this one is processed (a wrong guess costs one prefetch).
+      // Most events are boundary events, whose payload names their boundary: fetch the next
+      // event's slot and boundary while this one is processed (a wrong guess costs one prefetch).
       m_queue.prefetch(m_queue.top());
-      const uint32_t rec = m_queue.top_payload_hint() >> 1;
-      if (rec < m_records.size()) __builtin_prefetch(&m_records[rec]);
+      const uint32_t id = m_queue.top_payload_hint();
+      if (id < m_boundaries.size()) __builtin_prefetch(&m_boundaries[id]);
     }
     m_now = key.time;
     m_front_changed = false;
@@ -753,7 +874,7 @@ void FrustumBand<Sort>::handle(const EventKey& key, uint64_t payload) {
       handle_vertex(uint32_t(payload));
       break;
     case kGridBoundary:
-      handle_boundary(payload);
+      handle_boundary(uint32_t(payload));
       break;
     case kGridSwap:
       handle_swap(key, payload);
@@ -780,6 +901,13 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
     schedule_flightplan(m);
     if (m_config.counts_meshes) ++m_stats.events.flightplan;
   }
+  std::vector<uint8_t> switched(m_scene.mesh_count(), 0);
+  for (uint32_t m : meshes) switched[m] = 1;
+  for (uint32_t id = 0; id < m_boundaries.size(); ++id) {
+    const EdgeBoundary& b = m_boundaries[id];
+    if (b.unused() || !switched[m_scene.mesh_of_vertex(m_scene.edge_vertices(b.edge)[0])]) continue;
+    schedule_boundary(id, edge_now(b.edge));
+  }
   for (uint32_t m : meshes) {
     if (!m_meshes[m].present) continue;
     const bool moving = !m_scene.mesh(m).is_static;
@@ -791,8 +919,6 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
       const TriangleNow tn = triangle_now(tri);
       schedule_orientation(tri, tn);
       for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
-        schedule_boundary(rec, 0, tn);
-        schedule_boundary(rec, 1, tn);
         const RowRecord& r = m_records[rec];
         for (int c = r.lo; c <= r.hi; ++c) {
           cell(c, r.row).order.replace_motion(tri, m_now);
@@ -804,85 +930,95 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
 }
 
 template <class Sort>
-void FrustumBand<Sort>::handle_boundary(uint64_t payload) {
-  const auto rec = uint32_t(payload >> 1);
-  const int bi = int(payload & 1);
-  RowRecord& r = m_records[rec];
-  SlotTracker& b = r.boundary[size_t(bi)];
-  b.event = kNoEvent;
-  const TriangleNow tn = triangle_now(r.triangle);
-  const EdgeNormal edge = tn.motion.edge(b.edge);
-  const double y = m_scene.row_y(r.row);
-  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, tn.s); };
-  if (b.slot == kBehindEye) {
+void FrustumBand<Sort>::handle_boundary(uint32_t id) {
+  EdgeBoundary& b = m_boundaries[id];
+  SlotTracker& st = b.tracker;
+  st.event = kNoEvent;
+  const EdgeNow en = edge_now(b.edge);
+  const EdgeNormal edge = en.normal();
+  const double y = m_scene.row_y(b.row);
+  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
+  if (st.slot == kBehindEye) {
     // Back in front through the eye plane, at infinity: the off slot. Nothing visible changes.
-    if (sign_plus(boundary_front(tn, b.edge, r.row), tn.s) < 0) {
+    if (sign_plus(boundary_front(en, b.row), en.s) < 0) {
       ++m_stats.spurious;
-      schedule_boundary(rec, bi, tn, &edge);
+      schedule_boundary(id, en, &edge);
       return;
     }
     ++m_stats.events.boundary;
     const auto [lo, hi] = m_columns.watched(0);
     const int sl = sign_at(lo), sh = lo == hi ? sl : sign_at(hi);
     if (!SlotCircle::consistent(0, sl, sh)) {
-      ++m_stats.degenerate_rebuilds;
-      rebuild_record(rec, tn, true);
+      rebuild_boundary(id);
       return;
     }
-    b.slot = 0;
-    b.sign_lo = int8_t(sl);
-    b.sign_hi = int8_t(sh);
-    schedule_boundary(rec, bi, tn, &edge);
+    st.slot = 0;
+    st.sign_lo = int8_t(sl);
+    st.sign_hi = int8_t(sh);
+    schedule_boundary(id, en, &edge);
     return;
   }
-  const auto [lo, hi] = m_columns.watched(b.slot);
+  const auto [lo, hi] = m_columns.watched(st.slot);
   const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
-  const bool changed_lo = gl != b.sign_lo, changed_hi = gh != b.sign_hi;
-  if (b.slot == 0 && sign_plus(boundary_front(tn, b.edge, r.row), tn.s) < 0) {
+  const bool changed_lo = gl != st.sign_lo, changed_hi = gh != st.sign_hi;
+  if (st.slot == 0 && sign_plus(boundary_front(en, b.row), en.s) < 0) {
     // Behind the eye through the eye plane, at infinity: nothing visible changes.
     ++m_stats.events.boundary;
     if (changed_lo || changed_hi) {
-      ++m_stats.degenerate_rebuilds;
-      rebuild_record(rec, tn, true);
+      rebuild_boundary(id);
       return;
     }
-    b.slot = kBehindEye;
-    b.sign_lo = b.sign_hi = 1;
-    schedule_boundary(rec, bi, tn, &edge);
+    st.slot = kBehindEye;
+    st.sign_lo = st.sign_hi = 1;
+    schedule_boundary(id, en, &edge);
     return;
   }
   if (!changed_lo && !changed_hi) {
     ++m_stats.spurious;
-    schedule_boundary(rec, bi, tn, &edge);
+    schedule_boundary(id, en, &edge);
     return;
   }
   ++m_stats.events.boundary;
+  int column = lo;
   if (lo == hi) {  // a one-column image: the only slot is off
-    b.sign_lo = b.sign_hi = int8_t(gl);
-    schedule_boundary(rec, bi, tn, &edge);
-    update_pixel(rec, lo, tn, &edge, b.edge);
-    return;
+    st.sign_lo = st.sign_hi = int8_t(gl);
+  } else {
+    if (changed_lo && changed_hi) {
+      rebuild_boundary(id);
+      return;
+    }
+    column = changed_lo ? lo : hi;
+    const int slot = m_columns.across(st.slot, column);
+    const auto [nlo, nhi] = m_columns.watched(slot);
+    auto known = [&](int c) { return c == lo ? gl : (c == hi ? gh : sign_at(c)); };
+    const int sl = known(nlo), sh = known(nhi);
+    if (!SlotCircle::consistent(slot, sl, sh)) {
+      rebuild_boundary(id);
+      return;
+    }
+    st.slot = slot;
+    st.sign_lo = int8_t(sl);
+    st.sign_hi = int8_t(sh);
   }
-  if (changed_lo && changed_hi) {
-    ++m_stats.degenerate_rebuilds;
-    rebuild_record(rec, tn, true);
-    return;
+  schedule_boundary(id, en, &edge);
+  // The column passes from one triangle of the edge to the other: the one that loses it goes
+  // first, so the pixel's order never holds both (no depth certificate between them).
+  const std::array<uint32_t, 2> records = b.records;
+  const uint32_t edge_id = b.edge;
+  std::array<TriangleNow, 2> tn;
+  std::array<bool, 2> covered = {false, false};
+  for (size_t k = 0; k < 2; ++k) {
+    if (records[k] == kNoRecord) continue;
+    const RowRecord& r = m_records[records[k]];
+    tn[k] = triangle_now(r.triangle);
+    const int e = m_scene.edge_of_triangle(r.triangle, r.edge[0]) == edge_id ? r.edge[0] : r.edge[1];
+    const EdgeNormal own = edge_direction(r.triangle, e) > 0 ? edge : edge.reversed();
+    covered[k] = covers_now(records[k], column, tn[k], &own, e);
   }
-  const int column = changed_lo ? lo : hi;
-  const int slot = m_columns.across(b.slot, column);
-  const auto [nlo, nhi] = m_columns.watched(slot);
-  auto known = [&](int c) { return c == lo ? gl : (c == hi ? gh : sign_at(c)); };
-  const int sl = known(nlo), sh = known(nhi);
-  if (!SlotCircle::consistent(slot, sl, sh)) {
-    ++m_stats.degenerate_rebuilds;
-    rebuild_record(rec, tn, true);
-    return;
-  }
-  b.slot = slot;
-  b.sign_lo = int8_t(sl);
-  b.sign_hi = int8_t(sh);
-  schedule_boundary(rec, bi, tn, &edge);
-  update_pixel(rec, column, tn, &edge, b.edge);
+  for (bool gains : {false, true})
+    for (size_t k = 0; k < 2; ++k)
+      if (records[k] != kNoRecord && covered[k] == gains)
+        set_pixel(records[k], column, gains, tn[k]);
 }
 
 template <class Sort>
@@ -1066,31 +1202,20 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
         for (int k = 0; k < 3; ++k) sides[size_t(k)] = sign_plus(row_side(motion.v[size_t(k)], y), s);
         int crossing[2];
         if (crossing_edges(sides, crossing) == 2) {
-          const bool ok = (r.boundary[0].edge == crossing[0] && r.boundary[1].edge == crossing[1]) ||
-                          (r.boundary[0].edge == crossing[1] && r.boundary[1].edge == crossing[0]);
+          const bool ok = (r.edge[0] == crossing[0] && r.edge[1] == crossing[1]) ||
+                          (r.edge[0] == crossing[1] && r.edge[1] == crossing[0]);
           if (!ok) report(where(tri, r.row) + "boundaries tied to the wrong edges");
         }
-        TriangleNow tn;
-        tn.motion = motion;
-        tn.s = s;
-        for (const SlotTracker& b : r.boundary) {
-          const bool front = sign_plus(boundary_front(tn, b.edge, r.row), s) > 0;
-          if (front == (b.slot == kBehindEye)) {
-            report(where(tri, r.row) + "boundary on edge " + std::to_string(b.edge) +
-                   (front ? " in front but marked behind the eye" : " behind the eye but in a slot"));
-            continue;
-          }
-          if (!front) continue;
-          const EdgeNormal edge = motion.edge(b.edge);
-          const auto [lo, hi] = m_columns.watched(b.slot);
-          const int gl = edge_sign(edge, m_scene.column_x(lo), y, s);
-          const int gh = edge_sign(edge, m_scene.column_x(hi), y, s);
-          if (gl != b.sign_lo || gh != b.sign_hi || !SlotCircle::consistent(b.slot, gl, gh))
-            report(where(tri, r.row) + "boundary on edge " + std::to_string(b.edge) + " in a wrong slot " +
-                   std::to_string(b.slot));
+        for (int k = 0; k < 2; ++k) {
+          const uint32_t id = r.boundary[size_t(k)];
+          const bool bound = id < m_boundaries.size() &&
+                            m_boundaries[id].edge == m_scene.edge_of_triangle(tri, r.edge[size_t(k)]) &&
+                            m_boundaries[id].row == r.row &&
+                            (m_boundaries[id].records[0] == rec || m_boundaries[id].records[1] == rec);
+          if (!bound) report(where(tri, r.row) + "boundary " + std::to_string(k) + " not bound to its edge");
         }
         for (int c = 0; c < m_width; ++c) {
-          const bool truth = rule.covers_in_row(m_scene.column_x(c), y, r.boundary[0].edge, r.boundary[1].edge);
+          const bool truth = rule.covers_in_row(m_scene.column_x(c), y, r.edge[0], r.edge[1]);
           if (truth != r.covers(c))
             report(where(tri, r.row) + "column " + std::to_string(c) + (truth ? " covered but not held" : " held but not covered"));
           if (r.covers(c)) {
@@ -1111,6 +1236,48 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
         report(where(tri, -1) + "wrong orientation sign");
     }
   }
+  // Every boundary in use: in its edge's list, bounding live records of its (edge, row), and in
+  // the slot of its point.
+  size_t in_use = 0;
+  for (uint32_t id = 0; id < m_boundaries.size(); ++id) {
+    const EdgeBoundary& b = m_boundaries[id];
+    if (b.unused()) continue;
+    ++in_use;
+    const std::string at = "band rows [" + std::to_string(m_row_begin) + ", " + std::to_string(m_row_end) +
+                           ") edge " + std::to_string(b.edge) + " row " + std::to_string(b.row) + ": ";
+    uint32_t found = m_edge_heads[b.edge];
+    while (found != kNoBoundary && found != id) found = m_boundaries[found].next;
+    if (found != id) report(at + "boundary missing from its edge's list");
+    for (uint32_t rec : b.records)
+      if (rec != kNoRecord &&
+          (rec >= m_records.size() || m_records[rec].triangle == ~0u ||
+           (m_records[rec].boundary[0] != id && m_records[rec].boundary[1] != id)))
+        report(at + "boundary names a record that does not hold it");
+    const auto& ends = m_scene.edge_vertices(b.edge);
+    const uint32_t m = m_scene.mesh_of_vertex(ends[0]);
+    EdgeNow en;
+    en.segment = m_motion.segment(m);
+    en.p = m_scene.vertex_motion(m, ends[0] - m_scene.vertex_begin(m), en.segment);
+    en.q = m_scene.vertex_motion(m, ends[1] - m_scene.vertex_begin(m), en.segment);
+    en.s = t - en.segment.origin;
+    const SlotTracker& st = b.tracker;
+    const bool front = sign_plus(boundary_front(en, b.row), en.s) > 0;
+    if (front == (st.slot == kBehindEye)) {
+      report(at + (front ? "in front but marked behind the eye" : "behind the eye but in a slot"));
+      continue;
+    }
+    if (!front) continue;
+    const EdgeNormal edge = en.normal();
+    const double y = m_scene.row_y(b.row);
+    const auto [lo, hi] = m_columns.watched(st.slot);
+    const int gl = edge_sign(edge, m_scene.column_x(lo), y, en.s);
+    const int gh = edge_sign(edge, m_scene.column_x(hi), y, en.s);
+    if (gl != st.sign_lo || gh != st.sign_hi || !SlotCircle::consistent(st.slot, gl, gh))
+      report(at + "boundary in a wrong slot " + std::to_string(st.slot));
+  }
+  if (in_use + m_free_boundaries.size() != m_boundaries.size())
+    report("boundaries neither in use nor free");
+
   uint64_t entries = 0;
   size_t pixel_bytes = 0;
   for (const PixelCell& p : m_pixels) {
@@ -1149,6 +1316,8 @@ GridStats FrustumBand<Sort>::stats() const {
   s.pixel_memory_bytes = pixel_bytes;
   s.memory_bytes = pixel_bytes + m_queue.memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
                    m_free_records.capacity() * sizeof(uint32_t) +
+                   m_boundaries.capacity() * sizeof(EdgeBoundary) +
+                   (m_free_boundaries.capacity() + m_edge_heads.capacity()) * sizeof(uint32_t) +
                    m_triangles.capacity() * sizeof(TriangleState) +
                    m_vertices.capacity() * sizeof(SlotTracker) + m_meshes.capacity() * sizeof(MeshState) +
                    m_motion.memory_bytes();

@@ -1,8 +1,10 @@
 #pragma once
 // One band of rows of the kinetic grid of frusta, simulated on its own event queue (DESIGN.md,
 // "Coverage: event-based polygon tracking", "Depth order", "Frame loop"). A band owns
-//   - the (triangle, row) records of its rows, each with two boundaries on slots of the column
-//     circle (boundary events) and the interval of columns it covers,
+//   - the (triangle, row) records of its rows, each with the interval of columns it covers and
+//     two boundaries, the points where two of its edges meet the row plane,
+//   - the (edge, row) boundaries, each on a slot of the column circle (boundary events) and
+//     shared by the two triangles of its edge,
 //   - a row slot per vertex among its own row planes (vertex-row events; a vertex outside the
 //     band sits in the band's off slot),
 //   - one orientation certificate per triangle that has records in the band,
@@ -124,6 +126,14 @@ class FrustumBand {
     double s = 0;
     bool moving = true;
   };
+  /// An edge's motion (p to q, its own direction) on its mesh's current segment, and now.
+  struct EdgeNow {
+    PointMotion p, q;
+    MeshSegment segment;
+    double s = 0;
+    bool moving = true;
+    [[nodiscard]] EdgeNormal normal() const { return edge_normal(p, q); }
+  };
   /// A vertex's slot among the band's row planes, as a step pattern of row sides.
   struct RowPattern {
     int slot = 0;
@@ -133,11 +143,20 @@ class FrustumBand {
 
   // Geometry just after now.
   [[nodiscard]] TriangleNow triangle_now(uint32_t tri) const;
+  [[nodiscard]] EdgeNow edge_now(uint32_t edge) const;
   [[nodiscard]] PointMotion vertex_now(uint32_t v, double& s) const;
   [[nodiscard]] RowPattern locate_vertex(const PointMotion& p, double s) const;
-  void locate_boundary(SlotTracker& b, const TriangleNow& tn, int row) const;
-  /// F > 0 (perturbed) iff the boundary point of edge e on row plane `row` is in front of the eye.
-  [[nodiscard]] Polynomial boundary_front(const TriangleNow& tn, int edge, int row) const;
+  void locate_boundary(EdgeBoundary& b, const EdgeNow& en) const;
+  /// Puts a new boundary in the slot of `hint`, the boundary of another edge of a triangle at the
+  /// same point (a vertex on the row plane), if its signs there agree; false if they do not.
+  bool place_boundary(EdgeBoundary& b, const EdgeNow& en, const SlotTracker& hint) const;
+  /// F > 0 (perturbed) iff the edge's point on row plane `row` is in front of the eye.
+  [[nodiscard]] Polynomial boundary_front(const EdgeNow& en, int row) const;
+  /// +1 if edge e of tri runs in its edge's own direction, else -1 (its edge function negated).
+  [[nodiscard]] int edge_direction(uint32_t tri, int e) const {
+    const auto& vs = m_scene.triangle_vertices(tri);
+    return vs[size_t(kEdgeStart[e])] < vs[size_t(kEdgeEnd[e])] ? 1 : -1;
+  }
   [[nodiscard]] std::array<int, 3> row_sides(const TriangleNow& tn, int row) const;
   /// Scans a record's covered interval: from its boundary slots (`full` = every column).
   [[nodiscard]] std::pair<int, int> scan_coverage(const RowRecord& r, const CoverageRule& rule,
@@ -146,8 +165,7 @@ class FrustumBand {
   // Scheduling.
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;
   void set_event(EventHandle& handle, double time, const EventKey& key, uint64_t payload);
-  void schedule_boundary(uint32_t rec, int bi, const TriangleNow& tn,
-                         const EdgeNormal* edge = nullptr);
+  void schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* edge = nullptr);
   void schedule_vertex(uint32_t v);
   void schedule_orientation(uint32_t tri, const TriangleNow& tn);
   void schedule_flightplan(uint32_t m);
@@ -155,10 +173,34 @@ class FrustumBand {
   // Records.
   uint32_t create_record(uint32_t tri, int row, int edge_a, int edge_b, const TriangleNow& tn);
   void kill_record(uint32_t rec);
+  /// Ties the record's boundaries to the edges that cross its row now, then rescans it.
   void rebuild_record(uint32_t rec, const TriangleNow& tn, bool full);
-  /// Re-evaluates one column of a record; `known` is edge `known_edge`'s normal if already built.
-  void update_pixel(uint32_t rec, int column, const TriangleNow& tn,
-                    const EdgeNormal* known = nullptr, int known_edge = -1);
+  /// Recomputes the record's covered interval (from its boundary slots, or every column).
+  void rescan_record(uint32_t rec, const TriangleNow& tn, bool full);
+  /// Does the record's triangle cover `column` just after now? `known` is edge `known_edge`'s
+  /// normal if already built.
+  [[nodiscard]] bool covers_now(uint32_t rec, int column, const TriangleNow& tn,
+                                const EdgeNormal* known = nullptr, int known_edge = -1) const;
+  /// Brings one column of a record to `covered` (the interval moves by one column at an end).
+  void set_pixel(uint32_t rec, int column, bool covered, const TriangleNow& tn);
+  /// Re-evaluates one column of a record.
+  void update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
+    set_pixel(rec, column, covers_now(rec, column, tn), tn);
+  }
+
+  // Boundaries.
+  /// Ties boundary k of record rec (on its edge r.edge[k]) to the (edge, row) boundary, which is
+  /// made (placed from `hint` if given and it agrees, else located) when no record holds it yet.
+  /// Returns false if a hint was given and the boundary is not in the hint's slot.
+  bool bind_boundary(uint32_t rec, int k, const SlotTracker* hint = nullptr);
+  /// Unties boundary k of record rec; the boundary goes when no record holds it.
+  void release_boundary(uint32_t rec, int k);
+  /// Locates a boundary afresh (an event of it at this instant may still be pending); if that
+  /// moves it, the records it bounds other than `rec` are rescanned.
+  void relocate_boundary(uint32_t id, uint32_t rec);
+  /// A boundary's signs changed at both watched columns at one instant (degenerate): it is
+  /// located afresh and its records are rescanned.
+  void rebuild_boundary(uint32_t id);
   void set_coverage(uint32_t rec, int lo, int hi);
   void update_triangle_row(uint32_t tri, int row);
   [[nodiscard]] uint32_t find_record(uint32_t tri, int row) const;
@@ -214,7 +256,7 @@ class FrustumBand {
   // Events.
   void handle(const EventKey& key, uint64_t payload);
   void handle_flightplans(uint32_t first_mesh);
-  void handle_boundary(uint64_t payload);
+  void handle_boundary(uint32_t id);
   void handle_vertex(uint32_t v);
   void handle_orientation(uint32_t tri);
   void handle_swap(const EventKey& key, uint64_t payload);
@@ -231,6 +273,9 @@ class FrustumBand {
   std::vector<SlotTracker> m_vertices;  ///< by global vertex id; used for moving meshes
   std::vector<RowRecord> m_records;
   std::vector<uint32_t> m_free_records;
+  std::vector<EdgeBoundary> m_boundaries;
+  std::vector<uint32_t> m_free_boundaries;
+  std::vector<uint32_t> m_edge_heads;  ///< per global edge: its first boundary in the band
   KineticSortStats m_sort_stats;
   std::vector<PixelCell> m_pixels;  ///< reserved once: the orders point at their keys
   std::vector<uint32_t> m_fronts;   ///< per pixel: its order's front, or kNoFront

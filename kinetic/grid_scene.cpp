@@ -93,8 +93,42 @@ GridScene::GridScene(GridInput input, int threads) : m_input(std::move(input)) {
   m_adjacency_begin.back() = uint32_t(out);
   m_adjacency.resize(out);
 
+  build_edges();
+
   m_cull_sign.resize(meshes);
   for (uint32_t m = 0; m < meshes; ++m) m_cull_sign[m] = int8_t(back_face_cull_sign(m_input.meshes[m], threads));
+}
+
+void GridScene::build_edges() {
+  // Every (triangle, edge) by its end points; equal end points follow each other after sorting,
+  // and each run is cut into pairs, each pair one id. Sorting by (ends, triangle, edge) makes the
+  // ids independent of anything but the triangle list.
+  struct Side {
+    std::array<uint32_t, 2> ends;
+    uint32_t tri;
+    int edge;
+  };
+  std::vector<Side> sides;
+  sides.reserve(size_t(triangle_count()) * 3);
+  for (uint32_t tri = 0; tri < triangle_count(); ++tri) {
+    const auto& vs = m_triangle_vertices[tri];
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t p = vs[size_t(kEdgeStart[e])], q = vs[size_t(kEdgeEnd[e])];
+      sides.push_back(Side{{std::min(p, q), std::max(p, q)}, tri, e});
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& a, const Side& b) {
+    if (a.ends != b.ends) return a.ends < b.ends;
+    return a.tri != b.tri ? a.tri < b.tri : a.edge < b.edge;
+  });
+  m_triangle_edges.resize(triangle_count());
+  m_edge_vertices.clear();
+  size_t run = 0;  // position of side k in its run of equal end points
+  for (size_t k = 0; k < sides.size(); ++k) {
+    run = k > 0 && sides[k - 1].ends == sides[k].ends ? run + 1 : 0;
+    if (run % 2 == 0) m_edge_vertices.push_back(sides[k].ends);
+    m_triangle_edges[sides[k].tri][size_t(sides[k].edge)] = uint32_t(m_edge_vertices.size() - 1);
+  }
 }
 
 MeshSegment GridScene::segment(uint32_t m, uint32_t index) const {

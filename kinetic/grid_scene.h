@@ -54,6 +54,20 @@ class GridScene {
             m_adjacency.data() + m_adjacency_begin[v + 1]};
   }
 
+  /// Edge e of triangle tri (from its vertex e to its vertex (e + 1) % 3) as a global edge id.
+  /// The two triangles on either side of a mesh edge (the same two global vertices) share its
+  /// id, so a band tracks the edge's crossings of pixel centres once for both of them; a third
+  /// triangle on a non-manifold edge gets an id of its own.
+  [[nodiscard]] uint32_t edge_of_triangle(uint32_t tri, int e) const {
+    return m_triangle_edges[tri][size_t(e)];
+  }
+  /// The end points of an edge in increasing global id order: the direction its edge function
+  /// (p x q) is taken in. A triangle whose edge runs the other way sees the negated function.
+  [[nodiscard]] const std::array<uint32_t, 2>& edge_vertices(uint32_t edge) const {
+    return m_edge_vertices[edge];
+  }
+  [[nodiscard]] uint32_t edge_count() const { return uint32_t(m_edge_vertices.size()); }
+
   /// The segment of mesh m active just after t (a key time starts the new segment).
   [[nodiscard]] MeshSegment segment_at(uint32_t m, double t) const;
   /// The segment with this index.
@@ -71,12 +85,17 @@ class GridScene {
   }
 
  private:
+  /// The global edge ids (edge_of_triangle, edge_vertices).
+  void build_edges();
+
   GridInput m_input;
   std::vector<double> m_x, m_y;
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin;  ///< prefix sums over meshes
   std::vector<uint32_t> m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;  ///< global vertex ids
   std::vector<uint32_t> m_adjacency_begin, m_adjacency;
+  std::vector<std::array<uint32_t, 3>> m_triangle_edges;  ///< global edge ids
+  std::vector<std::array<uint32_t, 2>> m_edge_vertices;
   std::vector<int8_t> m_cull_sign;  ///< per mesh
 };
 

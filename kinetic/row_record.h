@@ -3,7 +3,8 @@
 // tracking"). The centre rays of row j span the plane Pi_j through the eye; a triangle meeting
 // Pi_j does so in a segment whose two end points (the boundaries) lie on two of its edges. Each
 // boundary's column position lives on the projective line of the row and is tracked by a slot on
-// a circle of columns; the record also keeps the interval of columns the triangle covers.
+// a circle of columns, once per (edge, row) for the two triangles of the edge; the record keeps
+// the interval of columns the triangle covers.
 //
 // The same slot circle tracks a vertex among the row planes of a band.
 #include <algorithm>
@@ -62,19 +63,36 @@ inline constexpr int32_t kBehindEye = -1;
 struct SlotTracker {
   int32_t slot = 0;  ///< boundaries: kBehindEye when the point is behind the eye
   int8_t sign_lo = 1, sign_hi = 1;
-  uint8_t edge = 0;  ///< boundaries: the edge the point is tied to (0: v0v1, 1: v1v2, 2: v2v0)
   EventHandle event = kNoEvent;
 };
 
 inline constexpr uint32_t kNoRecord = ~0u;
+inline constexpr uint32_t kNoBoundary = ~0u;
 
-/// One (triangle, row) whose triangle meets the row plane.
+/// The point where one mesh edge meets one row plane, tracked among the row's columns. The signs
+/// are those of the edge function in the edge's own direction (GridScene::edge_vertices). Both
+/// triangles of the edge bound their row segments there, so the two share it: one certificate
+/// and one event per crossing of a column centre, which moves the pixel from one triangle to the
+/// other. A triangle on the other side that keeps no record (it faces away) leaves it to one.
+struct EdgeBoundary {
+  uint32_t edge = 0;                ///< global edge id
+  int32_t row = 0;
+  uint32_t next = kNoBoundary;      ///< the next boundary of the same edge in the band (a list)
+  std::array<uint32_t, 2> records = {kNoRecord, kNoRecord};  ///< the records bounded here
+  SlotTracker tracker;
+
+  [[nodiscard]] bool unused() const { return records[0] == kNoRecord && records[1] == kNoRecord; }
+};
+
+/// One (triangle, row) whose triangle meets the row plane: its segment there runs between the
+/// points of two of its edges, each an EdgeBoundary.
 struct RowRecord {
   uint32_t triangle = 0;     ///< global triangle id
   int32_t row = 0;
   uint32_t next = kNoRecord; ///< the next record of the same triangle in the band (a list)
   int32_t lo = 0, hi = -1;   ///< covered columns [lo, hi]; empty when lo > hi
-  std::array<SlotTracker, 2> boundary;
+  std::array<uint32_t, 2> boundary = {kNoBoundary, kNoBoundary};  ///< EdgeBoundary ids
+  std::array<uint8_t, 2> edge = {0, 0};  ///< the boundaries' edges (0: v0v1, 1: v1v2, 2: v2v0)
 
   [[nodiscard]] bool covers(int column) const { return column >= lo && column <= hi; }
   [[nodiscard]] bool empty() const { return lo > hi; }

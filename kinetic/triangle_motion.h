@@ -46,6 +46,8 @@ struct EdgeNormal {
     f.c[2] = c2[k];
     return f;
   }
+  /// The normal of the same edge taken the other way, q x p: the exact negation.
+  [[nodiscard]] EdgeNormal reversed() const { return EdgeNormal{-c0, -c1, -c2}; }
   /// The edge function along the symbolically perturbed ray d' = (x + eps, y + eps^2, 1):
   /// E(d') = E(d) + eps n_x + eps^2 n_y, whose sign just after s is the sign of the first of
   /// E(d), n_x, n_y that is not the zero polynomial. Returns that polynomial: it is the one whose
