@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kinetic/kinetic_sort.h"
+#include "kinetic/small_vector.h"
 
 namespace kinray {
 
@@ -160,7 +161,7 @@ class KineticSortedList {
   [[nodiscard]] const KineticSortStats& stats() const { return m_core.stats(); }
   /// Bytes held by this instance (not counting its events in the shared queue).
   [[nodiscard]] size_t memory_bytes() const {
-    return sizeof(*this) + m_entries.capacity() * sizeof(Entry);
+    return sizeof(*this) + m_entries.heap_bytes();
   }
 
  private:
@@ -186,7 +187,8 @@ class KineticSortedList {
   }
 
   detail::SortCore<Keys> m_core;
-  std::vector<Entry> m_entries;
+  /// Two inline: most pixels of the kinetic grid hold one or two triangles.
+  SmallVector<Entry, 2> m_entries;
 };
 
 }  // namespace kinray
