@@ -1,6 +1,7 @@
 #include "kinetic/frustum_grid.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -20,6 +21,8 @@ namespace {
 
 constexpr int kBandsPerThread = 4;
 constexpr size_t kPlaneCache = 1024;  ///< read-out: planes kept per thread (a few rows' runs)
+constexpr int kReadoutBlocksPerThread = 8;  ///< read-out: blocks of rows handed out per thread
+constexpr size_t kReadoutMinBlockRows = 16;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -49,8 +52,8 @@ class FrustumGrid::Bands {
   virtual ~Bands() = default;
   virtual void start(double t0, int threads) = 0;
   virtual void advance_to(double t, int threads) = 0;
-  /// Front triangle (global id or kNoGridHit) of every pixel of rows [row_begin, row_end).
-  virtual void fronts(int row_begin, int row_end, std::span<uint32_t> out) const = 0;
+  /// The front triangles (global ids, kNoGridHit for none) of the width pixels of row j.
+  virtual const uint32_t* front_row(int j) const = 0;
   virtual size_t depth_complexity(int i, int j) const = 0;
   virtual uint32_t front(int i, int j) const = 0;
   /// Every triangle of pixel (i, j)'s order into `out` (cleared first): front to back for the
@@ -66,7 +69,7 @@ namespace {
 template <class Sort>
 class BandsOf final : public FrustumGrid::Bands {
  public:
-  BandsOf(const GridScene& scene, int bands, bool audit) : m_width(scene.width()) {
+  BandsOf(const GridScene& scene, int bands, bool audit) {
     const int h = scene.height();
     for (int b = 0; b < bands; ++b) {
       const int r0 = int(int64_t(h) * b / bands), r1 = int(int64_t(h) * (b + 1) / bands);
@@ -84,12 +87,9 @@ class BandsOf final : public FrustumGrid::Bands {
   void advance_to(double t, int threads) override {
     parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
   }
-  void fronts(int row_begin, int row_end, std::span<uint32_t> out) const override {
-    for (int j = row_begin; j < row_end; ++j) {
-      static_assert(kNoFront == kNoGridHit);
-      const uint32_t* fronts = m_bands[band_of(j)]->front_row(j);
-      std::copy(fronts, fronts + m_width, out.begin() + ptrdiff_t(size_t(j - row_begin) * size_t(m_width)));
-    }
+  const uint32_t* front_row(int j) const override {
+    static_assert(kNoFront == kNoGridHit);
+    return m_bands[band_of(j)]->front_row(j);
   }
   uint32_t front(int i, int j) const override {
     return m_bands[band_of(j)]->front(i, j).value_or(kNoGridHit);
@@ -119,7 +119,6 @@ class BandsOf final : public FrustumGrid::Bands {
   size_t band_of(int row) const {
     return size_t(std::upper_bound(m_row_begin.begin(), m_row_begin.end(), row) - m_row_begin.begin()) - 1;
   }
-  int m_width;
   std::vector<std::unique_ptr<FrustumBand<Sort>>> m_bands;
   std::vector<int> m_row_begin;
 };
@@ -208,74 +207,97 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   // that instant (DESIGN.md's strict rule), and its hit is not in front of the eye. That is
   // measure zero, so the front is checked and only then are the other members visited.
   auto pierces = [](double z) { return std::isfinite(z) && z > 0; };
-  parallel_chunks(size_t(h), m_threads, [&](size_t row_begin, size_t row_end) {
-    m_bands->fronts(int(row_begin), int(row_end),
-                    object.subspan(row_begin * size_t(w), (row_end - row_begin) * size_t(w)));
+  // Pixel (i, j) whose front does not pierce its ray at now: the nearest member that does, at
+  // equal depths the earlier one in the order (the sorted list visits front to back).
+  auto nearest_piercing = [&](int i, int j, uint32_t front, std::vector<uint32_t>& members,
+                              uint32_t& object_out, uint32_t& prim_out, float& depth_out) {
+    const double x = m_scene.column_x(i), y = m_scene.row_y(j);
+    uint32_t tri = kNoGridHit;
+    double z = 0;
+    m_bands->members(i, j, members);
+    for (uint32_t other : members) {
+      if (other == front) continue;
+      const double zo = plane_of(other).depth(x, y);
+      if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
+        tri = other;
+        z = zo;
+      }
+    }
+    if (tri == kNoGridHit) {
+      object_out = prim_out = kNoGridHit;
+      depth_out = std::numeric_limits<float>::infinity();
+      return;
+    }
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    object_out = m_scene.mesh(m).id;
+    prim_out = tri - m_scene.triangle_begin(m);
+    depth_out = float(z);
+  };
+  // Rows are handed out in blocks: a thread that starts late (the machine is shared) takes fewer,
+  // and a block is long enough that the plane cache below is reused from row to row.
+  const size_t block_rows =
+      std::max<size_t>(kReadoutMinBlockRows, size_t(h) / size_t(kReadoutBlocksPerThread * m_threads));
+  const size_t blocks = (size_t(h) + block_rows - 1) / block_rows;
+  std::atomic<size_t> next_block{0};
+  parallel_chunks(size_t(m_threads), m_threads, [&](size_t, size_t) {
+    // The per-pixel loop keeps everything it reads in locals: the buffers' stores could alias
+    // anything reached through the captured references, which would then be reloaded per pixel.
+    const int width = w;
+    std::vector<double> column_x(static_cast<size_t>(width));
+    for (int i = 0; i < width; ++i) column_x[size_t(i)] = m_scene.column_x(i);
+    const double* xs = column_x.data();
     std::vector<uint32_t> members;
-    // A triangle meets a few consecutive rows: the planes of the runs of recent rows are kept in
-    // a small direct-mapped cache (the same plane_of values, so the same depths bit for bit).
+    // A triangle meets a few consecutive rows: the planes of recent rows are kept in a small
+    // direct-mapped cache (the same plane_of values, so the same depths bit for bit).
     struct CachedPlane {
       uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
       TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
     };
-    std::vector<CachedPlane> cache(kPlaneCache);
-    for (size_t j = row_begin; j < row_end; ++j) {
-      const double y = m_scene.row_y(int(j));
-      // A triangle usually covers a run of pixels in a row: its plane is computed once per run.
-      uint32_t last = kNoGridHit, mesh_id = 0, local = 0;
-      const TrianglePlane* plane = nullptr;
-      for (int i = 0; i < w; ++i) {
-        const size_t p = j * size_t(w) + size_t(i);
-        uint32_t tri = object[p];
-        if (tri == kNoGridHit) {
-          prim[p] = kNoGridHit;
-          depth[p] = std::numeric_limits<float>::infinity();
-          continue;
-        }
-        const double x = m_scene.column_x(i);
-        if (tri != last) {
-          CachedPlane& c = cache[tri % kPlaneCache];
-          if (c.tri != tri) {
-            const uint32_t m = m_scene.mesh_of_triangle(tri);
-            c.tri = tri;
-            c.mesh_id = m_scene.mesh(m).id;
-            c.local = tri - m_scene.triangle_begin(m);
-            c.plane = plane_of(tri);
-          }
-          mesh_id = c.mesh_id;
-          local = c.local;
-          plane = &c.plane;
-          last = tri;
-        }
-        double z = plane->depth(x, y);
-        if (!pierces(z)) {
-          // The nearest member that pierces the ray at now; at equal depths the earlier one in
-          // the order (the sorted list visits front to back).
-          const uint32_t front = tri;
-          tri = kNoGridHit;
-          m_bands->members(i, int(j), members);
-          for (uint32_t other : members) {
-            if (other == front) continue;
-            const double zo = plane_of(other).depth(x, y);
-            if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
-              tri = other;
-              z = zo;
+    std::vector<CachedPlane> cache_slots(kPlaneCache);
+    CachedPlane* cache = cache_slots.data();
+    auto fill = [&](CachedPlane& c, uint32_t tri) {
+      const uint32_t m = m_scene.mesh_of_triangle(tri);
+      const GridMesh& mesh = m_scene.mesh(m);
+      c.tri = tri;
+      c.mesh_id = mesh.id;
+      c.local = tri - m_scene.triangle_begin(m);
+      const auto& vs = mesh.triangles[c.local];
+      c.plane = TrianglePlane(mesh.position(vs[0], blends[m]), mesh.position(vs[1], blends[m]),
+                              mesh.position(vs[2], blends[m]));
+    };
+    for (size_t b = next_block.fetch_add(1, std::memory_order_relaxed); b < blocks;
+         b = next_block.fetch_add(1, std::memory_order_relaxed)) {
+      for (size_t j = b * block_rows; j < std::min(size_t(h), (b + 1) * block_rows); ++j) {
+        const uint32_t* fronts = m_bands->front_row(int(j));
+        uint32_t* object_row = object.data() + j * size_t(width);
+        uint32_t* prim_row = prim.data() + j * size_t(width);
+        float* depth_row = depth.data() + j * size_t(width);
+        const double y = m_scene.row_y(int(j));
+        int i = 0;
+        while (i < width) {
+          // Background comes in long runs (a few per row), filled in bulk.
+          int end = i;
+          while (end < width && fronts[end] == kNoGridHit) ++end;
+          std::fill(object_row + i, object_row + end, kNoGridHit);
+          std::fill(prim_row + i, prim_row + end, kNoGridHit);
+          std::fill(depth_row + i, depth_row + end, std::numeric_limits<float>::infinity());
+          // Covered pixels: a triangle covers only a couple of pixels of a row, so its changes are
+          // not branched on; every pixel looks its triangle's plane up in the cache.
+          for (i = end; i < width && fronts[i] != kNoGridHit; ++i) {
+            const uint32_t tri = fronts[i];
+            CachedPlane& c = cache[tri % kPlaneCache];
+            if (c.tri != tri) [[unlikely]]
+              fill(c, tri);
+            const double z = c.plane.depth(xs[i], y);
+            if (!pierces(z)) [[unlikely]] {
+              nearest_piercing(i, int(j), tri, members, object_row[i], prim_row[i], depth_row[i]);
+              continue;
             }
+            object_row[i] = c.mesh_id;
+            prim_row[i] = c.local;
+            depth_row[i] = float(z);
           }
-          if (tri == kNoGridHit) {
-            object[p] = prim[p] = kNoGridHit;
-            depth[p] = std::numeric_limits<float>::infinity();
-            continue;
-          }
-          const uint32_t m = m_scene.mesh_of_triangle(tri);
-          object[p] = m_scene.mesh(m).id;
-          prim[p] = tri - m_scene.triangle_begin(m);
-          depth[p] = float(z);
-          continue;
         }
-        object[p] = mesh_id;
-        prim[p] = local;
-        depth[p] = float(z);
       }
     }
   });
