@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 #include "kinetic/kinetic_sorted_list.h"
 #include "kinetic/kinetic_tournament.h"
 #include "kinetic/parallel.h"
+#include "kinetic/plane_depth_pair.h"
 #include "kinetic/root_finding.h"
 
 namespace kinray {
@@ -184,6 +186,178 @@ std::optional<GridHit> FrustumGrid::front(int i, int j) const {
 
 size_t FrustumGrid::depth_complexity(int i, int j) const { return m_bands->depth_complexity(i, j); }
 
+namespace {
+
+/// One read-out thread: the rows it is handed, written into the buffers. Everything the per-pixel
+/// loop reads is a member or a local (not reached through references the buffers' stores could
+/// alias), and the rare paths are out of line, so the loop keeps its state in registers.
+class RowReader {
+ public:
+  RowReader(const GridScene& scene, const FrustumGrid::Bands& bands,
+            std::span<const GridMesh::KeyBlend> blends)
+      : m_scene(scene), m_bands(bands), m_blends(blends), m_width(scene.width()),
+        m_column_x(size_t(scene.width())), m_cache(kPlaneCache), m_missing(size_t(scene.width())) {
+    for (int i = 0; i < m_width; ++i) m_column_x[size_t(i)] = scene.column_x(i);
+  }
+
+  /// Row j of the read-out into the rows of the buffers.
+  void read(int j, uint32_t* object, uint32_t* prim, float* depth) {
+    const uint32_t* fronts = m_bands.front_row(j);
+    const int width = m_width;
+    // Background comes in long runs (a few per row), filled in bulk; the covered runs between
+    // them are noted, with the triangles whose planes are not in the cache. Those planes are
+    // computed before any depth: a miss found pixel by pixel would be a mispredicted branch that
+    // also stalls on its loads (the triangle's vertices, usually evicted by the events), while in
+    // one loop the misses' loads overlap.
+    m_segments.clear();
+    size_t missing = 0;
+    int i = 0;
+    while (i < width) {
+      int end = i;
+      for (; end + 4 <= width; end += 4) {  // four pixels at once: kNoGridHit has every bit set
+        uint64_t a = 0, b = 0;
+        std::memcpy(&a, fronts + end, sizeof a);
+        std::memcpy(&b, fronts + end + 2, sizeof b);
+        if ((a & b) != ~uint64_t(0)) break;
+      }
+      while (end < width && fronts[end] == kNoGridHit) ++end;
+      std::fill(object + i, object + end, kNoGridHit);
+      std::fill(prim + i, prim + end, kNoGridHit);
+      std::fill(depth + i, depth + end, std::numeric_limits<float>::infinity());
+      if (end == width) break;
+      uint32_t previous = kNoGridHit;
+      for (i = end; i < width && fronts[i] != kNoGridHit; ++i) {
+        const uint32_t tri = fronts[i];
+        m_missing[missing] = tri;  // kept when it starts a run and is not cached: no branch
+        missing += size_t(tri != previous) & size_t(m_cache[tri % kPlaneCache].tri != tri);
+        previous = tri;
+      }
+      m_segments.emplace_back(end, i);
+    }
+    for (size_t k = 0; k < missing; ++k) plane(m_missing[k]);
+    const double y = m_scene.row_y(j);
+    const double* xs = m_column_x.data();
+    for (const auto& [begin, end] : m_segments) {
+      // Two pixels at a time (one division for both, plane_depth_pair.h). A triangle covers only
+      // a couple of pixels of a row, so its changes are not branched on: every pixel looks its
+      // triangle's plane up in the cache.
+      int p = begin;
+      for (; p + 2 <= end; p += 2) {
+        const uint32_t t0 = fronts[p], t1 = fronts[p + 1];
+        const CachedPlane& c0 = plane(t0);
+        const CachedPlane& c1 = plane(t1);
+        DoublePair x;
+        std::memcpy(&x, xs + p, sizeof x);
+        const DoublePair z = plane_depth_pair(c0.plane, c1.plane, x, y);
+        // c0 was evicted by c1 (two triangles of one cache slot), or a front does not pierce.
+        if (c0.tri != t0 || !pierces(z[0]) || !pierces(z[1])) [[unlikely]] {
+          pixel(p, j, t0, y, object, prim, depth);
+          pixel(p + 1, j, t1, y, object, prim, depth);
+          continue;
+        }
+        object[p] = c0.mesh_id;
+        object[p + 1] = c1.mesh_id;
+        prim[p] = c0.local;
+        prim[p + 1] = c1.local;
+        depth[p] = float(z[0]);
+        depth[p + 1] = float(z[1]);
+      }
+      if (p < end) pixel(p, j, fronts[p], y, object, prim, depth);
+    }
+  }
+
+ private:
+  /// A triangle meets a few consecutive rows: the planes of recent rows are kept in a small
+  /// direct-mapped cache (the same plane_of values, so the same depths bit for bit).
+  struct CachedPlane {
+    uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
+    TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  };
+
+  /// A triangle in a pixel's order pierces its ray just after now; exactly at now it may not:
+  /// when its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers
+  /// nothing at that instant (DESIGN.md's strict rule), and its hit is not in front of the eye.
+  /// That is measure zero, so the front is checked and only then are the other members visited.
+  static bool pierces(double z) { return std::isfinite(z) && z > 0; }
+
+  /// The plane of triangle `tri` at now, from its interpolated vertices.
+  [[nodiscard]] TrianglePlane plane_of(uint32_t tri) const {
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    const GridMesh& mesh = m_scene.mesh(m);
+    const auto& vs = mesh.triangles[tri - m_scene.triangle_begin(m)];
+    return TrianglePlane(mesh.position(vs[0], m_blends[m]), mesh.position(vs[1], m_blends[m]),
+                         mesh.position(vs[2], m_blends[m]));
+  }
+
+  /// Triangle tri's slot of the cache, filled if it held another triangle.
+  const CachedPlane& plane(uint32_t tri) {
+    CachedPlane& c = m_cache[tri % kPlaneCache];
+    if (c.tri != tri) [[unlikely]]
+      fill(c, tri);
+    return c;
+  }
+
+  /// Pixel (i, j), whose front is tri, one at a time.
+  void pixel(int i, int j, uint32_t tri, double y, uint32_t* object, uint32_t* prim, float* depth) {
+    const CachedPlane& c = plane(tri);
+    const double z = c.plane.depth(m_column_x[size_t(i)], y);
+    if (!pierces(z)) [[unlikely]] {
+      nearest_piercing(i, j, tri, object[i], prim[i], depth[i]);
+      return;
+    }
+    object[i] = c.mesh_id;
+    prim[i] = c.local;
+    depth[i] = float(z);
+  }
+
+  [[gnu::noinline]] void fill(CachedPlane& c, uint32_t tri) const {
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    c.tri = tri;
+    c.mesh_id = m_scene.mesh(m).id;
+    c.local = tri - m_scene.triangle_begin(m);
+    c.plane = plane_of(tri);
+  }
+
+  /// Pixel (i, j) whose front does not pierce its ray at now: the nearest member that does, at
+  /// equal depths the earlier one in the order (the sorted list visits front to back).
+  [[gnu::noinline]] void nearest_piercing(int i, int j, uint32_t front, uint32_t& object,
+                                          uint32_t& prim, float& depth) {
+    const double x = m_scene.column_x(i), y = m_scene.row_y(j);
+    uint32_t tri = kNoGridHit;
+    double z = 0;
+    m_bands.members(i, j, m_members);
+    for (uint32_t other : m_members) {
+      if (other == front) continue;
+      const double zo = plane_of(other).depth(x, y);
+      if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
+        tri = other;
+        z = zo;
+      }
+    }
+    if (tri == kNoGridHit) {
+      object = prim = kNoGridHit;
+      depth = std::numeric_limits<float>::infinity();
+      return;
+    }
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    object = m_scene.mesh(m).id;
+    prim = tri - m_scene.triangle_begin(m);
+    depth = float(z);
+  }
+
+  const GridScene& m_scene;
+  const FrustumGrid::Bands& m_bands;
+  std::span<const GridMesh::KeyBlend> m_blends;  ///< each mesh's place on its key grid at now
+  int m_width;
+  std::vector<double> m_column_x;
+  std::vector<CachedPlane> m_cache;
+  std::vector<uint32_t> m_members;
+  std::vector<std::pair<int, int>> m_segments;  ///< a row's covered runs [begin, end)
+  std::vector<uint32_t> m_missing;  ///< a row's triangles whose planes were not cached
+};
+
+}  // namespace
+
 void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
                            std::span<float> depth) const {
   const auto started = std::chrono::steady_clock::now();
@@ -194,112 +368,20 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   // Where each mesh is on its key grid at now, once per frame.
   std::vector<GridMesh::KeyBlend> blends(m_scene.mesh_count());
   for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) blends[m] = m_scene.mesh(m).blend_at(m_now);
-  // The plane of triangle `tri` at now, from its interpolated vertices.
-  auto plane_of = [&](uint32_t tri) {
-    const uint32_t m = m_scene.mesh_of_triangle(tri);
-    const GridMesh& mesh = m_scene.mesh(m);
-    const auto& vs = mesh.triangles[tri - m_scene.triangle_begin(m)];
-    return TrianglePlane(mesh.position(vs[0], blends[m]), mesh.position(vs[1], blends[m]),
-                         mesh.position(vs[2], blends[m]));
-  };
-  // A triangle in a pixel's order pierces its ray just after now; exactly at now it may not: when
-  // its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers nothing at
-  // that instant (DESIGN.md's strict rule), and its hit is not in front of the eye. That is
-  // measure zero, so the front is checked and only then are the other members visited.
-  auto pierces = [](double z) { return std::isfinite(z) && z > 0; };
-  // Pixel (i, j) whose front does not pierce its ray at now: the nearest member that does, at
-  // equal depths the earlier one in the order (the sorted list visits front to back).
-  auto nearest_piercing = [&](int i, int j, uint32_t front, std::vector<uint32_t>& members,
-                              uint32_t& object_out, uint32_t& prim_out, float& depth_out) {
-    const double x = m_scene.column_x(i), y = m_scene.row_y(j);
-    uint32_t tri = kNoGridHit;
-    double z = 0;
-    m_bands->members(i, j, members);
-    for (uint32_t other : members) {
-      if (other == front) continue;
-      const double zo = plane_of(other).depth(x, y);
-      if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
-        tri = other;
-        z = zo;
-      }
-    }
-    if (tri == kNoGridHit) {
-      object_out = prim_out = kNoGridHit;
-      depth_out = std::numeric_limits<float>::infinity();
-      return;
-    }
-    const uint32_t m = m_scene.mesh_of_triangle(tri);
-    object_out = m_scene.mesh(m).id;
-    prim_out = tri - m_scene.triangle_begin(m);
-    depth_out = float(z);
-  };
   // Rows are handed out in blocks: a thread that starts late (the machine is shared) takes fewer,
-  // and a block is long enough that the plane cache below is reused from row to row.
+  // and a block is long enough that the plane cache is reused from row to row.
   const size_t block_rows =
       std::max<size_t>(kReadoutMinBlockRows, size_t(h) / size_t(kReadoutBlocksPerThread * m_threads));
   const size_t blocks = (size_t(h) + block_rows - 1) / block_rows;
   std::atomic<size_t> next_block{0};
   parallel_chunks(size_t(m_threads), m_threads, [&](size_t, size_t) {
-    // The per-pixel loop keeps everything it reads in locals: the buffers' stores could alias
-    // anything reached through the captured references, which would then be reloaded per pixel.
-    const int width = w;
-    std::vector<double> column_x(static_cast<size_t>(width));
-    for (int i = 0; i < width; ++i) column_x[size_t(i)] = m_scene.column_x(i);
-    const double* xs = column_x.data();
-    std::vector<uint32_t> members;
-    // A triangle meets a few consecutive rows: the planes of recent rows are kept in a small
-    // direct-mapped cache (the same plane_of values, so the same depths bit for bit).
-    struct CachedPlane {
-      uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
-      TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-    };
-    std::vector<CachedPlane> cache_slots(kPlaneCache);
-    CachedPlane* cache = cache_slots.data();
-    auto fill = [&](CachedPlane& c, uint32_t tri) {
-      const uint32_t m = m_scene.mesh_of_triangle(tri);
-      const GridMesh& mesh = m_scene.mesh(m);
-      c.tri = tri;
-      c.mesh_id = mesh.id;
-      c.local = tri - m_scene.triangle_begin(m);
-      const auto& vs = mesh.triangles[c.local];
-      c.plane = TrianglePlane(mesh.position(vs[0], blends[m]), mesh.position(vs[1], blends[m]),
-                              mesh.position(vs[2], blends[m]));
-    };
+    RowReader reader(m_scene, *m_bands, blends);
     for (size_t b = next_block.fetch_add(1, std::memory_order_relaxed); b < blocks;
-         b = next_block.fetch_add(1, std::memory_order_relaxed)) {
+         b = next_block.fetch_add(1, std::memory_order_relaxed))
       for (size_t j = b * block_rows; j < std::min(size_t(h), (b + 1) * block_rows); ++j) {
-        const uint32_t* fronts = m_bands->front_row(int(j));
-        uint32_t* object_row = object.data() + j * size_t(width);
-        uint32_t* prim_row = prim.data() + j * size_t(width);
-        float* depth_row = depth.data() + j * size_t(width);
-        const double y = m_scene.row_y(int(j));
-        int i = 0;
-        while (i < width) {
-          // Background comes in long runs (a few per row), filled in bulk.
-          int end = i;
-          while (end < width && fronts[end] == kNoGridHit) ++end;
-          std::fill(object_row + i, object_row + end, kNoGridHit);
-          std::fill(prim_row + i, prim_row + end, kNoGridHit);
-          std::fill(depth_row + i, depth_row + end, std::numeric_limits<float>::infinity());
-          // Covered pixels: a triangle covers only a couple of pixels of a row, so its changes are
-          // not branched on; every pixel looks its triangle's plane up in the cache.
-          for (i = end; i < width && fronts[i] != kNoGridHit; ++i) {
-            const uint32_t tri = fronts[i];
-            CachedPlane& c = cache[tri % kPlaneCache];
-            if (c.tri != tri) [[unlikely]]
-              fill(c, tri);
-            const double z = c.plane.depth(xs[i], y);
-            if (!pierces(z)) [[unlikely]] {
-              nearest_piercing(i, int(j), tri, members, object_row[i], prim_row[i], depth_row[i]);
-              continue;
-            }
-            object_row[i] = c.mesh_id;
-            prim_row[i] = c.local;
-            depth_row[i] = float(z);
-          }
-        }
+        const size_t row = j * size_t(w);
+        reader.read(int(j), object.data() + row, prim.data() + row, depth.data() + row);
       }
-    }
   });
   m_timings.readout += seconds_since(started);
 }
