@@ -22,7 +22,7 @@ namespace kinray {
 namespace {
 
 constexpr int kBandsPerThread = 4;
-constexpr size_t kPlaneCache = 1024;  ///< read-out: planes kept per thread (a few rows' runs)
+constexpr size_t kPlaneCache = 2048;  ///< read-out: planes kept per thread (a few rows' runs)
 constexpr int kReadoutBlocksPerThread = 8;  ///< read-out: blocks of rows handed out per thread
 constexpr size_t kReadoutMinBlockRows = 16;
 
