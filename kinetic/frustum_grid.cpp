@@ -14,7 +14,7 @@
 #include "kinetic/kinetic_sorted_list.h"
 #include "kinetic/kinetic_tournament.h"
 #include "kinetic/parallel.h"
-#include "kinetic/plane_depth_pair.h"
+#include "kinetic/plane_pairs.h"
 #include "kinetic/root_finding.h"
 
 namespace kinray {
@@ -234,11 +234,13 @@ class RowReader {
       }
       m_segments.emplace_back(end, i);
     }
-    for (size_t k = 0; k < missing; ++k) plane(m_missing[k]);
+    size_t k = 0;
+    for (; k + 2 <= missing; k += 2) fill_pair(m_missing[k], m_missing[k + 1]);
+    if (k < missing) plane(m_missing[k]);
     const double y = m_scene.row_y(j);
     const double* xs = m_column_x.data();
     for (const auto& [begin, end] : m_segments) {
-      // Two pixels at a time (one division for both, plane_depth_pair.h). A triangle covers only
+      // Two pixels at a time (one division for both, plane_pairs.h). A triangle covers only
       // a couple of pixels of a row, so its changes are not branched on: every pixel looks its
       // triangle's plane up in the cache.
       int p = begin;
@@ -316,6 +318,38 @@ class RowReader {
     c.mesh_id = m_scene.mesh(m).id;
     c.local = tri - m_scene.triangle_begin(m);
     c.plane = plane_of(tri);
+  }
+
+  /// The planes of two triangles into their slots, computed together (plane_pairs.h); when both
+  /// have one slot the second stays, and the pixel loop refills the first.
+  void fill_pair(uint32_t t0, uint32_t t1) {
+    const uint32_t m0 = m_scene.mesh_of_triangle(t0), m1 = m_scene.mesh_of_triangle(t1);
+    const GridMesh::KeyBlend &b0 = m_blends[m0], &b1 = m_blends[m1];
+    if (b0.still || b1.still) {  // the positions are the keys', unblended
+      fill(m_cache[t0 % kPlaneCache], t0);
+      fill(m_cache[t1 % kPlaneCache], t1);
+      return;
+    }
+    const GridMesh &mesh0 = m_scene.mesh(m0), &mesh1 = m_scene.mesh(m1);
+    const uint32_t local0 = t0 - m_scene.triangle_begin(m0), local1 = t1 - m_scene.triangle_begin(m1);
+    const auto &vs0 = mesh0.triangles[local0], &vs1 = mesh1.triangles[local1];
+    const DoublePair alpha = {b0.alpha, b1.alpha};
+    auto vertex = [&](int v) {
+      return blend_pair(point_pair(mesh0.key_position(b0.k, vs0[v]), mesh1.key_position(b1.k, vs1[v])),
+                        point_pair(mesh0.key_position(b0.k + 1, vs0[v]), mesh1.key_position(b1.k + 1, vs1[v])),
+                        alpha);
+    };
+    CachedPlane& c0 = m_cache[t0 % kPlaneCache];
+    CachedPlane& c1 = m_cache[t1 % kPlaneCache];
+    TrianglePlane plane1 = c1.plane;
+    triangle_plane_pair(vertex(0), vertex(1), vertex(2), c0.plane, plane1);
+    c0.tri = t0;
+    c0.mesh_id = mesh0.id;
+    c0.local = local0;
+    c1.tri = t1;
+    c1.mesh_id = mesh1.id;
+    c1.local = local1;
+    c1.plane = plane1;
   }
 
   /// Pixel (i, j) whose front does not pierce its ray at now: the nearest member that does, at
