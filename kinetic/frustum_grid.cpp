@@ -206,9 +206,8 @@ class RowReader {
     const int width = m_width;
     // Background comes in long runs (a few per row), filled in bulk; the covered runs between
     // them are noted, with the triangles whose planes are not in the cache. Those planes are
-    // computed before any depth: a miss found pixel by pixel would be a mispredicted branch that
-    // also stalls on its loads (the triangle's vertices, usually evicted by the events), while in
-    // one loop the misses' loads overlap.
+    // computed before any depth, two at a time: a miss met pixel by pixel would be a mispredicted
+    // branch each time.
     m_segments.clear();
     size_t missing = 0;
     int i = 0;
@@ -270,7 +269,7 @@ class RowReader {
 
  private:
   /// A triangle meets a few consecutive rows: the planes of recent rows are kept in a small
-  /// direct-mapped cache (the same plane_of values, so the same depths bit for bit).
+  /// direct-mapped cache (plane_of's values bit for bit, also from fill_pair, so the same depths).
   struct CachedPlane {
     uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
     TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
