@@ -2,11 +2,17 @@
 // A minimal fork-join loop over [0, n) in contiguous chunks; the callers' work items (rows,
 // bands, keys) are coarse, so no work stealing is needed. Items of very uneven cost (the bands of
 // the kinetic grid: the events gather where the geometry moves) are handed out one at a time.
+// The chunks run on the shared ThreadPool (no thread is started per call, which matters for the
+// per-frame loops); a nested or concurrent call, which the pool does not take, starts threads.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
+
+#include "kinetic/thread_pool.h"
 
 namespace kinray {
 
@@ -17,7 +23,9 @@ inline int resolve_threads(int requested) {
   return n == 0 ? 1 : int(n);
 }
 
-/// Calls f(begin, end) on `threads` contiguous chunks of [0, n) in parallel.
+/// Calls f(begin, end) once on each of min(threads, n) contiguous chunks of [0, n), in parallel
+/// (the chunks may share threads: a worker that is slow to start leaves its chunk to the others).
+/// An exception thrown by f is rethrown here once every chunk has returned.
 template <class F>
 void parallel_chunks(size_t n, int threads, F&& f) {
   const size_t workers = std::min<size_t>(size_t(resolve_threads(threads)), std::max<size_t>(n, 1));
@@ -25,12 +33,31 @@ void parallel_chunks(size_t n, int threads, F&& f) {
     f(size_t(0), n);
     return;
   }
+  struct Context {
+    F& f;
+    size_t n, workers;
+  } context{f, n, workers};
+  const ThreadPool::Task chunk = [](void* c, size_t w) {
+    const Context& run = *static_cast<Context*>(c);
+    run.f(run.n * w / run.workers, run.n * (w + 1) / run.workers);
+  };
+  if (ThreadPool::shared().try_run(workers, workers - 1, chunk, &context)) return;
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  const auto guarded = [&](size_t w) {
+    try {
+      f(n * w / workers, n * (w + 1) / workers);
+    } catch (...) {
+      std::lock_guard lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
-  for (size_t w = 1; w < workers; ++w)
-    pool.emplace_back([&, w] { f(n * w / workers, n * (w + 1) / workers); });
-  f(size_t(0), n / workers);
+  for (size_t w = 1; w < workers; ++w) pool.emplace_back(guarded, w);
+  guarded(0);
   for (auto& thread : pool) thread.join();
+  if (error) std::rethrow_exception(error);
 }
 
 /// Calls f(i) for every i in [0, n), in parallel chunks.
