@@ -4,13 +4,9 @@
 // round-trip exactly, and a corrupted reference frame (IDs or colours) is caught with its diff
 // images written; missing or stale references fail with a message that says how to record them;
 // `kinray regress` as a user runs it. Tests never write into images/regression.
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -19,6 +15,7 @@
 #include "renderer/frame.h"
 #include "renderer/image_io.h"
 #include "renderer/regression_suite.h"
+#include "tests/tools/kinray_process.h"
 
 namespace kinray {
 namespace {
@@ -217,42 +214,25 @@ TEST(RegressionSuite, MissingModelIsSkippedAndAnUnknownCaseIsAnInputError) {
   EXPECT_EQ(find_regression_case("cloth").name, "cloth");
 }
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
-
-CommandRun kinray(const std::string& args, const fs::path& folder) {
-  const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
-  const int status = std::system((std::string(KINRAY_BINARY) + " " + args + " > " + out + " 2> " + err).c_str());
-  auto read = [](const std::string& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read(out), read(err)};
-}
-
 TEST(RegressCommand, UpdatesThenPassesThenCatchesACorruptedReference) {
   const fs::path folder = scratch("command");
   const std::string refs = (folder / "refs").string(), report = (folder / "report").string();
   const std::string common = " --case wavy-sphere --threads 2 --references " + refs + " --report " + report;
-  CommandRun run = kinray("regress --update-references" + common, folder);
+  test::CommandRun run = test::run_kinray("regress --update-references" + common, folder);
   ASSERT_EQ(run.status, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("updated"), std::string::npos) << run.out;
-  run = kinray("regress" + common, folder);
+  run = test::run_kinray("regress" + common, folder);
   EXPECT_EQ(run.status, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("passed"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("1 passed"), std::string::npos) << run.out;
 
   erase_block(folder / "refs" / "wavy-sphere" / "id_00000.png", 48, 36, 4);
-  run = kinray("regress" + common, folder);
+  run = test::run_kinray("regress" + common, folder);
   EXPECT_EQ(run.status, 1) << run.out << run.err;
   EXPECT_NE(run.out.find("FAILED"), std::string::npos) << run.out;
   EXPECT_TRUE(fs::is_regular_file(folder / "report" / "wavy-sphere" / "reference_diff_00000.png"));
 
-  run = kinray("regress --case no-such-case --references " + refs, folder);
+  run = test::run_kinray("regress --case no-such-case --references " + refs, folder);
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.err.find("--case"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("wavy-sphere"), std::string::npos) << "the error lists the cases: " << run.err;

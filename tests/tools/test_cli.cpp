@@ -1,10 +1,8 @@
 // The kinray program as a user runs it: bad input gives one line on stderr and a non-zero exit
 // without touching earlier output; good input writes the expected files.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -18,6 +16,7 @@
 #include "renderer/render_job.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "tests/tools/kinray_process.h"
 
 namespace kinray {
 namespace {
@@ -26,17 +25,8 @@ namespace fs = std::filesystem;
 
 constexpr const char* kTinyScene = "wavy-sphere:triangles=600";
 
-struct Invocation {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
+using Invocation = test::CommandRun;
+using test::read_text;
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> result;
@@ -57,19 +47,7 @@ class Cli : public ::testing::Test {
   void TearDown() override { fs::remove_all(m_dir); }
 
   /// Runs `kinray <args>` with stdin closed and stdout/stderr captured.
-  Invocation kinray(const std::string& args) const {
-    const fs::path out = m_dir / "stdout.txt", err = m_dir / "stderr.txt";
-    const std::string command = std::string("'") + KINRAY_BINARY + "' " + args + " </dev/null >'" +
-                                out.string() + "' 2>'" + err.string() + "'";
-    const int raw = std::system(command.c_str());
-    Invocation run;
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.out = read_text(out);
-    run.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return run;
-  }
+  [[nodiscard]] Invocation kinray(const std::string& args) const { return test::run_kinray(args, m_dir); }
   [[nodiscard]] std::string path(const std::string& name) const { return (m_dir / name).string(); }
 
   fs::path m_dir;

@@ -1,27 +1,22 @@
 // `kinray diff` as a user runs it: exit status, table, JSON summary, report folder, bad flags.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "scenes/scene_file.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "tests/tools/kinray_process.h"
 
 namespace kinray {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
+using test::CommandRun;
 
 /// Runs `kinray diff ARGS` with its output captured.
 CommandRun kinray_diff(const std::string& args) {
@@ -30,17 +25,7 @@ CommandRun kinray_diff(const std::string& args) {
   const fs::path folder = fs::path(::testing::TempDir()) /
                           ("kinray_diff_command_" + std::string(test->test_suite_name()) + "_" + test->name());
   fs::create_directories(folder);
-  const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
-  const std::string command =
-      std::string(KINRAY_BINARY) + " diff " + args + " > " + out + " 2> " + err;
-  const int status = std::system(command.c_str());
-  auto read = [](const std::string& path) {
-    std::ifstream file(path);
-    std::stringstream text;
-    text << file.rdbuf();
-    return text.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read(out), read(err)};
+  return test::run_kinray("diff " + args, folder);
 }
 
 /// A fresh, empty scratch folder for one test.

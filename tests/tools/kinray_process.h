@@ -1,0 +1,43 @@
+#pragma once
+// Runs the kinray program as a user does, for the tests of its commands: the exit status and
+// what it printed on stdout and stderr.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace kinray::test {
+
+struct CommandRun {
+  int status = -1;  ///< the exit status, -1 if killed by a signal
+  std::string out, err;
+};
+
+/// The whole of a file (empty if it cannot be read).
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+/// Runs `kinray ARGS` with stdin closed; its output is captured through two files in `folder`
+/// (which must exist), removed afterwards.
+inline CommandRun run_kinray(const std::string& args, const std::filesystem::path& folder) {
+  const std::filesystem::path out = folder / "stdout.txt", err = folder / "stderr.txt";
+  const std::string command = std::string("'") + KINRAY_BINARY + "' " + args + " </dev/null >'" +
+                              out.string() + "' 2>'" + err.string() + "'";
+  const int raw = std::system(command.c_str());
+  CommandRun run;
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  run.out = read_text(out);
+  run.err = read_text(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return run;
+}
+
+}  // namespace kinray::test
