@@ -10,6 +10,7 @@
 #include "kinetic/kinetic_heap.h"
 #include "kinetic/kinetic_sorted_list.h"
 #include "kinetic/kinetic_tournament.h"
+#include "kinetic/root_finding.h"
 
 namespace kinray {
 
@@ -215,16 +216,11 @@ double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const Mesh
   // lies in it, or its line passes through the eye), and n_y, when n_x vanishes too, where n = 0.
   // Those are scheduled like any other crossing, so the slots never hold a stale perturbed sign.
   if (f.is_zero()) return sign > 0 ? kInf : m_now;
-  if (f.degree == 1) {
-    // A vertex's row side. Most vertices lie outside a band's rows all segment long, and each
-    // band watches every vertex at every key: first_failure's own test, inlined. Horner's
-    // c0 + c1 s is monotone in s, so holding now and at the segment's end means holding between.
-    const double c0 = sign > 0 ? f.c[0] : -f.c[0], c1 = sign > 0 ? f.c[1] : -f.c[1];
-    const double s_now = m_now - seg.origin, s_end = seg.end - seg.origin;
-    const double v = c0 + c1 * s_now;
-    if ((v > 0 || (v == 0 && c1 > 0)) && (c1 > 0 || (std::isfinite(s_end) && c0 + c1 * s_end > 0)))
-      return kInf;
-  }
+  // A vertex's row side: most vertices lie outside a band's rows all segment long, and each band
+  // watches every vertex at every key, so first_failure's quick answer is taken without the call.
+  if (f.degree == 1 && linear_holds_through(sign > 0 ? f.c[0] : -f.c[0], sign > 0 ? f.c[1] : -f.c[1],
+                                            m_now - seg.origin, seg.end - seg.origin))
+    return kInf;
   return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_now, seg.end);
 }
 

@@ -385,6 +385,10 @@ std::optional<double> first_failure(const Polynomial& f, double s_now, double s_
   if (n <= 1) {
     // Horner's value c0 + c1 s, as operator() and sign_after compute it.
     const double c0 = f.c[0], c1 = n == 1 ? f.c[1] : 0.0;
+    if (n == 1 && linear_holds_through(c0, c1, s_now, s_end)) {
+      ++t_stats.fast_path_no_root;
+      return std::nullopt;
+    }
     const double v = n == 1 ? c0 + c1 * s_now : c0;
     const int now_sign = v != 0 ? sign_of(v) : sign_of(c1);
     if (now_sign == 0) return std::nullopt;  // zero polynomial

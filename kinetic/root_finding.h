@@ -2,6 +2,7 @@
 // Certified failure times of certificates f > 0: Bernstein fast path, de Casteljau isolation,
 // Illinois / bisection refinement. See docs/kinetic_core.md, "Kinetic core".
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -22,6 +23,15 @@ namespace kinray {
 /// The result r > s_now satisfies sign_after(f, r) < 0 as evaluated in double, so a certificate
 /// -f rebuilt at r holds just after r (no re-firing at the same instant).
 [[nodiscard]] std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end);
+
+/// The linear certificate c0 + c1 s > 0 holds just after s_now and at s_end (as Horner's rule
+/// evaluates it, which is monotone in s), so nowhere in between does it fail: first_failure's
+/// quick "no failure" for degree 1, also taken inline by callers that schedule many such
+/// certificates (every band watches every vertex's row sides at every key).
+[[nodiscard]] inline bool linear_holds_through(double c0, double c1, double s_now, double s_end) {
+  const double v = c0 + c1 * s_now;
+  return (v > 0 || (v == 0 && c1 > 0)) && (c1 > 0 || (std::isfinite(s_end) && c0 + c1 * s_end > 0));
+}
 
 /// All sign changes (either direction) in (s0, s1], ascending; for tests and audits.
 /// Each reported point r is where the evaluated sign_after(f, r) takes the new sign.
