@@ -76,12 +76,24 @@ struct Camera {
                            double fov_y_degrees);
 };
 
+/// A light in world space. Point lights shine from `position` in every direction; directional
+/// lights shine along `direction` (from the light towards the scene), as from infinitely far.
+struct Light {
+  enum class Kind { point, directional };
+  Kind kind = Kind::point;
+  Vec3 position = Vec3::Zero();            ///< point lights
+  Vec3 direction = Vec3(0, 0, -1);         ///< directional lights, unit length
+  Color color = Color(1.0f, 1.0f, 1.0f);   ///< linear RGB intensity
+};
+
 struct Scene {
   std::string name;
   std::vector<Object> objects;
   std::vector<Material> materials = {Material{}};
   std::vector<Texture> textures;
   Camera camera;
+  /// Lights of the scene; empty means the renderer's headlight (a light at the eye, no shadows).
+  std::vector<Light> lights;
   double time_begin = 0;  ///< the shot, in seconds
   double time_end = 1;
 
