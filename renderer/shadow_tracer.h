@@ -13,6 +13,11 @@
 
 namespace kinray {
 
+/// What traces the kinetic backend's shadow rays (`--shadow-tree`): a kinetic AABB tree, a
+/// kinetic BoxTree, the same AABB tree updated bottom-up at every frame, or every triangle
+/// tested (brute force, the reference for small scenes).
+enum class ShadowTree { aabb, boxtree, refit, brute };
+
 /// One shadow ray in the camera space the backends share (fov-normalized, scenes/camera_space.h):
 /// the points origin + s * direction for 0 < s < s_max.
 struct ShadowRay {
