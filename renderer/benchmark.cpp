@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "renderer/chart.h"
+#include "renderer/embree_backend.h"
 #include "kinetic/parallel.h"
 #include "renderer/image_diff.h"
 #include "scenes/error.h"
@@ -130,7 +131,9 @@ BenchPoint measure(const BenchParams& bench, const Configuration& config) {
 
   FrameComparator comparator(job.camera_space());
   const BackendConfig base_config = backend_config(params);
-  for (const EmbreeMode& mode : bench.embree_modes) {
+  const std::vector<EmbreeMode> embree_modes =
+      bench.embree_modes.empty() ? default_embree_modes(params.threads) : bench.embree_modes;
+  for (const EmbreeMode& mode : embree_modes) {
     BackendConfig config_embree = base_config;
     config_embree.embree_mode = mode.build;
     config_embree.embree_packet = mode.packet;
@@ -171,12 +174,15 @@ BenchPoint measure(const BenchParams& bench, const Configuration& config) {
         point.kinetic_ms_per_frame > 0 ? best->ms_per_frame / point.kinetic_ms_per_frame : 0;
   }
 
-  // One Embree scene built from nothing and traced once: what initialisation is set beside.
+  // One Embree scene built from nothing and traced once (the widest packets up to 8 this machine
+  // has): what initialisation is set beside.
+  const std::vector<int> widths = embree_packet_widths(config.threads);
+  const int first_packet = *std::prev(std::upper_bound(widths.begin(), widths.end(), 8));
   std::vector<double> first;
   for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
     BackendConfig config_embree = base_config;
     config_embree.embree_mode = "rebuild";
-    config_embree.embree_packet = 8;
+    config_embree.embree_packet = first_packet;
     const auto start = Clock::now();
     std::unique_ptr<Backend> backend = make_backend("embree", job.camera_space(), config_embree);
     Frame frame;
@@ -215,6 +221,15 @@ std::vector<int> parse_int_list(const std::string& text, const std::string& flag
   return values;
 }
 
+std::vector<EmbreeMode> default_embree_modes(int threads) {
+  const std::vector<int> widths = embree_packet_widths(threads);
+  std::vector<EmbreeMode> modes;
+  for (const EmbreeMode& mode : std::initializer_list<EmbreeMode>{
+           {"rebuild", 1}, {"rebuild", 8}, {"refit", 1}, {"refit", 4}, {"refit", 8}, {"refit", 16}})
+    if (std::find(widths.begin(), widths.end(), mode.packet) != widths.end()) modes.push_back(mode);
+  return modes;
+}
+
 std::vector<EmbreeMode> parse_embree_modes(const std::string& text) {
   std::vector<EmbreeMode> modes;
   std::stringstream in(text);
@@ -235,7 +250,12 @@ std::vector<EmbreeMode> parse_embree_modes(const std::string& text) {
 void validate(const BenchParams& params) {
   validate(params.base);
   if (params.inbetweens.empty()) throw InputError("--inbetweens", "the list is empty");
-  if (params.embree_modes.empty()) throw InputError("--embree-modes", "the list is empty");
+  const std::vector<int> widths = embree_packet_widths(params.base.threads);
+  for (const EmbreeMode& mode : params.embree_modes)
+    if (std::find(widths.begin(), widths.end(), mode.packet) == widths.end())
+      throw InputError("--embree-modes", "this machine's Embree has no native " +
+                                             std::to_string(mode.packet) + "-wide ray packets (" +
+                                             mode.name() + ")");
   if (params.repetitions < 1) throw InputError("--repetitions", "must be at least 1");
   if (params.reference_frames < 1) throw InputError("--reference-frames", "must be at least 1");
   if (params.base.frames || params.base.fps)

@@ -33,14 +33,17 @@ struct BenchParams {
   std::vector<int> triangles;             ///< built-in scenes only: values of the triangles= parameter
   std::vector<std::pair<int, int>> sizes; ///< empty: base size
   std::vector<int> threads;               ///< empty: base threads
-  std::vector<EmbreeMode> embree_modes = {{"rebuild", 1}, {"rebuild", 8}, {"refit", 1},
-                                          {"refit", 4},   {"refit", 8},   {"refit", 16}};
+  /// Empty: default_embree_modes(), what this machine's Embree offers.
+  std::vector<EmbreeMode> embree_modes;
   int repetitions = 3;            ///< medians over this many runs of each measurement
   int reference_frames = 12;      ///< frames per Embree mode, evenly spread over the schedule
 };
 
 /// Parses "1,4,16" into positive integers. Throws InputError naming `flag`.
 [[nodiscard]] std::vector<int> parse_int_list(const std::string& text, const std::string& flag);
+/// The default peers: rebuild/1, rebuild/8, refit/1, refit/4, refit/8, refit/16, less the packet
+/// widths this machine's Embree does not trace natively (16 needs AVX-512).
+[[nodiscard]] std::vector<EmbreeMode> default_embree_modes(int threads = 0);
 /// Parses "rebuild/1,refit/8" into Embree modes. Throws InputError naming --embree-modes.
 [[nodiscard]] std::vector<EmbreeMode> parse_embree_modes(const std::string& text);
 /// Throws InputError naming the flag at fault.

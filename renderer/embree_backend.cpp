@@ -4,7 +4,9 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -64,6 +66,16 @@ const char* error_name(RTCError code) {
   return "error";
 }
 
+/// Embree's device configuration. threads=N bounds Embree's build threads like the render threads
+/// (0 lets it use all cores). KINRAY_EMBREE_CONFIG is appended: "isa=avx2", for example, runs
+/// Embree as on a CPU without AVX-512, which the tests must pass on too.
+std::string device_config(int threads) {
+  std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
+  if (const char* extra = std::getenv("KINRAY_EMBREE_CONFIG"); extra && *extra)
+    config += (config.empty() ? "" : ",") + std::string(extra);
+  return config;
+}
+
 /// The one Embree device of the process (creating a device starts Embree's task scheduler, so it
 /// is made once and shared by every backend). Errors reported through the callback are recorded
 /// and turned into exceptions by check().
@@ -85,9 +97,7 @@ class Device {
 
  private:
   explicit Device(int threads) : m_threads(threads) {
-    // threads=N bounds Embree's build threads like the render threads; 0 lets it use all cores.
-    const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
-    m_device = rtcNewDevice(config.c_str());
+    m_device = rtcNewDevice(device_config(threads).c_str());
     if (!m_device)
       throw std::runtime_error(std::string("cannot create an Embree device: ") +
                                error_name(rtcGetDeviceError(nullptr)));
@@ -151,6 +161,21 @@ struct Mesh {
   std::span<const Vec3> positions;  ///< the double positions Embree was given this frame
 };
 
+std::string join_widths(const std::vector<int>& widths) {
+  std::string text;
+  for (int w : widths) text += (text.empty() ? "" : ", ") + std::to_string(w);
+  return text;
+}
+
+/// Ray packet widths the device traces natively: 1, then 4, 8, 16 where supported.
+std::vector<int> native_packet_widths(RTCDevice device) {
+  std::vector<int> widths = {1};
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) widths.push_back(4);
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) widths.push_back(8);
+  if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) widths.push_back(16);
+  return widths;
+}
+
 class EmbreeBackend final : public Backend {
  public:
   EmbreeBackend(const CameraSpaceScene& scene, const BackendConfig& config)
@@ -161,16 +186,6 @@ class EmbreeBackend final : public Backend {
         m_refit(config.embree_mode == "refit") {
     const RTCDevice device = m_device.handle();
     const uint64_t mark = m_device.error_count();
-    if (m_config.embree_packet > 1) {
-      const RTCDeviceProperty property =
-          m_config.embree_packet == 4   ? RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED
-          : m_config.embree_packet == 8 ? RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED
-                                        : RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED;
-      if (!rtcGetDeviceProperty(device, property))
-        throw InputError("--packet", "this Embree build has no " +
-                                         std::to_string(m_config.embree_packet) +
-                                         "-wide ray packets");
-    }
     m_meshes.resize(scene.objects.size());
     for (size_t o = 0; o < scene.objects.size(); ++o) {
       const CameraSpaceObject& cs = scene.objects[o];
@@ -266,13 +281,8 @@ class EmbreeBackend final : public Backend {
       return sum;
     };
     const RTCDevice device = m_device.handle();
-    std::vector<int> packets;
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED))
-      packets.push_back(4);
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED))
-      packets.push_back(8);
-    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED))
-      packets.push_back(16);
+    std::vector<int> packets = native_packet_widths(device);
+    packets.erase(packets.begin());  // 1 is not a packet
     stats["embree"] = {
         {"version", rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION)},
         {"mode", m_refit ? "refit" : "rebuild"},
@@ -488,7 +498,16 @@ std::unique_ptr<Backend> make_embree_backend(const CameraSpaceScene& scene,
   if (config.width <= 0 || config.height <= 0)
     throw InputError("--size", "width and height must be positive");
   if (config.threads < 0) throw InputError("--threads", "must be 0 (all cores) or more");
+  const std::vector<int> widths = embree_packet_widths(config.threads);
+  if (std::find(widths.begin(), widths.end(), config.embree_packet) == widths.end())
+    throw InputError("--packet", "this machine's Embree has no native " +
+                                     std::to_string(config.embree_packet) +
+                                     "-wide ray packets (its widths: " + join_widths(widths) + ")");
   return std::make_unique<EmbreeBackend>(scene, config);
+}
+
+std::vector<int> embree_packet_widths(int threads) {
+  return native_packet_widths(Device::get(threads).handle());
 }
 
 }  // namespace kinray

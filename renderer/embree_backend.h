@@ -21,6 +21,7 @@
 // positions (DESIGN.md, "Depth order"), so that depths from different backends compare exactly.
 // The object and primitive ids are Embree's.
 #include <memory>
+#include <vector>
 
 #include "renderer/backend.h"
 
@@ -28,6 +29,12 @@ namespace kinray {
 
 /// Creates the Embree backend for `scene` (which must outlive it). Throws InputError for a bad
 /// embree_mode or packet width, std::runtime_error when Embree reports an error.
+/// The ray packet widths this machine's Embree traces natively, ascending: 1 always, and 4, 8
+/// and 16 where the build and the CPU have them (16 needs AVX-512). Other widths are refused.
+/// The process has one Embree device: the first call here or to make_embree_backend creates it,
+/// with `threads` build threads (0: all cores).
+[[nodiscard]] std::vector<int> embree_packet_widths(int threads = 0);
+
 [[nodiscard]] std::unique_ptr<Backend> make_embree_backend(const CameraSpaceScene& scene,
                                                            const BackendConfig& config);
 

@@ -81,7 +81,7 @@ void register_bench_command(CLI::App& app) {
   command->add_option("--sizes", options->sizes, "Sweep: image sizes, a list 256x256,512x512,...");
   command->add_option("--thread-counts", options->thread_counts, "Sweep: thread counts, a list 1,2");
   command->add_option("--embree-modes", options->embree_modes,
-                      "Embree peers as BUILD/PACKET, a list (default rebuild/1,rebuild/8,refit/1,refit/4,refit/8,refit/16)");
+                      "Embree peers as BUILD/PACKET, a list (default rebuild/1,rebuild/8,refit/1,refit/4,refit/8,refit/16, less the packet widths this machine lacks)");
   command->add_option("--repetitions", options->repetitions, "Medians over this many runs")->capture_default_str();
   command->add_option("--reference-frames", options->reference_frames,
                       "Frames per Embree mode, spread over the shot")->capture_default_str();
