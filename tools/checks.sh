@@ -62,11 +62,15 @@ case "$mode" in
       runs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "build-fuzz/fuzz_$name.log" | grep -o '[0-9]*$' || true)"
       echo "checks: fuzz_$name: ${runs:-?} inputs in $((SECONDS - start)) s"
     done
+    passed=0
+    for name in "${names[@]}"; do [[ -n "$name" ]] && passed=$((passed + 1)); done
+    passed=$((passed - ${#failed[@]}))
+    # The closing line in the plain form CI reads: harnesses that ran clean and that found something.
+    echo "fuzz: $passed passed, ${#failed[@]} failed"
     if ((${#failed[@]} > 0)); then
-      echo "checks: fuzzing failed: ${failed[*]}" >&2
+      echo "checks: fuzzing found problems in: ${failed[*]}" >&2
       exit 1
     fi
-    echo "checks: every fuzz harness ran clean"
     ;;
   *)
     echo "usage: bash tools/checks.sh sanitize|fuzz [NAME]" >&2
