@@ -964,7 +964,9 @@ void FrustumBand<Sort>::handle_boundary(uint32_t id) {
     schedule_boundary(id, en, &edge);
     return;
   }
-  const auto [lo, hi] = m_columns.watched(st.slot);
+  // Plain ints, not a structured binding: clang 14 (the fuzz build) cannot capture one.
+  const std::pair<int, int> watched = m_columns.watched(st.slot);
+  const int lo = watched.first, hi = watched.second;
   const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
   const bool changed_lo = gl != st.sign_lo, changed_hi = gh != st.sign_hi;
   if (st.slot == 0 && sign_plus(boundary_front(en, b.row), en.s) < 0) {
@@ -1034,7 +1036,9 @@ void FrustumBand<Sort>::handle_vertex(uint32_t v) {
   double s = 0;
   const PointMotion p = vertex_now(v, s);
   auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
-  const auto [lo, hi] = m_rows.watched(st.slot);
+  // Plain ints, not a structured binding: clang 14 (the fuzz build) cannot capture one.
+  const std::pair<int, int> watched = m_rows.watched(st.slot);
+  const int lo = watched.first, hi = watched.second;
   const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
   const bool changed_lo = gl != st.sign_lo, changed_hi = gh != st.sign_hi;
   if (!changed_lo && !changed_hi) {

@@ -10,11 +10,9 @@
 
 namespace kinray {
 
-namespace {
-
-GridInput grid_input(const CameraSpaceScene& scene, const BackendConfig& config) {
+GridInput kinetic_grid_input(const CameraSpaceScene& scene, int width, int height) {
   GridInput input;
-  input.rays = PixelRays{config.width, config.height};
+  input.rays = PixelRays{width, height};
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const CameraSpaceObject& cs = scene.objects[o];
     GridMesh mesh;
@@ -30,6 +28,8 @@ GridInput grid_input(const CameraSpaceScene& scene, const BackendConfig& config)
   }
   return input;
 }
+
+namespace {
 
 class KineticBackend final : public Backend {
  public:
@@ -55,7 +55,8 @@ class KineticBackend final : public Backend {
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
     if (!m_grid) {
-      m_grid = std::make_unique<FrustumGrid>(grid_input(m_scene, m_config), t, m_grid_config);
+      m_grid = std::make_unique<FrustumGrid>(
+          kinetic_grid_input(m_scene, m_config.width, m_config.height), t, m_grid_config);
     } else {
       m_grid->advance_to(t);
     }

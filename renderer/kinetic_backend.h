@@ -10,9 +10,14 @@
 // BackendConfig: width, height, threads, sort (list | tournament | heap), audit.
 #include <memory>
 
+#include "kinetic/grid_input.h"
 #include "renderer/backend.h"
 
 namespace kinray {
+
+/// The kinetic grid's view of `scene` at `width` x `height`: its objects' camera-space flightplans
+/// (spans into `scene`, which must outlive the result) and the pixel-centre rays.
+[[nodiscard]] GridInput kinetic_grid_input(const CameraSpaceScene& scene, int width, int height);
 
 /// Creates the kinetic backend for `scene` (which must outlive it). Throws InputError naming
 /// --sort for an unknown depth sort. Frame times must not decrease between render calls.

@@ -5,13 +5,16 @@
 #   bash tools/setup.sh render   # install, build, render wavy-sphere to out/wavy-sphere/ (default)
 #   bash tools/setup.sh test     # install, build, run every test (ctest)
 #   bash tools/setup.sh build    # install and build only
+#   bash tools/setup.sh sanitize # install, build into build-sanitize/ with ASan + UBSan, run every test
+#   bash tools/setup.sh fuzz     # install clang too, build the libFuzzer harnesses into build-fuzz/,
+#                                # run each for KINRAY_FUZZ_SECONDS (default 30) from its corpus
 set -euo pipefail
 
 mode="${1:-render}"
 case "$mode" in
-  render | test | build) ;;
+  render | test | build | sanitize | fuzz) ;;
   *)
-    echo "usage: bash tools/setup.sh [render|test|build]" >&2
+    echo "usage: bash tools/setup.sh [render|test|build|sanitize|fuzz]" >&2
     exit 2
     ;;
 esac
@@ -25,6 +28,8 @@ packages=(
   libopencv-imgcodecs-dev libopencv-imgproc-dev libopencv-videoio-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
 )
+# libFuzzer comes with clang's runtime; only the fuzz mode needs them.
+if [[ "$mode" == fuzz ]]; then packages+=(clang-14 libclang-rt-14-dev); fi
 
 # dpkg-query answers in milliseconds, so a machine that has everything never touches apt.
 missing=()
@@ -41,6 +46,11 @@ if ((${#missing[@]} > 0)); then
   fi
   "${sudo[@]}" apt-get update
   "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+# The sanitizer and fuzz builds live in folders of their own (tools/checks.sh).
+if [[ "$mode" == sanitize || "$mode" == fuzz ]]; then
+  exec bash tools/checks.sh "$mode"
 fi
 
 echo "setup: building into build/"

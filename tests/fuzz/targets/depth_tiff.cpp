@@ -1,0 +1,8 @@
+// The depth buffer reader (renderer/image_io.h), which `kinray regress` runs on reference folders.
+#include "renderer/image_io.h"
+#include "tests/fuzz/fuzz_target.h"
+
+KINRAY_FUZZ_TARGET(depth_tiff) {
+  kinray::Frame frame;
+  kinray::read_depth_tiff(kinray::fuzz::write_scratch_file("depth.tiff", bytes), frame);
+}
