@@ -42,6 +42,7 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
   std::string name(1, '.');
   name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid()));
   m_temporary = (target.parent_path() / name.append(extension)).string();
+  m_interrupt_cleanup.emplace(m_temporary);
   if (!(fps > 0) || !std::isfinite(fps)) fps = 24;
   const char* codecs_mp4[] = {"avc1", "mp4v"};
   const char* codecs_avi[] = {"MJPG"};
@@ -92,7 +93,7 @@ void VideoWriter::close() {
   if (error) {
     std::error_code ignored;
     std::filesystem::remove(m_temporary, ignored);
-    throw InputError(m_path, "cannot write: " + error.message());
+    throw std::runtime_error(m_path + ": cannot write: " + error.message());
   }
 }
 

@@ -3,9 +3,11 @@
 // 'mp4v'), .avi as Motion JPEG. The video is written under a temporary name beside the target and
 // renamed into place by close(), so an interrupted render never leaves a torn video.
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <string>
 
 #include "renderer/frame.h"
+#include "renderer/temporary_files.h"
 
 namespace kinray {
 
@@ -33,6 +35,7 @@ class VideoWriter {
  private:
   std::string m_path, m_temporary, m_codec;
   int m_width = 0, m_height = 0, m_frames = 0;
+  std::optional<TemporaryFile> m_interrupt_cleanup;  ///< removes m_temporary on Ctrl-C
   cv::VideoWriter m_writer;
   bool m_closed = false;
 };
