@@ -137,7 +137,8 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
     // A device or a pipe (/dev/stdout) cannot be replaced by a rename: it is written in place.
     std::FILE* file = std::fopen(path.c_str(), "wb");
     if (!file) write_failed(path, std::strerror(errno));
-    if (const int error_number = write_and_close(file, bytes)) write_failed(path, std::strerror(error_number));
+    if (const int error_number = write_and_close(file, bytes))
+      write_failed(path, std::strerror(error_number));
     return;
   }
   // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "." + std::string.

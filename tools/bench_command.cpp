@@ -88,8 +88,10 @@ void register_bench_command(CLI::App& app) {
   command->add_option("--reference-frames", options->reference_frames,
                       "Frames per Embree mode, spread over the shot")->capture_default_str();
   output_path(command->add_option("--json", options->json, "Write the results as JSON"));
-  output_path(command->add_option("--csv", options->csv, "Write one row per configuration and backend mode as CSV"));
-  output_path(command->add_option("--charts", options->charts, "Write PNG charts of each sweep into this folder"));
+  output_path(command->add_option("--csv", options->csv,
+                                  "Write one row per configuration and backend mode as CSV"));
+  output_path(command->add_option("--charts", options->charts,
+                                  "Write PNG charts of each sweep into this folder"));
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options] { run_bench(*options); });
 }

@@ -164,10 +164,11 @@ void register_diff_command(CLI::App& app) {
       "--budget", options->budget,
       "Real mismatches allowed per frame: N pixels or P% of the pixels (default 0; 0.1% "
       "when osmesa is either side)");
-  output_path(command->add_option("--report", options->report,
-                      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the "
-                      "reference in dim grey), "
-                      "both shaded frames where a frame has real mismatches, and summary.json"));
+  output_path(command->add_option(
+      "--report", options->report,
+      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the "
+      "reference in dim grey), "
+      "both shaded frames where a frame has real mismatches, and summary.json"));
   output_path(command->add_option("--json", options->json, "Write the summary as JSON to FILE"));
   command->add_flag("-q,--quiet", options->render.params.quiet, "No progress bar and no table");
   command->callback([options] { run_diff(*options); });

@@ -62,9 +62,10 @@ int main(int argc, char** argv) {
   } catch (const kinray::InputError& e) {
     return fail(e.what(), 2);
   } catch (const std::bad_alloc&) {
-    return fail("out of memory: the machine could not provide the memory this command needs "
-                "(try a smaller --size, fewer triangles, or --backend embree)",
-                1);
+    return fail(
+        "out of memory: the machine could not provide the memory this command needs "
+        "(try a smaller --size, fewer triangles, or --backend embree)",
+        1);
   } catch (const std::exception& e) {
     return fail(e.what(), 1);
   }
