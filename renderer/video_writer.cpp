@@ -32,6 +32,10 @@ void VideoWriter::validate_path(const std::string& path) {
     throw InputError("--video", "'" + path + "' is a directory");
 }
 
+std::pair<int, int> VideoWriter::encoded_size(int width, int height) {
+  return {width & ~1, height & ~1};
+}
+
 VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
     : m_path(std::move(path)), m_width(width), m_height(height) {
   validate_path(m_path);

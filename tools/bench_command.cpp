@@ -1,6 +1,7 @@
 // kinray bench SCENE ...: the kinetic backend against every Embree mode on the same frames, in one
 // process, with the ID buffers checked while measuring. Sweeps vary one axis at a time around the
 // base configuration and are written as JSON, CSV and PNG charts.
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "renderer/benchmark.h"
 #include "renderer/image_io.h"
+#include "renderer/option_scope.h"
 #include "renderer/output_check.h"
 #include "scenes/error.h"
 #include "tools/cli_options.h"
@@ -44,6 +46,7 @@ BenchParams resolve(const BenchOptions& options) {
 
 void run_bench(const BenchOptions& options) {
   const BenchParams params = resolve(options);
+  check_options_apply(params.base, std::array<std::string, 2>{"kinetic", "embree"});
   // Flags and scene are checked before anything is measured or written.
   if (!options.json.empty()) check_output_file(options.json, "--json");
   if (!options.csv.empty()) check_output_file(options.csv, "--csv");

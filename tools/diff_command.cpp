@@ -3,6 +3,7 @@
 // mismatch (renderer/image_diff.h), prints a table, writes heat maps and a JSON summary, and exits
 // 0 only when every frame's real mismatches are within the budget. It takes the same scene, frame
 // and backend flags as `kinray render`. See docs/verification.md.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include "renderer/image_diff.h"
 #include "renderer/image_io.h"
+#include "renderer/option_scope.h"
 #include "renderer/output_check.h"
 #include "renderer/progress.h"
 #include "scenes/error.h"
@@ -91,6 +93,7 @@ void run_diff(const DiffOptions& options) {
   const Budget budget = options.budget.empty()
                             ? (rasterized ? Budget{kOsmesaBudgetFraction, true} : Budget{0, false})
                             : parse_budget(options.budget);
+  check_options_apply(params, std::array{params.backend, options.against});
   if (!options.report.empty()) check_output_folder(options.report, "--report");
   if (!options.json.empty()) check_output_file(options.json, "--json");
 

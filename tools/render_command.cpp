@@ -2,6 +2,7 @@
 // buffers, and a --stats JSON). Every flag is checked and the scene loaded before the first file
 // is touched, so bad input never harms earlier output.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <utility>
 
 #include "renderer/image_io.h"
+#include "renderer/option_scope.h"
 #include "renderer/output_check.h"
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
@@ -39,6 +41,7 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
 }
 
 void run_render(const RenderParams& params) {
+  check_options_apply(params, std::array{params.backend});
   const std::string out = output_folder(params);
   check_output_paths(out, params);
   RenderJob job(params);
@@ -51,6 +54,13 @@ void run_render(const RenderParams& params) {
     create_folder(fs::path(params.video).parent_path(), "--video");
     video = std::make_unique<VideoWriter>(params.video, params.width, params.height,
                                           video_fps(params, job.frame_times()));
+    const auto [width, height] = VideoWriter::encoded_size(params.width, params.height);
+    if (width != params.width || height != params.height)
+      std::fprintf(
+          stderr,
+          "kinray: warning: --video: video encoders need even sides, so the video is %dx%d "
+          "(the frames are %dx%d); give an even --size for a video of the frames' size\n",
+          width, height, params.width, params.height);
   }
   const bool write_id = std::find(params.aov.begin(), params.aov.end(), "id") != params.aov.end();
   const bool write_depth =
