@@ -5,7 +5,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -14,6 +13,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "renderer/image_io.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -389,10 +389,7 @@ std::string DiffSummary::to_json() const {
 }
 
 void DiffSummary::write_json(const std::string& path) const {
-  std::ofstream file(path);
-  file << to_json();
-  file.close();
-  if (!file) throw InputError(path, "cannot write the diff summary");
+  write_file_atomically(path, to_json());
 }
 
 }  // namespace kinray

@@ -113,7 +113,7 @@ struct DiffSummary {
   /// "mismatch_tie", "cracks", "psnr", "max_error", "heat_map"}]}; psnr is null for identical
   /// colours.
   [[nodiscard]] std::string to_json() const;
-  /// Writes to_json() to `path`; throws InputError when the file cannot be written.
+  /// Writes to_json() to `path` (write_file_atomically: std::runtime_error when the write fails).
   void write_json(const std::string& path) const;
 };
 

@@ -14,6 +14,7 @@
 #include <system_error>
 #include <vector>
 
+#include "renderer/temporary_files.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -108,27 +109,53 @@ cv::Mat depth_image(const Frame& frame) {
   return image;
 }
 
+namespace {
+
+/// Writes `bytes` into an open file and closes it; the errno of the first failure, or 0.
+int write_and_close(std::FILE* file, std::string_view bytes) {
+  int error_number = 0;
+  if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) error_number = errno;
+  if (std::fflush(file) != 0 && error_number == 0) error_number = errno;
+  if (std::fclose(file) != 0 && error_number == 0) error_number = errno;
+  return error_number;
+}
+
+/// A write that failed after the output was checked (disk full, I/O error): the machine's failure,
+/// not bad input, so std::runtime_error (exit status 1).
+[[noreturn]] void write_failed(const std::string& path, const std::string& problem) {
+  throw std::runtime_error(path + ": cannot write: " + problem);
+}
+
+}  // namespace
+
 void write_file_atomically(const std::string& path, std::string_view bytes) {
   const std::filesystem::path target(path);
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(target, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    // A device or a pipe (/dev/stdout) cannot be replaced by a rename: it is written in place.
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    if (!file) write_failed(path, std::strerror(errno));
+    if (const int error_number = write_and_close(file, bytes))
+      write_failed(path, std::strerror(error_number));
+    return;
+  }
   // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "." + std::string.
   std::string name(1, '.');
   name.append(target.filename().string()).append(".tmp").append(std::to_string(::getpid()));
-  const std::filesystem::path temporary = target.parent_path() / name;
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) throw InputError(path, std::string("cannot write: ") + std::strerror(errno));
-  int error_number = 0;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) error_number = errno;
-  if (std::fclose(file) != 0 && error_number == 0) error_number = errno;
-  std::error_code error;
-  if (error_number != 0) {
-    std::filesystem::remove(temporary, error);
-    throw InputError(path, std::string("cannot write: ") + std::strerror(error_number));
+  const TemporaryFile temporary((target.parent_path() / name).string());
+  std::FILE* file = std::fopen(temporary.path().c_str(), "wb");
+  if (!file) write_failed(path, std::strerror(errno));
+  if (const int error_number = write_and_close(file, bytes)) {
+    std::filesystem::remove(temporary.path(), error);
+    write_failed(path, std::strerror(error_number));
   }
-  std::filesystem::rename(temporary, target, error);
+  std::filesystem::rename(temporary.path(), target, error);
   if (error) {
     std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw InputError(path, "cannot write: " + error.message());
+    std::filesystem::remove(temporary.path(), ignored);
+    write_failed(path, error.message());
   }
 }
 

@@ -29,8 +29,10 @@ namespace kinray {
 /// The depth buffer image (CV_32FC1).
 [[nodiscard]] cv::Mat depth_image(const Frame& frame);
 
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
-/// Throws InputError naming the path when it cannot be written.
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename (an existing
+/// device or pipe, such as /dev/stdout, is written in place). Throws std::runtime_error naming the
+/// path when the write fails: outputs are checked beforehand (output_check.h), so a failure here
+/// is the machine's (disk full, I/O error).
 void write_file_atomically(const std::string& path, std::string_view bytes);
 /// Encodes `image` in the format of `path`'s extension (.png, .tiff, ...) and writes it atomically.
 void write_image(const std::string& path, const cv::Mat& image);

@@ -32,6 +32,10 @@ void VideoWriter::validate_path(const std::string& path) {
     throw InputError("--video", "'" + path + "' is a directory");
 }
 
+std::pair<int, int> VideoWriter::encoded_size(int width, int height) {
+  return {width & ~1, height & ~1};
+}
+
 VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
     : m_path(std::move(path)), m_width(width), m_height(height) {
   validate_path(m_path);
@@ -42,6 +46,7 @@ VideoWriter::VideoWriter(std::string path, int width, int height, double fps)
   std::string name(1, '.');
   name.append(target.stem().string()).append(".tmp").append(std::to_string(::getpid()));
   m_temporary = (target.parent_path() / name.append(extension)).string();
+  m_interrupt_cleanup.emplace(m_temporary);
   if (!(fps > 0) || !std::isfinite(fps)) fps = 24;
   const char* codecs_mp4[] = {"avc1", "mp4v"};
   const char* codecs_avi[] = {"MJPG"};
@@ -92,7 +97,7 @@ void VideoWriter::close() {
   if (error) {
     std::error_code ignored;
     std::filesystem::remove(m_temporary, ignored);
-    throw InputError(m_path, "cannot write: " + error.message());
+    throw std::runtime_error(m_path + ": cannot write: " + error.message());
   }
 }
 

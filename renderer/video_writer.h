@@ -3,9 +3,12 @@
 // 'mp4v'), .avi as Motion JPEG. The video is written under a temporary name beside the target and
 // renamed into place by close(), so an interrupted render never leaves a torn video.
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "renderer/frame.h"
+#include "renderer/temporary_files.h"
 
 namespace kinray {
 
@@ -13,6 +16,11 @@ class VideoWriter {
  public:
   /// Throws InputError naming --video unless `path` ends in .mp4 or .avi. Touches no file.
   static void validate_path(const std::string& path);
+
+  /// The size of the video made of `width` x `height` frames: every encoder used (H.264, MPEG-4
+  /// and, through FFmpeg, Motion JPEG) codes 4:2:0 chroma, so an odd last column or row is
+  /// dropped (measured: 33x25 frames give 32x24 .mp4 and .avi videos).
+  [[nodiscard]] static std::pair<int, int> encoded_size(int width, int height);
 
   /// Opens an encoder for `width` x `height` frames at `fps` frames per second. Throws InputError
   /// naming the path when no codec can be opened for it.
@@ -33,6 +41,7 @@ class VideoWriter {
  private:
   std::string m_path, m_temporary, m_codec;
   int m_width = 0, m_height = 0, m_frames = 0;
+  std::optional<TemporaryFile> m_interrupt_cleanup;  ///< removes m_temporary on Ctrl-C
   cv::VideoWriter m_writer;
   bool m_closed = false;
 };

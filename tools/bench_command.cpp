@@ -1,6 +1,7 @@
 // kinray bench SCENE ...: the kinetic backend against every Embree mode on the same frames, in one
 // process, with the ID buffers checked while measuring. Sweeps vary one axis at a time around the
 // base configuration and are written as JSON, CSV and PNG charts.
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,8 @@
 
 #include "renderer/benchmark.h"
 #include "renderer/image_io.h"
+#include "renderer/option_scope.h"
+#include "renderer/output_check.h"
 #include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
@@ -43,9 +46,11 @@ BenchParams resolve(const BenchOptions& options) {
 
 void run_bench(const BenchOptions& options) {
   const BenchParams params = resolve(options);
+  check_options_apply(params.base, std::array<std::string, 2>{"kinetic", "embree"});
   // Flags and scene are checked before anything is measured or written.
-  for (const std::string* path : {&options.json, &options.csv})
-    if (!path->empty() && std::filesystem::is_directory(*path)) throw InputError(*path, "is a folder");
+  if (!options.json.empty()) check_output_file(options.json, "--json");
+  if (!options.csv.empty()) check_output_file(options.csv, "--csv");
+  if (!options.charts.empty()) check_output_folder(options.charts, "--charts");
   const BenchReport report = run_benchmark(params, [&](const std::string& line) {
     if (!options.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   });
@@ -85,9 +90,11 @@ void register_bench_command(CLI::App& app) {
   command->add_option("--repetitions", options->repetitions, "Medians over this many runs")->capture_default_str();
   command->add_option("--reference-frames", options->reference_frames,
                       "Frames per Embree mode, spread over the shot")->capture_default_str();
-  command->add_option("--json", options->json, "Write the results as JSON");
-  command->add_option("--csv", options->csv, "Write one row per configuration and backend mode as CSV");
-  command->add_option("--charts", options->charts, "Write PNG charts of each sweep into this folder");
+  output_path(command->add_option("--json", options->json, "Write the results as JSON"));
+  output_path(command->add_option("--csv", options->csv,
+                                  "Write one row per configuration and backend mode as CSV"));
+  output_path(command->add_option("--charts", options->charts,
+                                  "Write PNG charts of each sweep into this folder"));
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options] { run_bench(*options); });
 }

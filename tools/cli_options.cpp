@@ -91,23 +91,30 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
       ->group(group);
 }
 
+CLI::Option* output_path(CLI::Option* option) {
+  return option->check(CLI::Validator(
+      [](const std::string& value) {
+        return value.empty() ? std::string("the path is empty (an unset shell variable?)")
+                             : std::string();
+      },
+      "PATH"));
+}
+
 void add_output_options(CLI::App& command, RenderOptions& options) {
   const char* group = "Output";
-  command
-      .add_option("--out", options.params.out, "Folder for the frames (default out/<scene-name>)")
+  output_path(command.add_option("--out", options.params.out,
+                                 "Folder for the frames (default out/<scene-name>)"))
       ->group(group);
-  command
-      .add_option("--video", options.params.video,
-                  "Also encode a video: FILE.mp4 (FFmpeg) or FILE.avi (MJPG)")
+  output_path(command.add_option("--video", options.params.video,
+                                 "Also encode a video: FILE.mp4 (FFmpeg) or FILE.avi (MJPG)"))
       ->group(group);
   options.aov_option = command
                            .add_option("--aov", options.aov,
                                        "Also write lossless buffers, comma-separated: id "
                                        "(id_NNNNN.png), depth (depth_NNNNN.tiff)")
                            ->group(group);
-  command
-      .add_option("--stats", options.params.stats,
-                  "Write timings and counters as JSON to FILE.json")
+  output_path(command.add_option("--stats", options.params.stats,
+                                 "Write timings and counters as JSON to FILE.json"))
       ->group(group);
   command.add_flag("-q,--quiet", options.params.quiet, "No progress bar and no summary")
       ->group(group);

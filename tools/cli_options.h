@@ -37,6 +37,11 @@ void add_output_options(CLI::App& command, RenderOptions& options);
 /// All of the above: the flags of `kinray render`.
 void add_render_options(CLI::App& command, RenderOptions& options);
 
+/// Marks `option` as naming an output path: an empty value (an unset shell variable) is refused
+/// at parse time. Commands still call check_output_file / check_output_folder
+/// (renderer/output_check.h) on the paths before they start. Returns `option`.
+CLI::Option* output_path(CLI::Option* option);
+
 /// Creates `folder` (and its parents) for the output named by `flag`; an empty path is the
 /// working folder. Throws InputError naming the flag when it cannot.
 void create_folder(const std::filesystem::path& folder, const char* flag);

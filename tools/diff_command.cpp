@@ -3,16 +3,18 @@
 // mismatch (renderer/image_diff.h), prints a table, writes heat maps and a JSON summary, and exits
 // 0 only when every frame's real mismatches are within the budget. It takes the same scene, frame
 // and backend flags as `kinray render`. See docs/verification.md.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
-#include <system_error>
 
 #include "renderer/image_diff.h"
 #include "renderer/image_io.h"
+#include "renderer/option_scope.h"
+#include "renderer/output_check.h"
 #include "renderer/progress.h"
 #include "scenes/error.h"
 #include "tools/cli_options.h"
@@ -91,12 +93,9 @@ void run_diff(const DiffOptions& options) {
   const Budget budget = options.budget.empty()
                             ? (rasterized ? Budget{kOsmesaBudgetFraction, true} : Budget{0, false})
                             : parse_budget(options.budget);
-  std::error_code error;
-  if (!options.report.empty() && fs::exists(options.report, error) &&
-      !fs::is_directory(options.report, error))
-    throw InputError("--report", "'" + options.report + "' exists and is not a folder");
-  if (!options.json.empty() && fs::is_directory(options.json, error))
-    throw InputError("--json", "'" + options.json + "' is a folder");
+  check_options_apply(params, std::array{params.backend, options.against});
+  if (!options.report.empty()) check_output_folder(options.report, "--report");
+  if (!options.json.empty()) check_output_file(options.json, "--json");
 
   RenderJob job(params);
   std::unique_ptr<Backend> tested = job.make_backend();
@@ -168,11 +167,12 @@ void register_diff_command(CLI::App& app) {
       "--budget", options->budget,
       "Real mismatches allowed per frame: N pixels or P% of the pixels (default 0; 0.1% "
       "when osmesa is either side)");
-  command->add_option("--report", options->report,
-                      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the "
-                      "reference in dim grey), "
-                      "both shaded frames where a frame has real mismatches, and summary.json");
-  command->add_option("--json", options->json, "Write the summary as JSON to FILE");
+  output_path(command->add_option(
+      "--report", options->report,
+      "Folder for heat maps (diff_NNNNN.png: yellow tie, red real, over the "
+      "reference in dim grey), "
+      "both shaded frames where a frame has real mismatches, and summary.json"));
+  output_path(command->add_option("--json", options->json, "Write the summary as JSON to FILE"));
   command->add_flag("-q,--quiet", options->render.params.quiet, "No progress bar and no table");
   command->callback([options] { run_diff(*options); });
 }

@@ -1,12 +1,17 @@
 // kinray: one program, one subcommand per file (tools/commands.h). Errors are caught here, once,
-// and printed as one line: exit status 2 for bad input (flags, scenes, models), 1 for anything
-// else.
+// and printed as one line. Exit status: 2 for bad input (flags, scenes, models, output paths that
+// cannot be written), refused before anything is written; 1 for a failure of the machine or the
+// program once the work has started (disk full, I/O error, out of memory) and for a failed verdict
+// (diff, regress, bench).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
+#include "renderer/temporary_files.h"
 #include "scenes/error.h"
+#include "tools/cli_errors.h"
 #include "tools/commands.h"
 
 namespace {
@@ -19,11 +24,23 @@ int fail(const std::string& message, int status) {
   return status;
 }
 
+std::string kinray_version() {
+  return std::string("kinray ") + KINRAY_VERSION + " (C++20; " +
+#ifdef NDEBUG
+         "release build"
+#else
+         "debug build"
+#endif
+         + ")";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app("kinray: a kinetic ray tracer of animated scenes", "kinray");
   app.require_subcommand(1);
+  app.set_version_flag("--version", kinray_version());
+  kinray::remove_temporaries_on_interrupt();
   kinray::register_render_command(app);
   kinray::register_info_command(app);
   kinray::register_diff_command(app);
@@ -41,9 +58,14 @@ int main(int argc, char** argv) {
                       "; see kinray --help)",
                   2);
     }
-    return fail(e.what(), 2);
+    return fail(kinray::explain_parse_error(app, e).what(), 2);
   } catch (const kinray::InputError& e) {
     return fail(e.what(), 2);
+  } catch (const std::bad_alloc&) {
+    return fail(
+        "out of memory: the machine could not provide the memory this command needs "
+        "(try a smaller --size, fewer triangles, or --backend embree)",
+        1);
   } catch (const std::exception& e) {
     return fail(e.what(), 1);
   }

@@ -12,6 +12,7 @@
 #include <system_error>
 #include <vector>
 
+#include "renderer/output_check.h"
 #include "renderer/regression_suite.h"
 #include "scenes/error.h"
 #include "tools/commands.h"
@@ -42,8 +43,8 @@ void run_regress(RegressOptions options) {
   if (!config.update && !fs::is_directory(config.references, error))
     throw InputError("--references", "'" + config.references +
                                          "' is not a folder (run from the repository root, or give --references DIR)");
-  if (!config.report.empty() && fs::exists(config.report, error) && !fs::is_directory(config.report, error))
-    throw InputError("--report", "'" + config.report + "' exists and is not a folder");
+  if (!config.report.empty()) check_output_folder(config.report, "--report");
+  if (config.update) check_output_folder(config.references, "--references");
 
   if (!options.quiet) {
     std::cout << "regression suite: kinetic backend" << (config.audit ? " (audit on)" : "")

@@ -2,6 +2,7 @@
 // buffers, and a --stats JSON). Every flag is checked and the scene loaded before the first file
 // is touched, so bad input never harms earlier output.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,22 +12,19 @@
 #include <utility>
 
 #include "renderer/image_io.h"
+#include "renderer/option_scope.h"
+#include "renderer/output_check.h"
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/frame_sequence.h"
 
 namespace kinray {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string numbered(const std::string& prefix, size_t index, const char* extension) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s_%05zu%s", prefix.c_str(), index, extension);
-  return name;
-}
 
 /// Frames per second for the video: --fps when given, else the mean spacing of the frame times.
 double video_fps(const RenderParams& params, const std::vector<double>& times) {
@@ -35,32 +33,19 @@ double video_fps(const RenderParams& params, const std::vector<double>& times) {
   return std::clamp(double(times.size() - 1) / (times.back() - times.front()), 1.0, 240.0);
 }
 
+/// Every output of the render, checked before the scene is loaded.
 void check_output_paths(const std::string& out, const RenderParams& params) {
-  std::error_code error;
-  if (fs::exists(out, error) && !fs::is_directory(out, error))
-    throw InputError("--out", "'" + out + "' exists and is not a folder");
-  if (!params.stats.empty() && fs::is_directory(params.stats, error))
-    throw InputError("--stats", "'" + params.stats + "' is a folder");
-  // A file where a folder must be would only fail after the whole render.
-  for (const auto& [file, flag] :
-       {std::pair{params.stats, "--stats"}, std::pair{params.video, "--video"}}) {
-    for (fs::path parent = fs::path(file).parent_path(); !parent.empty();
-         parent = parent.parent_path()) {
-      if (fs::exists(parent, error)) {
-        if (!fs::is_directory(parent, error))
-          throw InputError(flag, "'" + parent.string() + "' is not a folder");
-        break;
-      }
-      if (parent == parent.parent_path()) break;
-    }
-  }
+  check_output_folder(out, "--out");
+  if (!params.stats.empty()) check_output_file(params.stats, "--stats");
+  if (!params.video.empty()) check_output_file(params.video, "--video");
 }
 
 void run_render(const RenderParams& params) {
-  RenderJob job(params);
-  std::unique_ptr<Backend> backend = job.make_backend();
+  check_options_apply(params, std::array{params.backend});
   const std::string out = output_folder(params);
   check_output_paths(out, params);
+  RenderJob job(params);
+  std::unique_ptr<Backend> backend = job.make_backend();
 
   // Everything is valid: from here on files are written.
   create_folder(out, "--out");
@@ -69,15 +54,27 @@ void run_render(const RenderParams& params) {
     create_folder(fs::path(params.video).parent_path(), "--video");
     video = std::make_unique<VideoWriter>(params.video, params.width, params.height,
                                           video_fps(params, job.frame_times()));
+    const auto [width, height] = VideoWriter::encoded_size(params.width, params.height);
+    if (width != params.width || height != params.height)
+      std::fprintf(
+          stderr,
+          "kinray: warning: --video: video encoders need even sides, so the video is %dx%d "
+          "(the frames are %dx%d); give an even --size for a video of the frames' size\n",
+          width, height, params.width, params.height);
   }
   const bool write_id = std::find(params.aov.begin(), params.aov.end(), "id") != params.aov.end();
   const bool write_depth =
       std::find(params.aov.begin(), params.aov.end(), "depth") != params.aov.end();
   const fs::path folder(out);
+  std::vector<std::string> written;
+  const auto write = [&](const std::string& name, auto&& writer, const Frame& frame) {
+    writer((folder / name).string(), frame);
+    written.push_back(name);
+  };
   const RenderTimings& timings = job.run(*backend, [&](size_t index, const Frame& frame) {
-    write_color_png((folder / numbered("frame", index, ".png")).string(), frame);
-    if (write_id) write_id_png((folder / numbered("id", index, ".png")).string(), frame);
-    if (write_depth) write_depth_tiff((folder / numbered("depth", index, ".tiff")).string(), frame);
+    write(numbered_file("frame", index, ".png"), write_color_png, frame);
+    if (write_id) write(numbered_file("id", index, ".png"), write_id_png, frame);
+    if (write_depth) write(numbered_file("depth", index, ".tiff"), write_depth_tiff, frame);
     if (video) video->write(frame);
   });
   if (video) video->close();
@@ -89,14 +86,19 @@ void run_render(const RenderParams& params) {
           {"path", params.video}, {"codec", video->codec()}, {"frames", video->frames_written()}};
     write_file_atomically(params.stats, stats.dump(2) + "\n");
   }
+  const std::vector<std::string> stale = remove_stale_frames(folder, written);
   if (!params.quiet) {
     const size_t n = timings.frames;
     std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s\n", n,
                 n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
                 params.height, backend->name().c_str(), timings.total);
-    const std::string last = n > 1 ? " .. " + numbered("frame", n - 1, ".png") : "";
-    std::printf("frames: %s/%s%s\n", out.c_str(), numbered("frame", 0, ".png").c_str(),
+    const std::string last = n > 1 ? " .. " + numbered_file("frame", n - 1, ".png") : "";
+    std::printf("frames: %s/%s%s\n", out.c_str(), numbered_file("frame", 0, ".png").c_str(),
                 last.c_str());
+    if (!stale.empty())
+      std::printf("removed %zu file%s of an earlier render from %s (%s%s)\n", stale.size(),
+                  stale.size() == 1 ? "" : "s", out.c_str(), stale.front().c_str(),
+                  stale.size() > 1 ? (" .. " + stale.back()).c_str() : "");
     if (video) std::printf("video:  %s (%s)\n", params.video.c_str(), video->codec().c_str());
     if (!params.stats.empty()) std::printf("stats:  %s\n", params.stats.c_str());
   }

@@ -1,0 +1,214 @@
+// Output is never destroyed by a command that then fails: every output path is checked before
+// anything is loaded, rendered or written; empty paths are refused; a shorter re-render leaves no
+// frames of the longer one; Ctrl-C during a video render leaves no hidden temporary file; and a
+// write that fails once the work started (disk full) is exit status 1, bad input 2.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/tools/kinray_process.h"
+
+namespace kinray {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kTiny = "wavy-sphere:triangles=600";
+
+class CliOutputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir = fs::temp_directory_path() /
+            ("kinray_outputs_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir / "base");
+    std::ofstream(m_dir / "base" / "frame_00000.png") << "an earlier frame";
+  }
+  void TearDown() override {
+    fs::permissions(m_dir, fs::perms::owner_all, fs::perm_options::add);
+    fs::remove_all(m_dir);
+  }
+  [[nodiscard]] test::CommandRun kinray(const std::string& args) const {
+    return test::run_kinray(args, m_dir);
+  }
+  /// The quoted path of `name` in the test's folder. Appended piece by piece: GCC 12 warns
+  /// (-Wrestrict, a false positive) on "'" + std::string.
+  [[nodiscard]] std::string path(const std::string& name) const {
+    std::string quoted(1, '\'');
+    return quoted.append((m_dir / name).string()).append(1, '\'');
+  }
+  [[nodiscard]] std::vector<std::string> names(const std::string& folder) const {
+    std::vector<std::string> result;
+    for (const auto& entry : fs::directory_iterator(m_dir / folder))
+      result.push_back(entry.path().filename().string());
+    std::sort(result.begin(), result.end());
+    return result;
+  }
+  /// Status 2, one line naming `flag`, and base/ exactly as it was.
+  void expect_refused(const test::CommandRun& run, const std::string& flag) const {
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_EQ(run.err.rfind("kinray: error: " + flag + ":", 0), 0u) << run.err;
+    EXPECT_EQ(names("base"), std::vector<std::string>{"frame_00000.png"});
+    EXPECT_EQ(test::read_text(m_dir / "base" / "frame_00000.png"), "an earlier frame");
+  }
+
+  fs::path m_dir;
+};
+
+TEST_F(CliOutputs, UnwritableOutputsAreRefusedBeforeAnythingIsWritten) {
+  // /proc takes no new files, even from root; a file where a folder must be fails for anyone.
+  std::ofstream(m_dir / "a-file") << "x";
+  const std::string render =
+      std::string("render ") + kTiny + " --size 16x16 --frames 2 --out " + path("base") + " ";
+  const std::string diff = std::string("diff ") + kTiny + " --size 16x16 --frames 2 ";
+  const std::string bench = std::string("bench ") + kTiny +
+                            " --size 16x16 --inbetweens 1 --reference-frames 1 "
+                            "--repetitions 1 --embree-modes refit/1 ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {render + "--stats /proc/kinray-test/s.json", "--stats"},
+      {render + "--stats /proc/s.json", "--stats"},
+      {render + "--video /proc/v.mp4", "--video"},
+      {render + "--stats " + path("a-file/s.json"), "--stats"},
+      {render + "--stats " + path("base"), "--stats"},
+      {std::string("render ") + kTiny + " --out " + path("base/frame_00000.png"), "--out"},
+      {std::string("render ") + kTiny + " --out /proc/kinray-test", "--out"},
+      {diff + "--json /proc/d.json", "--json"},
+      {diff + "--report " + path("a-file"), "--report"},
+      {bench + "--json /proc/b.json", "--json"},
+      {bench + "--csv " + path("base"), "--csv"},
+      {bench + "--charts " + path("a-file"), "--charts"},
+      {"regress --case wavy-sphere --report /proc/r", "--report"},
+  };
+  for (const auto& [args, flag] : cases) {
+    SCOPED_TRACE(args);
+    expect_refused(kinray(args), flag);
+  }
+  if (::geteuid() == 0) {
+    std::cout << "[ NOTE     ] running as root: a chmod 0555 folder is writable, so only /proc "
+                 "stands for a read-only folder\n";
+    return;
+  }
+  fs::create_directories(m_dir / "read-only");
+  fs::permissions(m_dir / "read-only", fs::perms::owner_read | fs::perms::owner_exec);
+  expect_refused(kinray(render + "--stats " + path("read-only/s.json")), "--stats");
+  expect_refused(kinray(std::string("render ") + kTiny + " --out " + path("read-only/f")), "--out");
+}
+
+TEST_F(CliOutputs, EmptyPathsAreRefused) {
+  for (const auto& [args, flag] : std::vector<std::pair<std::string, std::string>>{
+           {std::string("render ") + kTiny + " --out ''", "--out"},
+           {std::string("render ") + kTiny + " --out " + path("base") + " --stats ''", "--stats"},
+           {std::string("render ") + kTiny + " --out " + path("base") + " --video ''", "--video"},
+           {std::string("diff ") + kTiny + " --json ''", "--json"},
+           {std::string("bench ") + kTiny + " --charts ''", "--charts"},
+       }) {
+    SCOPED_TRACE(args);
+    expect_refused(kinray(args), flag);
+  }
+  EXPECT_FALSE(fs::exists("out/wavy-sphere-should-not-exist"));
+}
+
+TEST_F(CliOutputs, AShorterRerenderRemovesTheLongerRendersFrames) {
+  const std::string render =
+      std::string("render ") + kTiny + " --backend embree --size 16x16 --out " + path("f");
+  ASSERT_EQ(kinray(render + " --frames 4 --aov id,depth --quiet").status, 0);
+  std::ofstream(m_dir / "f" / "notes.txt") << "mine";
+  std::ofstream(m_dir / "f" / "frame_final.png") << "not a numbered frame";
+  const test::CommandRun run = kinray(render + " --frames 2");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(names("f"), (std::vector<std::string>{"frame_00000.png", "frame_00001.png",
+                                                  "frame_final.png", "notes.txt"}));
+  EXPECT_NE(run.out.find("removed 10 files of an earlier render"), std::string::npos) << run.out;
+}
+
+TEST_F(CliOutputs, InterruptingAVideoRenderLeavesNoTemporaryFile) {
+  const std::string binary = KINRAY_BINARY;
+  const std::string out = (m_dir / "v").string(), video = (m_dir / "v" / "clip.avi").string();
+  fs::create_directories(out);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::freopen("/dev/null", "w", stdout);
+    ::freopen("/dev/null", "w", stderr);
+    ::execl(binary.c_str(), binary.c_str(), "render", "wavy-sphere:triangles=2000", "--backend",
+            "embree", "--size", "64x64", "--frames", "100000", "--out", out.c_str(), "--video",
+            video.c_str(), "--quiet", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait for the hidden temporary video to appear, then press Ctrl-C.
+  const auto hidden = [&] {
+    size_t count = 0;
+    for (const auto& entry : fs::directory_iterator(out))
+      if (entry.path().filename().string().front() == '.') ++count;
+    return count;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (hidden() == 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GT(hidden(), 0u) << "the render never started its video";
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ::kill(child, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
+  EXPECT_EQ(hidden(), 0u) << "a temporary file was left behind";
+  EXPECT_FALSE(fs::exists(video)) << "an unfinished video must not appear under its name";
+}
+
+TEST_F(CliOutputs, AFailedWriteIsExitStatusOneWithOneLine) {
+  // /dev/full accepts the open and fails every write with ENOSPC: a full disk.
+  for (const std::string& args :
+       {std::string("render ") + kTiny + " --size 16x16 --frames 1 --quiet --out " + path("full") +
+            " --stats /dev/full",
+        std::string("diff ") + kTiny + " --size 16x16 --frames 1 --quiet --json /dev/full"}) {
+    SCOPED_TRACE(args);
+    const test::CommandRun run = kinray(args);
+    EXPECT_EQ(run.status, 1) << run.err;
+    EXPECT_EQ(run.err, "kinray: error: /dev/full: cannot write: No space left on device\n");
+  }
+}
+
+TEST_F(CliOutputs, ParseErrorsAreKinraysOwnAndNameTheFlag) {
+  const std::string render = std::string("render ") + kTiny + " --out " + path("base") + " ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {render + "--frames many", "kinray: error: --frames: expected a whole number, got 'many'"},
+      {render + "--camera 1", "kinray: error: --camera: no such flag for 'render'"},
+      {render + "--frames 2 --frames 3", "kinray: error: --frames: given more than once"},
+      {render + "--frames 2 --fps 3",
+       "kinray: error: --frames: cannot be given together with --fps"},
+      {render + "--fps fast", "kinray: error: --fps: expected a number, got 'fast'"},
+      {render + "--size", "kinray: error: --size: needs a value"},
+      {"render", "kinray: error: SCENE: missing"},
+      {render + "extra", "kinray: error: render: unexpected argument 'extra'"},
+      {"", "kinray: error: no command given"},
+  };
+  for (const auto& [args, line] : cases) {
+    SCOPED_TRACE(args);
+    const test::CommandRun run = kinray(args);
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err.rfind(line, 0), 0u) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    for (const char* generic : {"Could not convert", "not expected", "At Most", "excludes"})
+      EXPECT_EQ(run.err.find(generic), std::string::npos) << run.err;
+  }
+}
+
+TEST_F(CliOutputs, VersionIsPrinted) {
+  const test::CommandRun run = kinray("--version");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_EQ(run.out.rfind("kinray ", 0), 0u) << run.out;
+}
+
+}  // namespace
+}  // namespace kinray
