@@ -1,0 +1,237 @@
+#include "kinetic/tree/kinetic_bvh.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "kinetic/check.h"
+
+namespace kinray {
+
+namespace {
+
+/// The sides each node tracks: all six in the AABB tree; in the BoxTree the sides its ancestors'
+/// split planes need (a left child's max and a right child's min along the parent's axis, which
+/// are extremes of every node below, so the need passes down).
+std::vector<uint8_t> tracked_sides(const BvhTopology& topology, TreeShape shape) {
+  std::vector<uint8_t> sides(topology.nodes.size(), shape == TreeShape::aabb ? 0x3F : 0);
+  if (shape == TreeShape::aabb) return sides;
+  for (uint32_t i = 0; i < topology.nodes.size(); ++i) {
+    const BvhNode& n = topology.nodes[i];
+    if (n.leaf()) continue;
+    sides[n.left] |= uint8_t(sides[i] | (1u << side_of(n.axis, true)));
+    sides[n.right] |= uint8_t(sides[i] | (1u << side_of(n.axis, false)));
+  }
+  return sides;
+}
+
+}  // namespace
+
+KineticBvh::KineticBvh(std::vector<GridMesh> meshes, double t, const Config& config)
+    : m_config(config), m_meshes(std::move(meshes), t), m_sim(t) {
+  const uint32_t triangles = m_meshes.triangle_count();
+  std::vector<Aabb> boxes(triangles);
+  for (uint32_t tri = 0; tri < triangles; ++tri)
+    for (uint32_t v : m_meshes.triangle(tri))
+      boxes[tri].extend(Eigen::Vector3d(m_meshes.coordinate(v, 0, t), m_meshes.coordinate(v, 1, t),
+                                        m_meshes.coordinate(v, 2, t)));
+  m_topology = build_binned_sah(boxes);
+  const size_t nodes = m_topology.nodes.size();
+  m_sides = tracked_sides(m_topology, config.shape);
+  m_realizer.assign(nodes, {kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex});
+  m_event.assign(nodes, {kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent});
+  m_active.assign(nodes, 0);
+
+  // Per mesh, the nodes above its leaves (descending, so children come before parents).
+  const uint32_t mesh_count = m_meshes.mesh_count();
+  std::vector<uint32_t> mark(nodes, kNoNode), leaf_of(triangles, kNoNode);
+  for (uint32_t i = 0; i < nodes; ++i)
+    if (m_topology.nodes[i].leaf()) leaf_of[m_topology.nodes[i].triangle] = i;
+  m_mesh_node_begin.assign(mesh_count + 1, 0);
+  for (uint32_t m = 0; m < mesh_count; ++m) {
+    const size_t first = m_mesh_nodes.size();
+    for (uint32_t tri = m_meshes.triangle_begin(m); tri < m_meshes.triangle_end(m); ++tri)
+      for (uint32_t n = leaf_of[tri]; n != kNoNode && mark[n] != m;
+           n = m_topology.nodes[n].parent) {
+        mark[n] = m;
+        m_mesh_nodes.push_back(n);
+      }
+    std::sort(m_mesh_nodes.begin() + long(first), m_mesh_nodes.end(), std::greater<>());
+    m_mesh_node_begin[m + 1] = uint32_t(m_mesh_nodes.size());
+  }
+
+  for (uint32_t i = uint32_t(nodes); i-- > 0;) {
+    const BvhNode& n = m_topology.nodes[i];
+    m_active[i] = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
+                           : uint8_t(m_active[n.left] | m_active[n.right]);
+    for (int s = 0; s < 6; ++s)
+      if ((m_sides[i] >> s) & 1) update_side(i, s);
+  }
+  m_mesh_event.assign(mesh_count, kNoEvent);
+  for (uint32_t m = 0; m < mesh_count; ++m) schedule_mesh(m);
+  m_stats.certificates_live_max = live_certificates();
+  if (m_config.audit) audit();
+}
+
+bool KineticBvh::update_side(uint32_t node, int s) {
+  ++m_stats.certificates_computed;
+  const BvhNode& n = m_topology.nodes[node];
+  const int axis = side_axis(s), sign = side_sign(s);
+  const double now = m_sim.now();
+  uint32_t& realizer = m_realizer[node][size_t(s)];
+  const uint32_t before = realizer;
+  double failure = kInfinityTime;
+  if (!m_active[node]) {
+    realizer = kNoVertex;
+  } else if (n.leaf()) {
+    const auto& v = m_meshes.triangle(n.triangle);
+    uint32_t w = v[0];
+    if (m_meshes.beats(v[1], w, axis, sign, now)) w = v[1];
+    if (m_meshes.beats(v[2], w, axis, sign, now)) w = v[2];
+    for (uint32_t q : v)
+      if (q != w) failure = std::min(failure, m_meshes.beyond(w, q, axis, sign).failure_time(now));
+    realizer = w;
+  } else {
+    const uint32_t l = m_realizer[n.left][size_t(s)], r = m_realizer[n.right][size_t(s)];
+    if (l == kNoVertex || r == kNoVertex) {
+      realizer = l == kNoVertex ? r : l;
+    } else {
+      const bool left_wins = m_meshes.beats(l, r, axis, sign, now);
+      realizer = left_wins ? l : r;
+      const uint32_t loser = left_wins ? r : l;
+      if (loser != realizer)
+        failure = m_meshes.beyond(realizer, loser, axis, sign).failure_time(now);
+    }
+  }
+  schedule(node, s, failure);
+  return realizer != before;
+}
+
+void KineticBvh::schedule(uint32_t node, int s, double time) {
+  EventHandle& h = m_event[node][size_t(s)];
+  if (!std::isfinite(time)) {
+    if (h != kNoEvent) m_sim.queue().erase(h);
+    h = kNoEvent;
+    return;
+  }
+  KINRAY_CHECK_MSG(time >= m_sim.now(), "kinetic tree: certificate already broken");
+  const EventKey key{time, m_topology.nodes[node].leaf() ? kLeafKind : kTreeKind, node,
+                     uint64_t(s)};
+  if (h == kNoEvent)
+    h = m_sim.queue().push(key, uint64_t(node) * 8 + uint64_t(s));
+  else
+    m_sim.queue().update(h, key);
+}
+
+void KineticBvh::schedule_mesh(uint32_t m) {
+  const double next = m_meshes.next_change(m, m_sim.now());
+  EventHandle& h = m_mesh_event[m];
+  if (h != kNoEvent) m_sim.queue().erase(h);
+  h = std::isfinite(next) ? m_sim.queue().push(EventKey{next, kMeshKind, m, 0}, kMeshEvent | m)
+                          : kNoEvent;
+}
+
+void KineticBvh::advance_to(double t) {
+  m_sim.advance_to(t, [this](const EventKey& key, uint64_t payload) { handle(key, payload); });
+  m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, live_certificates());
+  if (m_config.audit) audit();
+}
+
+void KineticBvh::handle(const EventKey& key, uint64_t payload) {
+  if ((payload & kMeshEvent) != 0) {
+    m_mesh_event[uint32_t(payload)] = kNoEvent;
+    handle_mesh(uint32_t(payload));
+    return;
+  }
+  const auto node = uint32_t(payload >> 3);
+  const int s = int(payload & 7);
+  m_event[node][size_t(s)] = kNoEvent;
+  ++(key.kind == kLeafKind ? m_stats.events.leaf : m_stats.events.tree);
+  if (!update_side(node, s)) {  // a failure at the level of rounding: the same vertex still wins
+    ++m_stats.events_internal;
+    return;
+  }
+  ++m_stats.events_external;
+  ++m_stats.realizer_changes;
+  // Climb while the parents track this side and their realizers change; a parent whose realizer
+  // stays has its certificate recomputed all the same (its other competitor changed).
+  for (uint32_t p = m_topology.nodes[node].parent; p != kNoNode && ((m_sides[p] >> s) & 1) != 0;
+       p = m_topology.nodes[p].parent) {
+    if (!update_side(p, s)) break;
+    ++m_stats.realizer_changes;
+  }
+}
+
+void KineticBvh::handle_mesh(uint32_t m) {
+  const double t = m_sim.now();
+  const GridMesh& mesh = m_meshes.mesh(m);
+  const bool was_present = m_meshes.present(m);
+  m_meshes.set_time(m, t);
+  if (m_meshes.present(m) && !was_present)
+    ++m_stats.events.insert;
+  else if (!m_meshes.present(m) && was_present)
+    ++m_stats.events.remove;
+  else
+    ++m_stats.events.flightplan;
+  (void)mesh;
+  const uint64_t changes = m_stats.realizer_changes;
+  refresh_mesh(m);
+  ++(m_stats.realizer_changes != changes ? m_stats.events_external : m_stats.events_internal);
+  schedule_mesh(m);
+}
+
+void KineticBvh::refresh_mesh(uint32_t m) {
+  for (uint32_t k = m_mesh_node_begin[m]; k < m_mesh_node_begin[m + 1]; ++k) {
+    const uint32_t i = m_mesh_nodes[k];
+    const BvhNode& n = m_topology.nodes[i];
+    m_active[i] = n.leaf() ? m_meshes.present(m) : uint8_t(m_active[n.left] | m_active[n.right]);
+    for (int s = 0; s < 6; ++s)
+      if (((m_sides[i] >> s) & 1) != 0 && update_side(i, s)) ++m_stats.realizer_changes;
+  }
+}
+
+uint64_t KineticBvh::live_certificates() const {
+  uint64_t live = 0;
+  for (uint32_t i = 0; i < m_topology.nodes.size(); ++i) {
+    if (!m_active[i]) continue;
+    const BvhNode& n = m_topology.nodes[i];
+    for (int s = 0; s < 6; ++s) {
+      if (((m_sides[i] >> s) & 1) == 0) continue;
+      if (n.leaf()) {
+        for (uint32_t q : m_meshes.triangle(n.triangle)) live += q != m_realizer[i][size_t(s)];
+      } else {
+        const uint32_t l = m_realizer[n.left][size_t(s)], r = m_realizer[n.right][size_t(s)];
+        live += l != kNoVertex && r != kNoVertex && l != r;
+      }
+    }
+  }
+  return live;
+}
+
+TreeStats KineticBvh::stats() const {
+  TreeStats s = m_stats;
+  s.certificates_live = live_certificates();
+  s.scheduled_events = m_sim.queue().size();
+  s.nodes = m_topology.nodes.size();
+  s.height = m_topology.height();
+  s.node_sides = 0;
+  for (uint8_t sides : m_sides) s.node_sides += uint64_t(std::popcount(sides));
+  s.triangles = m_meshes.triangle_count();
+  s.triangles_present = 0;
+  for (uint32_t m = 0; m < m_meshes.mesh_count(); ++m)
+    if (m_meshes.present(m))
+      s.triangles_present += m_meshes.triangle_end(m) - m_meshes.triangle_begin(m);
+  for (EventHandle h : m_mesh_event) s.scheduled_events -= h != kNoEvent;
+  return s;
+}
+
+size_t KineticBvh::memory_bytes() const {
+  return m_topology.nodes.capacity() * sizeof(BvhNode) +
+         m_realizer.capacity() * sizeof(m_realizer[0]) + m_event.capacity() * sizeof(m_event[0]) +
+         m_sides.capacity() + m_active.capacity() + m_mesh_nodes.capacity() * sizeof(uint32_t) +
+         m_sim.queue().memory_bytes() +
+         size_t(m_meshes.vertex_count()) * 2 * sizeof(Eigen::Vector3d) +
+         size_t(m_meshes.triangle_count()) * 4 * sizeof(uint32_t);
+}
+
+}  // namespace kinray
