@@ -11,7 +11,8 @@
 namespace kinray {
 
 /// Embree's answer to shadow rays over `scene` (which must outlive it): `refit` refits one
-/// dynamic scene at each advance_to, else the scene is rebuilt from scratch.
+/// dynamic scene at each advance_to, else the scene is rebuilt from scratch. Builds run on one
+/// thread (a device of its own with threads=1).
 [[nodiscard]] std::unique_ptr<ShadowTracer> make_embree_shadow_tracer(const CameraSpaceScene& scene,
                                                                       bool refit);
 

@@ -33,6 +33,7 @@ void write_kinetic_tree_stats(const KineticBvh& tree, nlohmann::json& out) {
   out["certificates"] = {{"live", s.certificates_live},
                          {"live_max", s.certificates_live_max},
                          {"computed", s.certificates_computed},
+                         {"decided_at_keys", s.certificates_by_keys},
                          {"scheduled", s.scheduled_events}};
   const double events = double(s.events.total());
   const double triangles = double(std::max<uint64_t>(s.triangles_present, 1));

@@ -41,6 +41,8 @@ KineticBvh::KineticBvh(std::vector<GridMesh> meshes, double t, const Config& con
   m_realizer.assign(nodes, {kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex});
   m_event.assign(nodes, {kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent});
   m_active.assign(nodes, 0);
+  m_live.assign(nodes * 6, 0);
+  m_key_margin = 1e-12 * m_meshes.scale();
 
   // Per mesh, the nodes above its leaves (descending, so children come before parents).
   const uint32_t mesh_count = m_meshes.mesh_count();
@@ -69,7 +71,7 @@ KineticBvh::KineticBvh(std::vector<GridMesh> meshes, double t, const Config& con
   }
   m_mesh_event.assign(mesh_count, kNoEvent);
   for (uint32_t m = 0; m < mesh_count; ++m) schedule_mesh(m);
-  m_stats.certificates_live_max = live_certificates();
+  m_stats.certificates_live_max = m_live_total;
   if (m_config.audit) audit();
 }
 
@@ -81,28 +83,49 @@ bool KineticBvh::update_side(uint32_t node, int s) {
   uint32_t& realizer = m_realizer[node][size_t(s)];
   const uint32_t before = realizer;
   double failure = kInfinityTime;
+  uint8_t live = 0;
+  // Each pair's comparison is built once: who wins just after now, and the winner's certificate.
+  auto winner = [&](uint32_t p, uint32_t q, LinearCertificate& c) {
+    c = m_meshes.beyond(p, q, axis, sign);
+    const int sg = c.sign_after(now);
+    if (sg > 0 || (sg == 0 && p < q)) return p;
+    c = c.negated();
+    return q;
+  };
   if (!m_active[node]) {
     realizer = kNoVertex;
   } else if (n.leaf()) {
     const auto& v = m_meshes.triangle(n.triangle);
-    uint32_t w = v[0];
-    if (m_meshes.beats(v[1], w, axis, sign, now)) w = v[1];
-    if (m_meshes.beats(v[2], w, axis, sign, now)) w = v[2];
-    for (uint32_t q : v)
-      if (q != w) failure = std::min(failure, m_meshes.beyond(w, q, axis, sign).failure_time(now));
-    realizer = w;
+    LinearCertificate c01, c2;
+    const uint32_t w01 = winner(v[0], v[1], c01), l01 = w01 == v[0] ? v[1] : v[0];
+    realizer = winner(w01, v[2], c2);  // c2: the realizer against the other of (w01, v2)
+    const uint32_t against2 = realizer == w01 ? v[2] : w01;
+    if (against2 != realizer) {
+      failure = c2.failure_time(now);
+      ++live;
+    }
+    if (l01 != realizer) {  // against the loser of (v0, v1): c01 unless v2 took over
+      const LinearCertificate c =
+          realizer == w01 ? c01 : m_meshes.beyond(realizer, l01, axis, sign);
+      failure = std::min(failure, c.failure_time(now));
+      ++live;
+    }
   } else {
     const uint32_t l = m_realizer[n.left][size_t(s)], r = m_realizer[n.right][size_t(s)];
     if (l == kNoVertex || r == kNoVertex) {
       realizer = l == kNoVertex ? r : l;
+    } else if (l == r) {
+      realizer = l;
     } else {
-      const bool left_wins = m_meshes.beats(l, r, axis, sign, now);
-      realizer = left_wins ? l : r;
-      const uint32_t loser = left_wins ? r : l;
-      if (loser != realizer)
-        failure = m_meshes.beyond(realizer, loser, axis, sign).failure_time(now);
+      LinearCertificate c;
+      realizer = winner(l, r, c);
+      failure = c.failure_time(now);
+      live = 1;
     }
   }
+  uint8_t& counted = m_live[size_t(node) * 6 + size_t(s)];
+  m_live_total += uint64_t(live) - uint64_t(counted);
+  counted = live;
   schedule(node, s, failure);
   return realizer != before;
 }
@@ -133,7 +156,6 @@ void KineticBvh::schedule_mesh(uint32_t m) {
 
 void KineticBvh::advance_to(double t) {
   m_sim.advance_to(t, [this](const EventKey& key, uint64_t payload) { handle(key, payload); });
-  m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, live_certificates());
   if (m_config.audit) audit();
 }
 
@@ -153,6 +175,7 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
   }
   ++m_stats.events_external;
   ++m_stats.realizer_changes;
+  m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
   // Climb while the parents track this side and their realizers change; a parent whose realizer
   // stays has its certificate recomputed all the same (its other competitor changed).
   for (uint32_t p = m_topology.nodes[node].parent; p != kNoNode && ((m_sides[p] >> s) & 1) != 0;
@@ -176,6 +199,7 @@ void KineticBvh::handle_mesh(uint32_t m) {
   (void)mesh;
   const uint64_t changes = m_stats.realizer_changes;
   refresh_mesh(m);
+  m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
   ++(m_stats.realizer_changes != changes ? m_stats.events_external : m_stats.events_internal);
   schedule_mesh(m);
 }
@@ -186,8 +210,38 @@ void KineticBvh::refresh_mesh(uint32_t m) {
     const BvhNode& n = m_topology.nodes[i];
     m_active[i] = n.leaf() ? m_meshes.present(m) : uint8_t(m_active[n.left] | m_active[n.right]);
     for (int s = 0; s < 6; ++s)
-      if (((m_sides[i] >> s) & 1) != 0 && update_side(i, s)) ++m_stats.realizer_changes;
+      if (((m_sides[i] >> s) & 1) != 0 && !keeps_through_segment(i, s) && update_side(i, s))
+        ++m_stats.realizer_changes;
   }
+}
+
+bool KineticBvh::keeps_through_segment(uint32_t node, int s) {
+  if (!m_active[node]) return false;
+  const BvhNode& n = m_topology.nodes[node];
+  const int axis = side_axis(s), sign = side_sign(s);
+  const uint32_t r = m_realizer[node][size_t(s)];
+  if (r == kNoVertex) return false;  // just attached
+  const double margin = m_key_margin;
+  uint8_t live = 0;
+  if (n.leaf()) {
+    for (uint32_t q : m_meshes.triangle(n.triangle)) {
+      if (q == r) continue;
+      if (!m_meshes.beyond_at_both_keys(r, q, axis, sign, margin)) return false;
+      ++live;
+    }
+  } else {
+    const uint32_t l = m_realizer[n.left][size_t(s)], rr = m_realizer[n.right][size_t(s)];
+    if (l == kNoVertex || rr == kNoVertex || l == rr || (r != l && r != rr)) return false;
+    if (!m_meshes.beyond_at_both_keys(r, r == l ? rr : l, axis, sign, margin)) return false;
+    live = 1;
+  }
+  ++m_stats.certificates_computed;
+  ++m_stats.certificates_by_keys;
+  uint8_t& counted = m_live[size_t(node) * 6 + size_t(s)];
+  m_live_total += uint64_t(live) - uint64_t(counted);
+  counted = live;
+  schedule(node, s, kInfinityTime);
+  return true;
 }
 
 uint64_t KineticBvh::live_certificates() const {
@@ -210,7 +264,7 @@ uint64_t KineticBvh::live_certificates() const {
 
 TreeStats KineticBvh::stats() const {
   TreeStats s = m_stats;
-  s.certificates_live = live_certificates();
+  s.certificates_live = m_live_total;
   s.scheduled_events = m_sim.queue().size();
   s.nodes = m_topology.nodes.size();
   s.height = m_topology.height();

@@ -72,14 +72,16 @@ class KineticBvh {
   }
 
   /// The queries' boxes (tree_query.h) at the frame's time, from the realizers. AABB tree: a
-  /// node's own six sides. BoxTree: the root is unbounded and a child is its parent's box cut by
-  /// the parent's plane (the left child's max or the right child's min along the split axis).
+  /// node's own six sides. BoxTree: the root is the box of every key position and a child is its
+  /// parent's box cut by the sides it tracks: the parent's plane (the left child's max or the right
+  /// child's min along the split axis) and the planes its other ancestors need, which are its own
+  /// extremes too.
   [[nodiscard]] Aabb root_box(const TreeFrame& frame) const {
     if (m_topology.nodes.empty() || !m_active[0]) return Aabb{};
     if (m_config.shape == TreeShape::boxtree) {
-      Aabb all;
-      all.lo.setConstant(-kInfinityTime);
-      all.hi.setConstant(kInfinityTime);
+      Aabb all;  // no side of the root is tracked: the box of the whole shot bounds it
+      all.lo = m_meshes.shot_lo().array() - frame.pad;
+      all.hi = m_meshes.shot_hi().array() + frame.pad;
       return all;
     }
     return own_box(0, frame);
@@ -92,16 +94,8 @@ class KineticBvh {
       return;
     }
     left = right = box;
-    const int a = n.axis;
-    if (m_active[n.left])
-      left.hi[a] = std::min(box.hi[a], side_value(n.left, side_of(a, true), frame.t) + frame.pad);
-    else
-      left = Aabb{};
-    if (m_active[n.right])
-      right.lo[a] =
-          std::max(box.lo[a], side_value(n.right, side_of(a, false), frame.t) - frame.pad);
-    else
-      right = Aabb{};
+    tighten(n.left, frame, left);
+    tighten(n.right, frame, right);
   }
 
   /// Counters, with the live certificates counted now.
@@ -115,6 +109,21 @@ class KineticBvh {
   /// Recomputes side s of the node just after now and reschedules its certificate; returns
   /// whether its realizer changed.
   bool update_side(uint32_t node, int s);
+  void tighten(uint32_t node, const TreeFrame& frame, Aabb& b) const {
+    if (!m_active[node]) {
+      b = Aabb{};
+      return;
+    }
+    for (int s = 0; s < 6; ++s) {
+      if (((m_sides[node] >> s) & 1) == 0) continue;
+      const int a = side_axis(s);
+      const double v = side_value(node, s, frame.t);
+      if (side_sign(s) > 0)
+        b.hi[a] = std::min(b.hi[a], v + frame.pad);
+      else
+        b.lo[a] = std::max(b.lo[a], v - frame.pad);
+    }
+  }
   [[nodiscard]] Aabb own_box(uint32_t node, const TreeFrame& frame) const {
     Aabb b;
     if (!m_active[node]) return b;
@@ -125,6 +134,10 @@ class KineticBvh {
     return b;
   }
   void schedule(uint32_t node, int s, double time);
+  /// At a key, before update_side: when the realizer is beyond its competitors by a margin at both
+  /// keys of the new segment, the certificates hold through it (linear motion) and no failure
+  /// time is needed; the realizer stays. Returns false when that does not decide it.
+  bool keeps_through_segment(uint32_t node, int s);
   void handle(const EventKey& key, uint64_t payload);
   void handle_mesh(uint32_t m);
   void schedule_mesh(uint32_t m);
@@ -141,6 +154,9 @@ class KineticBvh {
   std::vector<std::array<EventHandle, 6>> m_event;
   std::vector<uint8_t> m_sides;   ///< per node: bit s set when side s is tracked
   std::vector<uint8_t> m_active;  ///< per node
+  std::vector<uint8_t> m_live;    ///< per node side: its live certificates (leaf 0-2, inner 0-1)
+  uint64_t m_live_total = 0;
+  double m_key_margin = 0;  ///< far above the rounding of a + b (t - o) against the key positions
   std::vector<uint32_t> m_mesh_node_begin, m_mesh_nodes;  ///< per mesh: its nodes, descending
   std::vector<EventHandle> m_mesh_event;
   TreeStats m_stats;

@@ -19,6 +19,8 @@ void KineticBvh::audit() const {
   const size_t nodes = m_topology.nodes.size();
   std::vector<std::array<double, 6>> extreme(nodes);
   for (uint32_t i = uint32_t(nodes); i-- > 0;) audit_node(i, t, extreme);
+  KINRAY_CHECK_MSG(live_certificates() == m_live_total,
+                   "kinetic tree audit: live certificates miscounted");
   for (uint32_t m = 0; m < m_meshes.mesh_count(); ++m) {
     const double change = m_meshes.next_change(m, now);
     KINRAY_CHECK_MSG(

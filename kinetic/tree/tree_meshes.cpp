@@ -9,8 +9,7 @@
 
 namespace kinray {
 
-double LinearCertificate::failure_time(double now) const {
-  if (linear_holds_through(c0, c1, now - origin, end - origin)) return kInfinityTime;
+double LinearCertificate::failure_time_slow(double now) const {
   Polynomial f;
   f.degree = 1;
   f.c[0] = c0;
@@ -42,8 +41,11 @@ TreeMeshes::TreeMeshes(std::vector<GridMesh> meshes, double t) : m_meshes(std::m
   uint64_t triangles = 0, vertices = 0;
   for (size_t m = 0; m < n; ++m) {
     validate(m_meshes[m], m);
-    for (const Eigen::Vector3d& p : m_meshes[m].positions)
+    for (const Eigen::Vector3d& p : m_meshes[m].positions) {
       m_scale = std::max(m_scale, p.cwiseAbs().maxCoeff());
+      m_shot_lo = m_shot_lo.cwiseMin(p);
+      m_shot_hi = m_shot_hi.cwiseMax(p);
+    }
     triangles += m_meshes[m].triangles.size();
     vertices += m_meshes[m].vertex_count;
     if (triangles >= (uint64_t{1} << 30) || vertices >= (uint64_t{1} << 31))
@@ -71,6 +73,7 @@ TreeMeshes::TreeMeshes(std::vector<GridMesh> meshes, double t) : m_meshes(std::m
   m_segment_end.assign(n, kInfinityTime);
   m_present.assign(n, 0);
   m_still.assign(n, 1);
+  m_next_key.assign(n, nullptr);
   for (uint32_t m = 0; m < n; ++m) set_time(m, t);
 }
 
@@ -84,6 +87,7 @@ void TreeMeshes::set_time(uint32_t m, double t) {
   m_origin[m] = keys[index == 0 ? 0 : index - 1];
   m_segment_end[m] = index < n ? keys[index] : kInfinityTime;
   m_still[m] = index == 0 || index >= n;
+  m_next_key[m] = m_still[m] ? nullptr : &mesh.positions[index * mesh.vertex_count];
   m_present[m] = mesh.present(t);
   for (uint32_t local = 0; local < mesh.vertex_count; ++local) {
     const uint32_t v = m_vertex_begin[m] + local;

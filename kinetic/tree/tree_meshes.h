@@ -7,12 +7,14 @@
 // motions, so an event sees the sign change its failure time was computed for.
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
 #include <vector>
 
 #include "kinetic/grid_input.h"
+#include "kinetic/root_finding.h"
 
 namespace kinray {
 
@@ -29,8 +31,16 @@ struct LinearCertificate {
     if (v != 0) return v > 0 ? 1 : -1;
     return c1 > 0 ? 1 : (c1 < 0 ? -1 : 0);
   }
-  /// Absolute time of the first failure after `now` (+inf when it holds until `end`).
-  [[nodiscard]] double failure_time(double now) const;
+  /// The exact negation: the same comparison seen from the other vertex.
+  [[nodiscard]] LinearCertificate negated() const { return {origin, -c0, -c1, end}; }
+  /// Absolute time of the first failure after `now` (+inf when it holds until `end`). Inline is
+  /// the common case, a certificate that holds through its segment (linear_holds_through).
+  [[nodiscard]] double failure_time(double now) const {
+    if (linear_holds_through(c0, c1, now - origin, end - origin))
+      return std::numeric_limits<double>::infinity();
+    return failure_time_slow(now);
+  }
+  [[nodiscard]] double failure_time_slow(double now) const;
 };
 
 class TreeMeshes {
@@ -59,6 +69,10 @@ class TreeMeshes {
   /// The largest |coordinate| of any key position: the scale of the rounding between a segment's
   /// a + b (t - o) and a key blend, which the queries pad their boxes by.
   [[nodiscard]] double scale() const { return m_scale; }
+  /// Lowest and highest coordinates of any key position: a box around every vertex at every
+  /// time (the motion between keys is linear), without events.
+  [[nodiscard]] const Eigen::Vector3d& shot_lo() const { return m_shot_lo; }
+  [[nodiscard]] const Eigen::Vector3d& shot_hi() const { return m_shot_hi; }
 
   /// Moves mesh m onto the flightplan segment active just after t and sets its presence at t.
   void set_time(uint32_t m, double t);
@@ -84,6 +98,20 @@ class TreeMeshes {
     return s > 0 || (s == 0 && r < q);
   }
 
+  /// Decides "r stays beyond q through the current segment" from the positions at its two keys
+  /// alone (the motion is linear in between): both vertices of one moving mesh, r beyond q by
+  /// more than `margin` at both keys. False means "not decided this way", not "fails".
+  [[nodiscard]] bool beyond_at_both_keys(uint32_t r, uint32_t q, int axis, int sign,
+                                         double margin) const {
+    const uint32_t m = m_vertex_mesh[r];
+    if (m_vertex_mesh[q] != m || m_still[m]) return false;
+    const double d0 = sign * (m_a[r][axis] - m_a[q][axis]);  // a is the key position at the origin
+    if (!(d0 > margin)) return false;
+    const Eigen::Vector3d* next = m_next_key[m];
+    const uint32_t base = m_vertex_begin[m];
+    return sign * (next[r - base][axis] - next[q - base][axis]) > margin;
+  }
+
   /// The key blend of every mesh at t, for exact positions (GridMesh::position) in queries.
   void blends_at(double t, std::vector<GridMesh::KeyBlend>& out) const;
   /// Vertex v's position as GridMesh::position computes it (the Embree reference's arithmetic).
@@ -97,10 +125,13 @@ class TreeMeshes {
   std::vector<GridMesh> m_meshes;
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin, m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;
-  std::vector<Eigen::Vector3d> m_a, m_b;        ///< per vertex, on the mesh's current segment
-  std::vector<double> m_origin, m_segment_end;  ///< per mesh
-  std::vector<uint8_t> m_present, m_still;      ///< per mesh
+  std::vector<Eigen::Vector3d> m_a, m_b;           ///< per vertex, on the mesh's current segment
+  std::vector<double> m_origin, m_segment_end;     ///< per mesh
+  std::vector<uint8_t> m_present, m_still;         ///< per mesh
+  std::vector<const Eigen::Vector3d*> m_next_key;  ///< per mesh: the key ending its segment
   double m_scale = 0;
+  Eigen::Vector3d m_shot_lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d m_shot_hi = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
 };
 
 }  // namespace kinray

@@ -23,6 +23,7 @@ struct TreeStats {
   uint64_t events_internal = 0;        ///< the others (key updates, rounding-level failures)
   uint64_t realizer_changes = 0;       ///< node sides whose realizer changed (incl. propagation)
   uint64_t certificates_computed = 0;  ///< every certificate (re)computation
+  uint64_t certificates_by_keys = 0;   ///< of which decided at a key from the two key positions
   uint64_t certificates_live = 0;      ///< now (leaf sides count two, inner sides one)
   uint64_t certificates_live_max = 0;  ///< the largest certificates_live seen at a frame
   uint64_t scheduled_events = 0;       ///< certificates with a failure in their segment, now
