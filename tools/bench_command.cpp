@@ -12,6 +12,7 @@
 #include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/tree_bench_command.h"
 
 namespace kinray {
 namespace {
@@ -20,6 +21,7 @@ struct BenchOptions {
   RenderOptions render;
   std::string inbetweens = "1,4,16", triangles, sizes, thread_counts, embree_modes;
   std::string json, csv, charts;
+  std::string structure = "grid";  ///< grid, or kinetic trees (tools/tree_bench_command.cpp)
   int repetitions = 3, reference_frames = 12;
   bool quiet = false;
 };
@@ -42,6 +44,11 @@ BenchParams resolve(const BenchOptions& options) {
 }
 
 void run_bench(const BenchOptions& options) {
+  if (options.structure != "grid") {
+    run_tree_bench(options.render.resolve(), options.structure, options.inbetweens, options.triangles,
+                   options.repetitions, options.json, options.charts, options.quiet);
+    return;
+  }
   const BenchParams params = resolve(options);
   // Flags and scene are checked before anything is measured or written.
   for (const std::string* path : {&options.json, &options.csv})
@@ -88,6 +95,9 @@ void register_bench_command(CLI::App& app) {
   command->add_option("--json", options->json, "Write the results as JSON");
   command->add_option("--csv", options->csv, "Write one row per configuration and backend mode as CSV");
   command->add_option("--charts", options->charts, "Write PNG charts of each sweep into this folder");
+  command->add_option("--structure", options->structure,
+                      "grid (the kinetic grid against Embree), or kinetic trees for shadow rays: aabb,boxtree[,refit]")
+      ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options] { run_bench(*options); });
 }
