@@ -17,30 +17,13 @@ double LinearCertificate::failure_time_slow(double now) const {
   return certificate_failure_time(f, origin, now, end);
 }
 
-namespace {
-
-void validate(const GridMesh& mesh, size_t m) {
-  const std::string where = "kinetic tree mesh " + std::to_string(m) + ": ";
-  if (mesh.key_times.empty()) throw std::invalid_argument(where + "no key times");
-  for (size_t k = 1; k < mesh.key_times.size(); ++k)
-    if (!(mesh.key_times[k] > mesh.key_times[k - 1]))
-      throw std::invalid_argument(where + "key times not strictly increasing");
-  if (mesh.positions.size() != mesh.key_times.size() * mesh.vertex_count)
-    throw std::invalid_argument(where + "positions do not match keys x vertices");
-  for (const auto& tri : mesh.triangles)
-    for (uint32_t v : tri)
-      if (v >= mesh.vertex_count) throw std::invalid_argument(where + "vertex index out of range");
-}
-
-}  // namespace
-
 TreeMeshes::TreeMeshes(std::vector<GridMesh> meshes, double t) : m_meshes(std::move(meshes)) {
   const size_t n = m_meshes.size();
   m_triangle_begin.assign(n + 1, 0);
   m_vertex_begin.assign(n + 1, 0);
   uint64_t triangles = 0, vertices = 0;
   for (size_t m = 0; m < n; ++m) {
-    validate(m_meshes[m], m);
+    validate_mesh(m_meshes[m], "kinetic tree mesh " + std::to_string(m) + ": ");
     for (const Eigen::Vector3d& p : m_meshes[m].positions) {
       m_scale = std::max(m_scale, p.cwiseAbs().maxCoeff());
       m_shot_lo = m_shot_lo.cwiseMin(p);
