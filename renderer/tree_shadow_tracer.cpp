@@ -7,29 +7,12 @@
 
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/kinetic_bvh.h"
+#include "renderer/grid_meshes.h"
 #include "renderer/tree_stats_json.h"
 
 namespace kinray {
 
 namespace {
-
-std::vector<GridMesh> tree_meshes(const CameraSpaceScene& scene) {
-  std::vector<GridMesh> meshes;
-  for (size_t o = 0; o < scene.objects.size(); ++o) {
-    const CameraSpaceObject& cs = scene.objects[o];
-    GridMesh mesh;
-    mesh.id = cs.object;
-    mesh.key_times = cs.key_times;
-    mesh.positions = cs.positions;
-    mesh.vertex_count = cs.vertex_count;
-    mesh.triangles = scene.triangles(o);
-    mesh.appear = cs.appear;
-    mesh.disappear = cs.disappear;
-    mesh.is_static = cs.is_static;
-    meshes.push_back(mesh);
-  }
-  return meshes;
-}
 
 class TreeShadowTracer final : public ShadowTracer {
  public:
@@ -50,12 +33,12 @@ class TreeShadowTracer final : public ShadowTracer {
     const auto start = std::chrono::steady_clock::now();
     if (m_kind == ShadowTree::refit) {
       if (!m_bottom_up)
-        m_bottom_up.emplace(tree_meshes(m_scene), t);
+        m_bottom_up.emplace(grid_meshes(m_scene), t);
       else
         m_bottom_up->update(t);
     } else if (!m_kinetic) {
       const TreeShape shape = m_kind == ShadowTree::aabb ? TreeShape::aabb : TreeShape::boxtree;
-      m_kinetic.emplace(tree_meshes(m_scene), t, KineticBvh::Config{shape, m_audit});
+      m_kinetic.emplace(grid_meshes(m_scene), t, KineticBvh::Config{shape, m_audit});
     } else {
       m_kinetic->advance_to(t);
     }
