@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -74,6 +76,20 @@ struct GridMesh {
     return position(v, blend_at(t));
   }
 };
+
+/// Throws std::invalid_argument (message prefixed by `where`) unless the mesh is well formed: key
+/// times present and strictly increasing, positions keys x vertices, vertex indices in range.
+inline void validate_mesh(const GridMesh& mesh, const std::string& where) {
+  if (mesh.key_times.empty()) throw std::invalid_argument(where + "no key times");
+  for (size_t k = 1; k < mesh.key_times.size(); ++k)
+    if (!(mesh.key_times[k] > mesh.key_times[k - 1]))
+      throw std::invalid_argument(where + "key times not strictly increasing");
+  if (mesh.positions.size() != mesh.key_times.size() * mesh.vertex_count)
+    throw std::invalid_argument(where + "positions do not match keys x vertices");
+  for (const auto& tri : mesh.triangles)
+    for (uint32_t v : tri)
+      if (v >= mesh.vertex_count) throw std::invalid_argument(where + "vertex index out of range");
+}
 
 /// The grid's whole input.
 struct GridInput {

@@ -16,16 +16,7 @@ void validate(const GridInput& input) {
   uint64_t triangles = 0, vertices = 0;
   for (size_t m = 0; m < input.meshes.size(); ++m) {
     const GridMesh& mesh = input.meshes[m];
-    const std::string where = "kinetic grid mesh " + std::to_string(m) + ": ";
-    if (mesh.key_times.empty()) throw std::invalid_argument(where + "no key times");
-    for (size_t k = 1; k < mesh.key_times.size(); ++k)
-      if (!(mesh.key_times[k] > mesh.key_times[k - 1]))
-        throw std::invalid_argument(where + "key times not strictly increasing");
-    if (mesh.positions.size() != mesh.key_times.size() * mesh.vertex_count)
-      throw std::invalid_argument(where + "positions do not match keys x vertices");
-    for (const auto& tri : mesh.triangles)
-      for (uint32_t v : tri)
-        if (v >= mesh.vertex_count) throw std::invalid_argument(where + "vertex index out of range");
+    validate_mesh(mesh, "kinetic grid mesh " + std::to_string(m) + ": ");
     triangles += mesh.triangles.size();
     vertices += mesh.vertex_count;
   }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "kinetic/frustum_grid.h"
+#include "renderer/grid_meshes.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -13,19 +14,7 @@ namespace kinray {
 GridInput kinetic_grid_input(const CameraSpaceScene& scene, int width, int height) {
   GridInput input;
   input.rays = PixelRays{width, height};
-  for (size_t o = 0; o < scene.objects.size(); ++o) {
-    const CameraSpaceObject& cs = scene.objects[o];
-    GridMesh mesh;
-    mesh.id = cs.object;
-    mesh.key_times = cs.key_times;
-    mesh.positions = cs.positions;
-    mesh.vertex_count = cs.vertex_count;
-    mesh.triangles = scene.triangles(o);
-    mesh.appear = cs.appear;
-    mesh.disappear = cs.disappear;
-    mesh.is_static = cs.is_static;
-    input.meshes.push_back(mesh);
-  }
+  input.meshes = grid_meshes(scene);
   return input;
 }
 

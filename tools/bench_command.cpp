@@ -15,6 +15,7 @@
 #include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/tree_bench_command.h"
 
 namespace kinray {
 namespace {
@@ -23,6 +24,7 @@ struct BenchOptions {
   RenderOptions render;
   std::string inbetweens = "1,4,16", triangles, sizes, thread_counts, embree_modes;
   std::string json, csv, charts;
+  std::string structure = "grid";  ///< grid, or kinetic trees (tools/tree_bench_command.cpp)
   int repetitions = 3, reference_frames = 12;
   bool quiet = false;
 };
@@ -45,6 +47,11 @@ BenchParams resolve(const BenchOptions& options) {
 }
 
 void run_bench(const BenchOptions& options) {
+  if (options.structure != "grid") {
+    run_tree_bench(options.render.resolve(), options.structure, options.inbetweens, options.triangles,
+                   options.repetitions, options.json, options.charts, options.quiet);
+    return;
+  }
   const BenchParams params = resolve(options);
   check_options_apply(params.base, std::array<std::string, 2>{"kinetic", "embree"});
   // Flags and scene are checked before anything is measured or written.
@@ -95,6 +102,9 @@ void register_bench_command(CLI::App& app) {
                                   "Write one row per configuration and backend mode as CSV"));
   output_path(command->add_option("--charts", options->charts,
                                   "Write PNG charts of each sweep into this folder"));
+  command->add_option("--structure", options->structure,
+                      "grid (the kinetic grid against Embree), or kinetic trees for shadow rays: aabb,boxtree[,refit]")
+      ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options] { run_bench(*options); });
 }

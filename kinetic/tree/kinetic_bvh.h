@@ -1,0 +1,165 @@
+#pragma once
+// The kinetic AABB tree and the kinetic BoxTree of Zachmann and Weller (VRCIA 2006; DESIGN.md,
+// "Kinetic AABB tree and kinetic BoxTree"). The tree's shape is built once (binned SAH) and kept;
+// each node side (an axis and max or min) stores its realizing vertex, the vertex of the subtree
+// that is extreme there. Certificates are linear on a flightplan segment:
+//   - a leaf side: the realizer is beyond the triangle's two other vertices (leaf event),
+//   - an inner side: the realizer, one child's, is beyond the other child's (tree event),
+// and a failure swaps the realizer and climbs while the parents' realizers change. At a key every
+// certificate of the mesh's subtrees is recomputed (flightplan update); a mesh appearing or
+// disappearing attaches or detaches its leaves. Between events nothing is computed: a box at time
+// t is its realizers' coordinates at t.
+//
+// The AABB tree tracks all six sides of every node. The BoxTree splits each inner node along one
+// axis and stores its left child's max and its right child's min there; a node then tracks only
+// the sides its ancestors' planes need, so it never has more certificates than the AABB tree.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kinetic/simulator.h"
+#include "kinetic/tree/bvh_topology.h"
+#include "kinetic/tree/tree_meshes.h"
+#include "kinetic/tree/tree_query.h"
+#include "kinetic/tree/tree_stats.h"
+
+namespace kinray {
+
+enum class TreeShape { aabb, boxtree };
+
+/// Node side s = 2 axis + (0: max, 1: min).
+[[nodiscard]] constexpr int side_axis(int s) {
+  return s >> 1;
+}
+[[nodiscard]] constexpr int side_sign(int s) {
+  return (s & 1) != 0 ? -1 : 1;
+}
+[[nodiscard]] constexpr int side_of(int axis, bool max) {
+  return 2 * axis + (max ? 0 : 1);
+}
+
+class KineticBvh {
+ public:
+  struct Config {
+    TreeShape shape = TreeShape::aabb;
+    bool audit = false;  ///< audit() after every advance_to (tests)
+  };
+
+  /// Builds the tree at time t over the meshes' triangles (present or not).
+  KineticBvh(std::vector<GridMesh> meshes, double t, const Config& config);
+
+  /// Processes every event up to t (t never decreases).
+  void advance_to(double t);
+  [[nodiscard]] double now() const { return m_sim.now(); }
+
+  /// At a time strictly between events (after the last one processed): every tracked side's value
+  /// equals the extreme recomputed from the node's leaves, every certificate holds, and an event
+  /// is scheduled exactly when the certificate fails within its segment (KINRAY_CHECK).
+  void audit() const;
+
+  [[nodiscard]] const TreeMeshes& meshes() const { return m_meshes; }
+  [[nodiscard]] const BvhTopology& topology() const { return m_topology; }
+  [[nodiscard]] TreeShape shape() const { return m_config.shape; }
+  /// The vertex realizing side s of a node (kNoVertex when untracked or the node is empty).
+  [[nodiscard]] uint32_t realizer(uint32_t node, int s) const {
+    return m_realizer[node][size_t(s)];
+  }
+  /// Some triangle below the node is present now.
+  [[nodiscard]] bool active(uint32_t node) const { return m_active[node] != 0; }
+  /// Side s of the node at t, from its realizer (t within the current segments).
+  [[nodiscard]] double side_value(uint32_t node, int s, double t) const {
+    return m_meshes.coordinate(m_realizer[node][size_t(s)], side_axis(s), t);
+  }
+
+  /// The queries' boxes (tree_query.h) at the frame's time, from the realizers. AABB tree: a
+  /// node's own six sides. BoxTree: the root is the box of every key position and a child is its
+  /// parent's box cut by the sides it tracks: the parent's plane (the left child's max or the right
+  /// child's min along the split axis) and the planes its other ancestors need, which are its own
+  /// extremes too.
+  [[nodiscard]] Aabb root_box(const TreeFrame& frame) const {
+    if (m_topology.nodes.empty() || !m_active[0]) return Aabb{};
+    if (m_config.shape == TreeShape::boxtree) {
+      Aabb all;  // no side of the root is tracked: the box of the whole shot bounds it
+      all.lo = m_meshes.shot_lo().array() - frame.pad;
+      all.hi = m_meshes.shot_hi().array() + frame.pad;
+      return all;
+    }
+    return own_box(0, frame);
+  }
+  void child_boxes(const BvhNode& n, const Aabb& box, const TreeFrame& frame, Aabb& left,
+                   Aabb& right) const {
+    if (m_config.shape == TreeShape::aabb) {
+      left = own_box(n.left, frame);
+      right = own_box(n.right, frame);
+      return;
+    }
+    left = right = box;
+    tighten(n.left, frame, left);
+    tighten(n.right, frame, right);
+  }
+
+  /// Counters, with the live certificates counted now.
+  [[nodiscard]] TreeStats stats() const;
+  [[nodiscard]] size_t memory_bytes() const;
+
+ private:
+  static constexpr uint64_t kMeshEvent = uint64_t{1} << 63;
+  enum EventKind : uint32_t { kMeshKind = 0, kLeafKind = 1, kTreeKind = 2 };
+
+  /// Recomputes side s of the node just after now and reschedules its certificate; returns
+  /// whether its realizer changed.
+  bool update_side(uint32_t node, int s);
+  void tighten(uint32_t node, const TreeFrame& frame, Aabb& b) const {
+    if (!m_active[node]) {
+      b = Aabb{};
+      return;
+    }
+    for (int s = 0; s < 6; ++s) {
+      if (((m_sides[node] >> s) & 1) == 0) continue;
+      const int a = side_axis(s);
+      const double v = side_value(node, s, frame.t);
+      if (side_sign(s) > 0)
+        b.hi[a] = std::min(b.hi[a], v + frame.pad);
+      else
+        b.lo[a] = std::max(b.lo[a], v - frame.pad);
+    }
+  }
+  [[nodiscard]] Aabb own_box(uint32_t node, const TreeFrame& frame) const {
+    Aabb b;
+    if (!m_active[node]) return b;
+    for (int a = 0; a < 3; ++a) {
+      b.hi[a] = side_value(node, side_of(a, true), frame.t) + frame.pad;
+      b.lo[a] = side_value(node, side_of(a, false), frame.t) - frame.pad;
+    }
+    return b;
+  }
+  void schedule(uint32_t node, int s, double time);
+  /// At a key, before update_side: when the realizer is beyond its competitors by a margin at both
+  /// keys of the new segment, the certificates hold through it (linear motion) and no failure
+  /// time is needed; the realizer stays. Returns false when that does not decide it.
+  bool keeps_through_segment(uint32_t node, int s);
+  void handle(const EventKey& key, uint64_t payload);
+  void handle_mesh(uint32_t m);
+  void schedule_mesh(uint32_t m);
+  /// Recomputes every node above mesh m's leaves, children first.
+  void refresh_mesh(uint32_t m);
+  void audit_node(uint32_t node, double t, std::vector<std::array<double, 6>>& extreme) const;
+  [[nodiscard]] uint64_t live_certificates() const;
+
+  Config m_config;
+  TreeMeshes m_meshes;
+  BvhTopology m_topology;
+  Simulator m_sim;
+  std::vector<std::array<uint32_t, 6>> m_realizer;
+  std::vector<std::array<EventHandle, 6>> m_event;
+  std::vector<uint8_t> m_sides;   ///< per node: bit s set when side s is tracked
+  std::vector<uint8_t> m_active;  ///< per node
+  std::vector<uint8_t> m_live;    ///< per node side: its live certificates (leaf 0-2, inner 0-1)
+  uint64_t m_live_total = 0;
+  double m_key_margin = 0;  ///< far above the rounding of a + b (t - o) against the key positions
+  std::vector<uint32_t> m_mesh_node_begin, m_mesh_nodes;  ///< per mesh: its nodes, descending
+  std::vector<EventHandle> m_mesh_event;
+  TreeStats m_stats;
+};
+
+}  // namespace kinray

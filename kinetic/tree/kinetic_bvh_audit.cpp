@@ -1,0 +1,85 @@
+// KineticBvh::audit: the tree against a recomputation from its leaves (DESIGN.md: "every box
+// equals the box recomputed from its leaves at a time strictly between events").
+#include <cmath>
+#include <limits>
+
+#include "kinetic/check.h"
+#include "kinetic/tree/kinetic_bvh.h"
+
+namespace kinray {
+
+void KineticBvh::audit() const {
+  m_sim.queue().audit();
+  const double now = m_sim.now();
+  const double next = m_sim.next_event_time();
+  // Strictly between the last event handled (at or before now) and the next one.
+  const double t = std::isfinite(next) ? now + 0.5 * (next - now) : now + 1.0;
+  if (!(t > now && t < next)) return;  // the next event is one ulp away: nothing in between
+  // extreme[i][s]: max of sign * coordinate over the node's present vertices, from its leaves.
+  const size_t nodes = m_topology.nodes.size();
+  std::vector<std::array<double, 6>> extreme(nodes);
+  for (uint32_t i = uint32_t(nodes); i-- > 0;) audit_node(i, t, extreme);
+  KINRAY_CHECK_MSG(live_certificates() == m_live_total,
+                   "kinetic tree audit: live certificates miscounted");
+  for (uint32_t m = 0; m < m_meshes.mesh_count(); ++m) {
+    const double change = m_meshes.next_change(m, now);
+    KINRAY_CHECK_MSG(
+        m_mesh_event[m] == kNoEvent ? !std::isfinite(change)
+                                    : m_sim.queue().key(m_mesh_event[m]).time == change,
+        "kinetic tree audit: a mesh's next key, appearance or disappearance is not scheduled");
+  }
+}
+
+void KineticBvh::audit_node(uint32_t i, double t,
+                            std::vector<std::array<double, 6>>& extreme) const {
+  const BvhNode& n = m_topology.nodes[i];
+  const bool present = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
+                                : (m_active[n.left] | m_active[n.right]) != 0;
+  KINRAY_CHECK_MSG(present == (m_active[i] != 0), "kinetic tree audit: wrong presence of a node");
+  for (int s = 0; s < 6; ++s) {
+    const int axis = side_axis(s), sign = side_sign(s);
+    double e = -std::numeric_limits<double>::infinity();
+    if (present && n.leaf()) {
+      for (uint32_t v : m_meshes.triangle(n.triangle))
+        e = std::max(e, sign * m_meshes.coordinate(v, axis, t));
+    } else if (present) {
+      e = std::max(extreme[n.left][size_t(s)], extreme[n.right][size_t(s)]);
+    }
+    extreme[i][size_t(s)] = e;
+    const uint32_t r = m_realizer[i][size_t(s)];
+    const EventHandle h = m_event[i][size_t(s)];
+    if (((m_sides[i] >> s) & 1) == 0 || !present) {
+      KINRAY_CHECK_MSG(r == kNoVertex && h == kNoEvent,
+                       "kinetic tree audit: an untracked side has a realizer");
+      continue;
+    }
+    KINRAY_CHECK_MSG(sign * m_meshes.coordinate(r, axis, t) == e,
+                     "kinetic tree audit: a side differs from the extreme of its leaves");
+    // The certificates: the realizer is beyond its competitors, and the earliest failure among
+    // them is the scheduled event (none scheduled: none fails within the segments).
+    double failure = kInfinityTime;
+    auto check = [&](uint32_t q) {
+      if (q == kNoVertex || q == r) return;
+      const LinearCertificate c = m_meshes.beyond(r, q, axis, sign);
+      KINRAY_CHECK_MSG(c.sign_after(t) >= 0, "kinetic tree audit: a certificate does not hold");
+      failure = std::min(failure, c.failure_time(m_sim.now()));
+    };
+    if (n.leaf()) {
+      for (uint32_t q : m_meshes.triangle(n.triangle)) check(q);
+    } else {
+      check(m_realizer[n.left][size_t(s)]);
+      check(m_realizer[n.right][size_t(s)]);
+    }
+    if (h == kNoEvent) {
+      KINRAY_CHECK_MSG(!std::isfinite(failure),
+                       "kinetic tree audit: a failing certificate has no event");
+    } else {
+      const double scheduled = m_sim.queue().key(h).time;
+      KINRAY_CHECK_MSG(std::isfinite(failure) &&
+                           std::fabs(failure - scheduled) <= 1e-9 * (1 + std::fabs(scheduled)),
+                       "kinetic tree audit: an event is not at its certificate's failure time");
+    }
+  }
+}
+
+}  // namespace kinray

@@ -1,0 +1,99 @@
+#include "renderer/tree_shadow_tracer.h"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+
+#include "kinetic/tree/bottom_up_bvh.h"
+#include "kinetic/tree/kinetic_bvh.h"
+#include "renderer/grid_meshes.h"
+#include "renderer/tree_stats_json.h"
+
+namespace kinray {
+
+namespace {
+
+class TreeShadowTracer final : public ShadowTracer {
+ public:
+  TreeShadowTracer(const CameraSpaceScene& scene, ShadowTree kind, bool audit)
+      : m_scene(scene), m_kind(kind), m_audit(audit) {
+    if (kind == ShadowTree::brute)
+      throw std::invalid_argument("tree shadow tracer: brute is not a tree");
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+      const uint32_t object = scene.objects[o].object;
+      if (object >= m_mesh_of_object.size()) m_mesh_of_object.resize(object + 1, UINT32_MAX);
+      m_mesh_of_object[object] = uint32_t(o);
+    }
+  }
+
+  [[nodiscard]] std::string name() const override { return shadow_tree_name(m_kind); }
+
+  void advance_to(double t) override {
+    const auto start = std::chrono::steady_clock::now();
+    if (m_kind == ShadowTree::refit) {
+      if (!m_bottom_up)
+        m_bottom_up.emplace(grid_meshes(m_scene), t);
+      else
+        m_bottom_up->update(t);
+    } else if (!m_kinetic) {
+      const TreeShape shape = m_kind == ShadowTree::aabb ? TreeShape::aabb : TreeShape::boxtree;
+      m_kinetic.emplace(grid_meshes(m_scene), t, KineticBvh::Config{shape, m_audit});
+    } else {
+      m_kinetic->advance_to(t);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    (m_frames == 0 ? m_build_s : m_update_s) += seconds;
+    ++m_frames;
+    m_frame = TreeFrame(meshes(), t);
+  }
+
+  void occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const override {
+    if (m_frames == 0) throw std::logic_error("tree shadow tracer: occluded before advance_to");
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const ShadowRay& r = rays[i];
+      TreeRay ray;
+      ray.origin = r.origin;
+      ray.direction = r.direction;
+      ray.s_max = r.s_max;
+      if (r.object < m_mesh_of_object.size() && m_mesh_of_object[r.object] != UINT32_MAX)
+        ray.skip = meshes().triangle_begin(m_mesh_of_object[r.object]) + r.prim;
+      blocked[i] =
+          m_kinetic ? any_hit(*m_kinetic, ray, m_frame) : any_hit(*m_bottom_up, ray, m_frame);
+    }
+  }
+
+  void write_stats(nlohmann::json& stats) const override {
+    nlohmann::json& s = stats["shadow_tree"];
+    s["kind"] = name();
+    s["frames"] = m_frames;
+    s["time_s"] = {{"build", m_build_s}, {"update", m_update_s}};
+    if (m_kinetic) write_kinetic_tree_stats(*m_kinetic, s);
+    if (m_bottom_up) write_bottom_up_stats(*m_bottom_up, s);
+  }
+
+ private:
+  [[nodiscard]] const TreeMeshes& meshes() const {
+    return m_kinetic ? m_kinetic->meshes() : m_bottom_up->meshes();
+  }
+
+  const CameraSpaceScene& m_scene;
+  ShadowTree m_kind;
+  bool m_audit = false;
+  std::vector<uint32_t> m_mesh_of_object;  ///< Scene object index -> mesh (tree) index
+  std::optional<KineticBvh> m_kinetic;
+  std::optional<BottomUpBvh> m_bottom_up;
+  TreeFrame m_frame;
+  uint64_t m_frames = 0;
+  double m_build_s = 0, m_update_s = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<ShadowTracer> make_tree_shadow_tracer(const CameraSpaceScene& scene,
+                                                      ShadowTree kind, bool audit) {
+  return std::make_unique<TreeShadowTracer>(scene, kind, audit);
+}
+
+}  // namespace kinray

@@ -1,0 +1,66 @@
+#include "renderer/tree_stats_json.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "kinetic/tree/bottom_up_bvh.h"
+#include "kinetic/tree/kinetic_bvh.h"
+
+namespace kinray {
+
+std::string shadow_tree_name(ShadowTree kind) {
+  switch (kind) {
+    case ShadowTree::aabb:
+      return "aabb";
+    case ShadowTree::boxtree:
+      return "boxtree";
+    case ShadowTree::refit:
+      return "refit";
+    case ShadowTree::brute:
+      return "brute";
+  }
+  return "?";
+}
+
+void write_kinetic_tree_stats(const KineticBvh& tree, nlohmann::json& out) {
+  const TreeStats s = tree.stats();
+  out["events"] = {{"total", s.events.total()}, {"leaf", s.events.leaf},
+                   {"tree", s.events.tree},     {"flightplan", s.events.flightplan},
+                   {"insert", s.events.insert}, {"delete", s.events.remove}};
+  out["events_external"] = s.events_external;
+  out["events_internal"] = s.events_internal;
+  out["realizer_changes"] = s.realizer_changes;
+  out["certificates"] = {{"live", s.certificates_live},
+                         {"live_max", s.certificates_live_max},
+                         {"computed", s.certificates_computed},
+                         {"decided_at_keys", s.certificates_by_keys},
+                         {"scheduled", s.scheduled_events}};
+  const double events = double(s.events.total());
+  const double triangles = double(std::max<uint64_t>(s.triangles_present, 1));
+  out["quality"] = {
+      {"compactness", s.certificates_live_max},
+      {"responsiveness", events > 0 ? double(s.certificates_computed) / events : 0.0},
+      {"locality", double(s.certificates_live) / triangles},
+      {"efficiency", s.events_external > 0 ? double(s.events_internal) / double(s.events_external)
+                                           : double(s.events_internal)},
+  };
+  out["tree"] = {{"shape", tree.shape() == TreeShape::aabb ? "aabb" : "boxtree"},
+                 {"nodes", s.nodes},
+                 {"height", s.height},
+                 {"node_sides", s.node_sides},
+                 {"triangles", s.triangles},
+                 {"triangles_present", s.triangles_present},
+                 {"memory_bytes", tree.memory_bytes()}};
+}
+
+void write_bottom_up_stats(const BottomUpBvh& tree, nlohmann::json& out) {
+  out["bv_updates"] = tree.box_updates();
+  out["updates"] = tree.updates();
+  out["tree"] = {{"shape", "aabb"},
+                 {"nodes", tree.topology().nodes.size()},
+                 {"height", tree.topology().height()},
+                 {"triangles", tree.meshes().triangle_count()},
+                 {"memory_bytes", tree.memory_bytes()}};
+}
+
+}  // namespace kinray
