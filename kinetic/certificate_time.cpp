@@ -16,7 +16,42 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 using detail::next_up;
 
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// Horner's rule on c[0..n], highest first.
+double horner(const double* c, int n, double s) {
+  double acc = c[n];
+  for (int k = n - 1; k >= 0; --k) acc = acc * s + c[k];
+  return acc;
+}
+
+/// Exact f (coefficients c[0..n], n <= 3) exceeds 8 n eps (|c0| + |c1| S + ... + |cn| S^n)
+/// (S = max |s|) at both ends of [a, b]: then Horner's value there, and wherever exact f is at
+/// least as large, is positive (its error is at most gamma_2n times that sum, with or without
+/// fused multiply-adds; the factor 2 covers the rounding of the bound itself). And the minimum
+/// of f on the window is at an end: it is linear, opens downwards (n = 2), or its slope passes
+/// the same test with one sign. The slope's coefficients k c_k are rounded (3 c_3), by far less
+/// than the margin it is certified with.
+bool clear_through(const double* c, int n, double a, double b, double big_s) {
+  double scale = 0;
+  for (int k = n; k >= 0; --k) scale = scale * big_s + std::fabs(c[k]);
+  const double margin = 16 * double(std::max(n, 1)) * kEps * scale;
+  if (!(std::isfinite(margin) && horner(c, n, a) > margin && horner(c, n, b) > margin)) return false;
+  if (n <= 1 || (n == 2 && c[2] < 0)) return true;
+  double slope[3], minus[3];
+  for (int k = 1; k <= n; ++k) {
+    slope[k - 1] = double(k) * c[k];
+    minus[k - 1] = -slope[k - 1];
+  }
+  return clear_through(slope, n - 1, a, b, big_s) || clear_through(minus, n - 1, a, b, big_s);
+}
+
 }  // namespace
+
+bool holds_through(const Polynomial& f, double s_now, double s_end) {
+  return f.degree <= 3 && std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
+         clear_through(f.c.data(), f.degree, s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end)));
+}
 
 std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now, double s_end) {
   if (f.effective_degree() != 2) return first_failure(f, s_now, s_end);
@@ -50,6 +85,7 @@ std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now
 
 double certificate_failure_time(const Polynomial& f, double origin, double now, double end) {
   const double s_now = now - origin;
+  if (holds_through(f, s_now, end - origin)) return kInf;
   const std::optional<double> r = first_failure_low_degree(f, s_now, end - origin);
   if (!r) return kInf;
   if (*r == s_now) return now;

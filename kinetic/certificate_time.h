@@ -13,6 +13,15 @@
 
 namespace kinray {
 
+/// The floating-point filter in front of the exact search: true when f (stored degree <= 3) is
+/// positive on all of [s_now, s_end] by more than any rounding of Horner's rule can take away
+/// there, so that no evaluation in the window (all that the exact search and the event handler
+/// look at) can see it fail: its two end values clear an error bound, and its minimum on the
+/// window is at an end (it opens downwards, or its derivative passes the same test with one
+/// sign). False means undecided. Most certificates the grid schedules hold through their
+/// segment (every key recomputes all of them), and this spares them the root isolation.
+[[nodiscard]] bool holds_through(const Polynomial& f, double s_now, double s_end);
+
 /// first_failure(f, s_now, s_end) (root_finding.h), with a closed-form path for degree 2.
 [[nodiscard]] std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now,
                                                              double s_end);

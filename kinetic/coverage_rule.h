@@ -30,6 +30,13 @@ namespace kinray {
 
 /// The sign (+1 or -1) of edge function n . d along the perturbed ray of (x, y, 1) just after s.
 [[nodiscard]] inline int edge_sign(const EdgeNormal& n, double x, double y, double s) {
+  // Horner's value of along(x, y) at s, with the same operations on the same values: when it is
+  // not zero it is the sign, and E is not the zero polynomial (no perturbation, no derivative).
+  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
+  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
+  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
+  const double v = (c2 * s + c1) * s + c0;
+  if (v != 0) return v > 0 ? 1 : -1;
   return sign_plus(n.perturbed(x, y), s);
 }
 

@@ -1080,8 +1080,12 @@ void FrustumBand<Sort>::handle_vertex(uint32_t v) {
       m_watch_changed.push_back(tri);
     }
   }
-  for (int q = 0; q < m_rows.count; ++q) {
-    if (simple && q != lo && q != hi) continue;
+  // A simple crossing changes the side of row lo or hi only: visiting just those two (in
+  // ascending order, as the full scan would) spares a loop over every row of the band per event.
+  const std::array<int, 2> simple_rows = {std::min(lo, hi), std::max(lo, hi)};
+  const int rows_to_visit = simple ? (lo == hi ? 1 : 2) : m_rows.count;
+  for (int k = 0; k < rows_to_visit; ++k) {
+    const int q = simple ? simple_rows[size_t(k)] : k;
     if (before.sign(q) == after.sign(q)) continue;
     ++m_stats.events.vertex_row;
     for (uint32_t tri : m_scene.triangles_of_vertex(v))

@@ -22,28 +22,10 @@ Polynomial::Polynomial(std::initializer_list<double> coefficients) {
   degree = std::max(0, i - 1);
 }
 
-double Polynomial::operator()(double s) const {
-  double acc = c[degree];
-  for (int k = degree - 1; k >= 0; --k) acc = acc * s + c[k];
-  return acc;
-}
-
 Polynomial Polynomial::derivative() const {
   Polynomial d;
   for (int k = 1; k <= degree; ++k) d.c[k - 1] = k * c[k];
   d.degree = std::max(0, degree - 1);
-  return d;
-}
-
-bool Polynomial::is_zero() const {
-  for (int k = 0; k <= degree; ++k)
-    if (c[k] != 0) return false;
-  return true;
-}
-
-int Polynomial::effective_degree() const {
-  int d = degree;
-  while (d > 0 && c[d] == 0) --d;
   return d;
 }
 

@@ -2,6 +2,7 @@
 // Polynomials of small degree in the power and Bernstein bases: the certificates of kinray.
 
 #include <array>
+#include <cstddef>
 #include <initializer_list>
 #include <utility>
 
@@ -20,12 +21,24 @@ struct Polynomial {
   /// Coefficients from low to high order; at most kMaxPolynomialDegree + 1 of them.
   Polynomial(std::initializer_list<double> coefficients);
 
-  /// Horner's rule, highest stored coefficient first.
-  [[nodiscard]] double operator()(double s) const;
+  /// Horner's rule, highest stored coefficient first. Inline: every event evaluates a few.
+  [[nodiscard]] double operator()(double s) const {
+    double acc = c[std::size_t(degree)];
+    for (int k = degree - 1; k >= 0; --k) acc = acc * s + c[std::size_t(k)];
+    return acc;
+  }
   [[nodiscard]] Polynomial derivative() const;
-  [[nodiscard]] bool is_zero() const;
+  [[nodiscard]] bool is_zero() const {
+    for (int k = 0; k <= degree; ++k)
+      if (c[std::size_t(k)] != 0) return false;
+    return true;
+  }
   /// Index of the highest non-zero coefficient (0 for the zero polynomial).
-  [[nodiscard]] int effective_degree() const;
+  [[nodiscard]] int effective_degree() const {
+    int d = degree;
+    while (d > 0 && c[std::size_t(d)] == 0) --d;
+    return d;
+  }
   /// The same polynomial with `degree` lowered to effective_degree().
   [[nodiscard]] Polynomial trimmed() const;
 };

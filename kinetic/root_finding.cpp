@@ -369,9 +369,7 @@ std::optional<double> first_failure_linear(double c0, double c1, double s_now, d
 
 RootStats& root_stats() { return t_stats; }
 
-int sign_after(const Polynomial& f, double s) {
-  const int v = sign_of(f(s));
-  if (v != 0) return v;
+int sign_after_root(const Polynomial& f, double s) {
   const Polynomial g = shifted(f, s);  // g.c[k] = f^(k)(s) / k!
   for (int k = 1; k <= g.degree; ++k)
     if (g.c[k] != 0) return sign_of(g.c[k]);

@@ -11,9 +11,17 @@
 
 namespace kinray {
 
+/// sign_after(f, s) where Horner's value f(s) is exactly 0: the sign of the first non-vanishing
+/// derivative at s (0 only for the zero polynomial).
+[[nodiscard]] int sign_after_root(const Polynomial& f, double s);
+
 /// Sign (-1, 0, +1) of f just after s: the sign of the first non-vanishing derivative at s
-/// (0 only for the zero polynomial). The value f(s) is Horner's, exactly as f(s).
-[[nodiscard]] int sign_after(const Polynomial& f, double s);
+/// (0 only for the zero polynomial). The value f(s) is Horner's, exactly as f(s). Inline: the
+/// grid takes a few per event, almost always decided by the value itself.
+[[nodiscard]] inline int sign_after(const Polynomial& f, double s) {
+  const double v = f(s);
+  return v > 0 ? 1 : (v < 0 ? -1 : sign_after_root(f, s));
+}
 
 /// The certificate f > 0 fails at the first s in (s_now, s_end] where f changes sign from + to -.
 /// - If sign_after(f, s_now) < 0 the certificate is already broken: returns s_now.

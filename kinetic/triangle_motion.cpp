@@ -2,14 +2,6 @@
 
 namespace kinray {
 
-EdgeNormal edge_normal(const PointMotion& p, const PointMotion& q) {
-  EdgeNormal n;
-  n.c0 = p.a.cross(q.a);
-  n.c1 = p.a.cross(q.b) + p.b.cross(q.a);
-  n.c2 = p.b.cross(q.b);
-  return n;
-}
-
 namespace {
 
 // (c0 + c1 s + c2 s^2) . (a + b s), a cubic.

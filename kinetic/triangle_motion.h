@@ -62,7 +62,13 @@ struct EdgeNormal {
 };
 
 /// p x q; exactly antisymmetric (edge_normal(q, p) is the negation) and exactly zero for p == q.
-[[nodiscard]] EdgeNormal edge_normal(const PointMotion& p, const PointMotion& q);
+[[nodiscard]] inline EdgeNormal edge_normal(const PointMotion& p, const PointMotion& q) {
+  EdgeNormal n;
+  n.c0 = p.a.cross(q.a);
+  n.c1 = p.a.cross(q.b) + p.b.cross(q.a);
+  n.c2 = p.b.cross(q.b);
+  return n;
+}
 
 /// The side of row plane Pi_j (normal (0, 1, -y)) that v is on: n_j . v(s), linear in s.
 [[nodiscard]] inline Polynomial row_side(const PointMotion& v, double y) {

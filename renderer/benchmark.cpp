@@ -168,6 +168,40 @@ double event_total(const BenchPoint& p) {
   return events != p.kinetic_stats.end() && events->contains("total") ? (*events)["total"].get<double>() : 0;
 }
 
+/// BenchReport::ns_per_event_one_thread: a one-thread point of the base scene if one was
+/// measured (its events per frame are a median over repetitions), else kinetic-only runs of the
+/// base configuration on one thread.
+std::optional<double> ns_per_event_one_thread(const BenchParams& bench, const std::vector<BenchPoint>& points) {
+  for (const BenchPoint& p : points)
+    if (p.threads == 1 && p.scene == bench.base.scene && event_total(p) > 0)
+      return 1e6 * p.kinetic_events_ms * double(p.frames) / event_total(p);
+  RenderParams params = bench.base;
+  params.threads = 1;
+  params.frames.reset();
+  params.fps.reset();
+  params.inbetweens = bench.inbetweens.front();
+  params.backend = "kinetic";
+  params.audit = false;
+  params.quiet = true;
+  RenderJob job(params);
+  std::vector<double> ns;
+  for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
+    std::unique_ptr<Backend> backend = job.make_backend("kinetic");
+    Frame frame;
+    frame.resize(params.width, params.height);
+    for (double t : job.frame_times()) {
+      frame.time = t;
+      backend->render(t, frame);
+    }
+    nlohmann::json stats;
+    backend->write_stats(stats);
+    const double events = stats["events"]["total"].get<double>();
+    if (events > 0) ns.push_back(1e9 * seconds_at(stats, "events") / events);
+  }
+  if (ns.empty()) return std::nullopt;
+  return median(ns);
+}
+
 }  // namespace
 
 std::vector<int> parse_int_list(const std::string& text, const std::string& flag) {
@@ -260,6 +294,8 @@ BenchReport run_benchmark(const BenchParams& params, const std::function<void(co
     }
     report.points.push_back(measure(params, config));
   }
+  report.base_scene = base.scene;
+  report.ns_per_event_one_thread = ns_per_event_one_thread(params, report.points);
   return report;
 }
 
@@ -298,6 +334,9 @@ nlohmann::json BenchReport::to_json() const {
   nlohmann::json result = {{"points", points_json}};
   if (const auto k = break_even_inbetweens()) result["break_even_inbetweens"] = *k;
   else result["break_even_inbetweens"] = nullptr;
+  result["scene"] = base_scene;
+  if (ns_per_event_one_thread) result["ns_per_event_one_thread"] = *ns_per_event_one_thread;
+  else result["ns_per_event_one_thread"] = nullptr;
   return result;
 }
 
@@ -440,6 +479,8 @@ void BenchReport::print(std::ostream& out) const {
   }
   if (const auto k = break_even_inbetweens())
     out << std::setprecision(2) << "break-even: " << *k << " in-betweens per keyframe interval\n";
+  if (ns_per_event_one_thread)
+    out << std::setprecision(0) << "one thread: " << *ns_per_event_one_thread << " ns per event\n";
   out << std::defaultfloat;
 }
 

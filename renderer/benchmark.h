@@ -80,6 +80,10 @@ struct BenchPoint {
 
 struct BenchReport {
   std::vector<BenchPoint> points;
+  std::string base_scene;  ///< the scene of the base configuration
+  /// Event processing cost on one core at the base configuration (time_s.events / events.total,
+  /// median over repetitions): from a measured one-thread point, else from its own kinetic runs.
+  std::optional<double> ns_per_event_one_thread;
   [[nodiscard]] nlohmann::json to_json() const;
   /// One row per (configuration, backend mode).
   [[nodiscard]] std::string to_csv() const;

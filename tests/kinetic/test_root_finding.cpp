@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "kinetic/certificate_time.h"
 #include "kinetic/root_finding.h"
 
 namespace kinray {
@@ -302,6 +303,34 @@ TEST(RootFinding, RandomisedAgainstBruteForce) {
   EXPECT_GT(tail_cases, kPolynomials / 20);
   EXPECT_GT(changes_checked, 1000);
   RecordProperty("failures_found", failures_found);
+}
+
+TEST(RootFinding, HoldsThroughFilterDecidesOnlyCertainWindows) {
+  // Clear cases: decided without the exact search.
+  EXPECT_TRUE(holds_through(Polynomial{1, 1, 0}, 0, 1));           // increasing, positive
+  EXPECT_TRUE(holds_through(Polynomial{1, 0, -0.5}, 0, 1));        // opens downwards, ends > 0
+  EXPECT_TRUE(holds_through(from_roots({-1, 2, 3}), 1, 1.5));  // cubic, decreasing there
+  // A root in the window, a dip between positive ends, or a root at the window's start: never.
+  EXPECT_FALSE(holds_through(from_roots({0.5, 2}), 0, 1));
+  EXPECT_FALSE(holds_through(Polynomial{0.01, -1, 1}, 0, 1));  // vertex at 0.5, f(0.5) < 0
+  EXPECT_FALSE(holds_through(Polynomial{1e-30, 1, 0}, 0, 1));   // f(0) within rounding of 0
+  EXPECT_FALSE(holds_through(Polynomial{1, 1, 0}, 0, kInf));
+  // Against the exact search and brute-force Horner evaluation: whenever the filter decides, the
+  // certificate holds at every sampled double of the window and first_failure finds no failure.
+  std::mt19937_64 rng(1414);
+  std::uniform_real_distribution<double> coef(-1, 1), start(-2, 2), width(0, 3);
+  int decided = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Polynomial f;
+    f.degree = 1 + trial % 3;
+    for (int k = 0; k <= f.degree; ++k) f.c[size_t(k)] = coef(rng) * std::pow(10.0, -3 * (trial % 4));
+    const double a = start(rng), b = a + width(rng);
+    if (!holds_through(f, a, b)) continue;
+    ++decided;
+    EXPECT_FALSE(first_failure(f, a, b).has_value());
+    for (int k = 0; k <= 64; ++k) EXPECT_GT(f(a + (b - a) * k / 64), 0);
+  }
+  EXPECT_GT(decided, 2000);  // the filter is not vacuous
 }
 
 }  // namespace

@@ -58,6 +58,16 @@ TEST(Benchmark, TinyRunMeasuresBothSidesAndAgrees) {
                           "speedup_vs_best_embree", "mismatch_real"})
     EXPECT_TRUE(json["points"][0].contains(key)) << key;
   EXPECT_NE(report.to_csv().find("kinetic"), std::string::npos);
+  // One thread was measured: the cost per event is that point's events time over its events.
+  const BenchPoint& first = report.points[0];
+  ASSERT_TRUE(report.ns_per_event_one_thread);
+  EXPECT_NEAR(*report.ns_per_event_one_thread,
+              1e6 * first.kinetic_events_ms * double(first.frames) /
+                  first.kinetic_stats["events"]["total"].get<double>(),
+              1e-9);
+  EXPECT_EQ(json["scene"], params.base.scene);
+  EXPECT_DOUBLE_EQ(json["ns_per_event_one_thread"].get<double>(), *report.ns_per_event_one_thread);
+  EXPECT_TRUE(json.contains("break_even_inbetweens"));
 }
 
 TEST(Benchmark, BreakEvenInterpolatesInLogK) {
