@@ -18,39 +18,57 @@ using detail::next_up;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-/// Horner's rule on c[0..n], highest first.
-double horner(const double* c, int n, double s) {
-  double acc = c[n];
-  for (int k = n - 1; k >= 0; --k) acc = acc * s + c[k];
+/// Horner's rule on c[0..N], highest first.
+template <int N>
+double horner(const double* c, double s) {
+  double acc = c[N];
+  for (int k = N - 1; k >= 0; --k) acc = acc * s + c[k];
   return acc;
 }
 
-/// Exact f (coefficients c[0..n], n <= 3) exceeds 8 n eps (|c0| + |c1| S + ... + |cn| S^n)
-/// (S = max |s|) at both ends of [a, b]: then Horner's value there, and wherever exact f is at
-/// least as large, is positive (its error is at most gamma_2n times that sum, with or without
-/// fused multiply-adds; the factor 2 covers the rounding of the bound itself). And the minimum
-/// of f on the window is at an end: it is linear, opens downwards (n = 2), or its slope passes
-/// the same test with one sign. The slope's coefficients k c_k are rounded (3 c_3), by far less
-/// than the margin it is certified with.
-bool clear_through(const double* c, int n, double a, double b, double big_s) {
+/// Exact f (coefficients c[0..N]) exceeds 8 N eps (|c0| + |c1| S + ... + |cN| S^N) (S = max |s|)
+/// at both ends of [a, b]: then Horner's value there, and wherever exact f is at least as large,
+/// is positive (its error is at most gamma_2N times that sum, with or without fused
+/// multiply-adds; the factor 2 covers the rounding of the bound itself).
+template <int N>
+bool ends_clear(const double* c, double a, double b, double big_s) {
   double scale = 0;
-  for (int k = n; k >= 0; --k) scale = scale * big_s + std::fabs(c[k]);
-  const double margin = 16 * double(std::max(n, 1)) * kEps * scale;
-  if (!(std::isfinite(margin) && horner(c, n, a) > margin && horner(c, n, b) > margin)) return false;
-  if (n <= 1 || (n == 2 && c[2] < 0)) return true;
-  double slope[3], minus[3];
-  for (int k = 1; k <= n; ++k) {
-    slope[k - 1] = double(k) * c[k];
-    minus[k - 1] = -slope[k - 1];
+  for (int k = N; k >= 0; --k) scale = scale * big_s + std::fabs(c[k]);
+  const double margin = 16 * double(std::max(N, 1)) * kEps * scale;
+  return std::isfinite(margin) && horner<N>(c, a) > margin && horner<N>(c, b) > margin;
+}
+
+/// ends_clear, and the minimum of f on the window is at an end: f is linear, opens downwards, or
+/// its slope passes the same test with one sign. The slope's coefficients k c_k are rounded
+/// (3 c_3), by far less than the margin it is then certified with.
+template <int N>
+bool clear_through(const double* c, double a, double b, double big_s) {
+  if (!ends_clear<N>(c, a, b, big_s)) return false;
+  if constexpr (N <= 1) {
+    return true;
+  } else {
+    if (N == 2 && c[2] < 0) return true;
+    double slope[N], minus[N];
+    for (int k = 1; k <= N; ++k) {
+      slope[k - 1] = double(k) * c[k];
+      minus[k - 1] = -slope[k - 1];
+    }
+    return clear_through<N - 1>(slope, a, b, big_s) || clear_through<N - 1>(minus, a, b, big_s);
   }
-  return clear_through(slope, n - 1, a, b, big_s) || clear_through(minus, n - 1, a, b, big_s);
 }
 
 }  // namespace
 
 bool holds_through(const Polynomial& f, double s_now, double s_end) {
-  return f.degree <= 3 && std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
-         clear_through(f.c.data(), f.degree, s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end)));
+  if (!(std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now)) return false;
+  const double big_s = std::max(std::fabs(s_now), std::fabs(s_end));
+  switch (f.degree) {
+    case 0:
+    case 1: return clear_through<1>(f.c.data(), s_now, s_end, big_s);
+    case 2: return clear_through<2>(f.c.data(), s_now, s_end, big_s);
+    case 3: return clear_through<3>(f.c.data(), s_now, s_end, big_s);
+    default: return false;
+  }
 }
 
 std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now, double s_end) {
