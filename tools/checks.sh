@@ -4,7 +4,8 @@
 #
 #   bash tools/checks.sh sanitize   # build-sanitize/: everything with ASan + UBSan, the whole suite
 #   bash tools/checks.sh fuzz       # build-fuzz/: the libFuzzer harnesses (clang-14), each run for
-#                                   # KINRAY_FUZZ_SECONDS (default 30) from its seed corpus
+#                                   # KINRAY_FUZZ_SECONDS (default 30) from its seed corpus, with
+#                                   # libFuzzer's seed KINRAY_FUZZ_SEED (default 0: a random one)
 #   bash tools/checks.sh fuzz NAME  # one harness only
 #
 # Extra CMake arguments (a compiler launcher such as ccache, say) go in KINRAY_CMAKE_ARGS.
@@ -55,6 +56,7 @@ case "$mode" in
       echo "checks: fuzz_$name for ${seconds} s"
       start=$SECONDS
       if ! "build-fuzz/bin/fuzz_$name" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2560 \
+        -seed="${KINRAY_FUZZ_SEED:-0}" \
         -print_final_stats=1 -artifact_prefix="$artifacts/" "${dictionary[@]}" "${inputs[@]}" \
         >"build-fuzz/fuzz_$name.log" 2>&1; then
         failed+=("$name")
