@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -43,6 +44,10 @@ std::optional<std::string> run_in_child(const std::function<std::string()>& work
   if (child == 0) {
     close(fds[0]);
     dup2(STDERR_FILENO, STDOUT_FILENO);
+    // The child's crash is the parent's verdict: it must die by the signal. A handler inherited
+    // from the parent (AddressSanitizer's, libFuzzer's in the sanitizer and fuzz builds) would
+    // report it as its own finding and exit with a status instead.
+    for (const int crash : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(crash, SIG_DFL);
     if (address_space_bytes > 0) {
       const rlimit limit{rlim_t(address_space_bytes), rlim_t(address_space_bytes)};
       setrlimit(RLIMIT_AS, &limit);

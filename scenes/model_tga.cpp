@@ -14,6 +14,13 @@ cv::Mat decode_tga(std::span<const uint8_t> bytes) {
   if (grey ? depth != 8 : (depth != 24 && depth != 32)) return {};
   const size_t pixel_bytes = size_t(depth) / 8, pixels = size_t(width) * size_t(height);
   size_t at = 18 + id_length;
+  // The header's size (up to 65535 x 65535 x 4 bytes, 17 GB) is believed only as far as the data
+  // can fill it: stored pixels, or run-length packets of at least 1 + pixel_bytes bytes and at
+  // most 128 pixels each. Otherwise a hostile texture would allocate before being found short.
+  const size_t available = bytes.size() > at ? bytes.size() - at : 0;
+  if (run_length ? pixels > (available / (1 + pixel_bytes) + 1) * 128
+                 : pixels * pixel_bytes > available)
+    return {};
 
   std::vector<uint8_t> data(pixels * pixel_bytes);
   if (!run_length) {

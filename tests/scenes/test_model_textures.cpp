@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "scenes/model_guard.h"
 #include "scenes/model_import.h"
 #include "scenes/model_textures.h"
 #include "scenes/model_tga.h"
@@ -173,6 +174,24 @@ std::vector<uint8_t> checker_tga(bool run_length) {
       bytes.push_back(v);
   }
   return bytes;
+}
+
+// A header of 65535 x 65535 true-colour pixels over a few bytes of data (found by reading the
+// decoder for its fuzz harness; tests/fuzz/regressions/tga/ keeps both inputs): decoding used to
+// allocate the whole 17 GB image before finding the data short. In a child whose address space
+// is only 512 MiB above this process's, a decoder that allocates first fails with bad_alloc.
+TEST(ModelTextures, TgaHeaderLargerThanItsDataIsRefusedBeforeAllocating) {
+  for (bool run_length : {false, true}) {
+    std::vector<uint8_t> bytes = checker_tga(run_length);
+    bytes[12] = bytes[13] = bytes[14] = bytes[15] = 0xff;
+    size_t used_pages = 0;
+    std::ifstream("/proc/self/statm") >> used_pages;
+    const size_t limit = used_pages * size_t(sysconf(_SC_PAGESIZE)) + (size_t(512) << 20);
+    const std::optional<std::string> failure = run_in_child(
+        [&] { return decode_tga(bytes).empty() ? std::string() : std::string("decoded"); }, 60,
+        limit);
+    EXPECT_EQ(failure, std::nullopt) << (run_length ? "run-length" : "uncompressed");
+  }
 }
 
 TEST(ModelTextures, TgaWhichOpenCvLacksIsDecoded) {
