@@ -30,6 +30,8 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+}  // namespace
+
 /// `spec` with its triangles= parameter set to `triangles` ("wavy-sphere:duration=2" ->
 /// "wavy-sphere:duration=2,triangles=N").
 std::string with_triangles(const std::string& spec, int triangles) {
@@ -46,6 +48,8 @@ std::string with_triangles(const std::string& spec, int triangles) {
   for (size_t k = 0; k < kept.size(); ++k) result += (k ? "," : "") + kept[k];
   return result;
 }
+
+namespace {
 
 /// Evenly spread frame indices, at most `count` of them, first and last included.
 std::vector<size_t> spread(size_t frames, int count) {

@@ -43,6 +43,9 @@ struct BenchParams {
 [[nodiscard]] std::vector<int> parse_int_list(const std::string& text, const std::string& flag);
 /// Parses "rebuild/1,refit/8" into Embree modes. Throws InputError naming --embree-modes.
 [[nodiscard]] std::vector<EmbreeMode> parse_embree_modes(const std::string& text);
+/// `spec` with its triangles= parameter set to `triangles` ("wavy-sphere:duration=2" ->
+/// "wavy-sphere:duration=2,triangles=N"): the scene of a --triangles sweep point.
+[[nodiscard]] std::string with_triangles(const std::string& spec, int triangles);
 /// Throws InputError naming the flag at fault.
 void validate(const BenchParams& params);
 
