@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "renderer/bench_support.h"
 #include "renderer/render_job.h"
 
 namespace kinray {

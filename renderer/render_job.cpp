@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "renderer/memory_estimate.h"
 #include "renderer/progress.h"
 #include "renderer/shading.h"
 #include "renderer/video_writer.h"
@@ -141,8 +142,10 @@ std::string output_folder(const RenderParams& params) {
 
 RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_started(now_s()) {
   validate(m_params);
+  check_render_memory(m_params, nullptr);  // a built-in that cannot fit is not built
   m_scene = load_scene(m_params.scene, model_options(m_params));
   m_scene.validate(m_params.scene);
+  check_render_memory(m_params, &m_scene);
   m_camera_space = CameraSpaceScene::build(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_timings.load = now_s() - m_started;

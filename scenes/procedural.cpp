@@ -46,7 +46,8 @@ bool is_builtin_scene(const std::string& name) {
   return false;
 }
 
-Scene make_builtin_scene(const std::string& name, const std::map<std::string, double>& params) {
+ProceduralParams builtin_scene_params(const std::string& name,
+                                      const std::map<std::string, double>& params) {
   const BuiltinScene* builtin = nullptr;
   for (const BuiltinScene& scene : builtin_scenes())
     if (scene.name == name) builtin = &scene;
@@ -77,6 +78,15 @@ Scene make_builtin_scene(const std::string& name, const std::map<std::string, do
                      "triangles must be at most 5e7, got " + std::to_string(values.triangles));
   if (values.duration * values.keyrate > 1e5)
     throw InputError(where, "duration * keyrate must be at most 1e5 keys");
+  return values;
+}
+
+Scene make_builtin_scene(const std::string& name, const std::map<std::string, double>& params) {
+  const ProceduralParams values = builtin_scene_params(name, params);
+  const std::string where = "scene '" + name + "'";
+  const BuiltinScene* builtin = nullptr;
+  for (const BuiltinScene& scene : builtin_scenes())
+    if (scene.name == name) builtin = &scene;
   Scene scene = builtin->make(values);
   scene.name = name;
   scene.validate(where);

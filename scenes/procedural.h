@@ -30,6 +30,11 @@ struct BuiltinScene {
 [[nodiscard]] std::vector<std::string> builtin_scene_names();
 [[nodiscard]] bool is_builtin_scene(const std::string& name);
 
+/// The parameters of the built-in `name` with `params` over its defaults, checked as
+/// make_builtin_scene checks them (it throws the same InputErrors) without building anything.
+[[nodiscard]] ProceduralParams builtin_scene_params(const std::string& name,
+                                                    const std::map<std::string, double>& params);
+
 /// Builds the built-in `name` with `params` (keys "triangles", "duration", "keyrate"; missing ones
 /// take the scene's defaults). Throws InputError for an unknown name or parameter, listing the
 /// valid ones, and for non-finite or non-positive values.

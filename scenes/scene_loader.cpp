@@ -44,6 +44,15 @@ std::map<std::string, double> parse_parameters(const std::string& spec, const st
 
 }  // namespace
 
+std::optional<ProceduralParams> builtin_scene_params(const std::string& spec) {
+  const size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  if (!is_builtin_scene(name)) return std::nullopt;
+  return builtin_scene_params(name, colon == std::string::npos
+                                        ? std::map<std::string, double>{}
+                                        : parse_parameters(spec, spec.substr(colon + 1)));
+}
+
 Scene load_scene(const std::string& spec, const ModelOptions& model_options) {
   if (spec.empty())
     throw InputError("scene ''", "empty scene name; " + describe_scene_spec_syntax());

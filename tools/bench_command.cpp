@@ -7,12 +7,16 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <tuple>
+#include <vector>
 
 #include "renderer/benchmark.h"
 #include "renderer/image_io.h"
+#include "renderer/memory_estimate.h"
 #include "renderer/option_scope.h"
 #include "renderer/output_check.h"
 #include "scenes/error.h"
+#include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
@@ -46,6 +50,64 @@ BenchParams resolve(const BenchOptions& options) {
   return params;
 }
 
+/// Every configuration the sweeps will run, checked before the first one runs: flags, the frame
+/// schedule on the scene's key grid, memory, and --triangles only on a built-in scene.
+void check_configurations(const BenchParams& params) {
+  const RenderParams& base = params.base;
+  if (params.repetitions > 1000)
+    throw InputError("--repetitions",
+                     "must lie in 1..1000, got " + std::to_string(params.repetitions));
+  if (params.reference_frames > 10000)
+    throw InputError("--reference-frames",
+                     "must lie in 1..10000, got " + std::to_string(params.reference_frames));
+  const bool builtin = builtin_scene_params(base.scene).has_value();
+  if (!params.triangles.empty() && !builtin)
+    throw InputError("--triangles", "sweeps the triangles= parameter of a built-in scene, and '" +
+                                        base.scene + "' is not one");
+  std::vector<std::pair<const char*, RenderParams>> configurations;  // the sweep's flag, params
+  for (int k : params.inbetweens) {
+    RenderParams p = base;
+    p.inbetweens = k;
+    configurations.emplace_back("--inbetweens", p);
+  }
+  for (int n : params.triangles) {
+    RenderParams p = base;
+    p.scene = with_triangles(base.scene, n);
+    configurations.emplace_back("--triangles", p);
+  }
+  for (const auto& [w, h] : params.sizes) {
+    RenderParams p = base;
+    std::tie(p.width, p.height) = std::pair{w, h};
+    configurations.emplace_back("--sizes", p);
+  }
+  for (int n : params.threads) {
+    RenderParams p = base;
+    p.threads = n;
+    configurations.emplace_back("--thread-counts", p);
+  }
+  // The key grid the in-betweens subdivide: a built-in's from its parameters, else the scene's.
+  const std::vector<double> keys =
+      builtin ? [&] {
+        const ProceduralParams scene = *builtin_scene_params(base.scene);
+        return procedural_key_times(scene.duration, scene.keyrate);
+      }()
+              : load_scene(base.scene, model_options(base)).key_times();
+  for (const auto& [flag, p] : configurations) {
+    try {
+      (void)builtin_scene_params(p.scene);
+      validate(p);
+      check_render_memory(p, nullptr);
+      RenderParams kinetic = p;
+      kinetic.backend = "kinetic";
+      check_render_memory(kinetic, nullptr);
+      (void)frame_times(keys, schedule_params(p));
+    } catch (const InputError& e) {
+      if (e.where() == flag) throw;
+      throw InputError(flag, std::string("in this sweep, ") + e.what());
+    }
+  }
+}
+
 void run_bench(const BenchOptions& options) {
   if (options.structure != "grid") {
     run_tree_bench(options.render.resolve(), options.structure, options.inbetweens, options.triangles,
@@ -54,6 +116,7 @@ void run_bench(const BenchOptions& options) {
   }
   const BenchParams params = resolve(options);
   check_options_apply(params.base, std::array<std::string, 2>{"kinetic", "embree"});
+  check_configurations(params);
   // Flags and scene are checked before anything is measured or written.
   if (!options.json.empty()) check_output_file(options.json, "--json");
   if (!options.csv.empty()) check_output_file(options.csv, "--csv");
