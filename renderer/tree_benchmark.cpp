@@ -124,6 +124,58 @@ struct Measured {
   }
 };
 
+/// The bottom-up tree, Embree refit and Embree rebuild on one configuration.
+struct Peers {
+  Measured bottom_up, refit, rebuild;
+};
+
+/// Counts and times of one kinetic tree and its peers into p (key_intervals and tree set);
+/// throws when the tree and the bottom-up tree answer a shadow ray differently.
+void fill_measurements(TreeBenchPoint& p, const Measured& kinetic, const Peers& peers) {
+  const nlohmann::json& s = kinetic.runs.front().stats["shadow_tree"];
+  const double n = double(p.key_intervals);
+  if (s.contains("events")) {
+    p.events_per_interval = s["events"]["total"].get<double>() / n;
+    p.failures_per_interval =
+        (s["events"]["leaf"].get<double>() + s["events"]["tree"].get<double>()) / n;
+    p.certificates_per_interval = s["certificates"]["computed"].get<double>() / n;
+  } else {  // refit: the bottom-up tree as the structure under test
+    p.events_per_interval = s["bv_updates"].get<double>() / n;
+  }
+  // The first pass builds the tree (not an update, as the first frame of every structure).
+  const nlohmann::json& b = peers.bottom_up.runs.front().stats["shadow_tree"];
+  const double passes = b["updates"].get<double>();
+  p.bv_updates_per_interval = b["bv_updates"].get<double>() * (passes - 1) / passes / n;
+  p.kinetic_update_ms_per_frame = kinetic.update();
+  p.bottom_up_update_ms_per_frame = peers.bottom_up.update();
+  p.embree_refit_update_ms_per_frame = peers.refit.update();
+  p.embree_rebuild_update_ms_per_frame = peers.rebuild.update();
+  p.update_speedup = p.kinetic_update_ms_per_frame > 0
+                         ? p.bottom_up_update_ms_per_frame / p.kinetic_update_ms_per_frame
+                         : 0;
+  p.shadow_ms_per_frame = kinetic.shadow();
+  p.bottom_up_shadow_ms_per_frame = peers.bottom_up.shadow();
+  p.embree_refit_shadow_ms_per_frame = peers.refit.shadow();
+  p.embree_rebuild_shadow_ms_per_frame = peers.rebuild.shadow();
+  p.total_ms_per_frame = p.kinetic_update_ms_per_frame + p.shadow_ms_per_frame;
+  p.bottom_up_total_ms_per_frame =
+      p.bottom_up_update_ms_per_frame + p.bottom_up_shadow_ms_per_frame;
+  p.embree_refit_total_ms_per_frame =
+      p.embree_refit_update_ms_per_frame + p.embree_refit_shadow_ms_per_frame;
+  p.embree_rebuild_total_ms_per_frame =
+      p.embree_rebuild_update_ms_per_frame + p.embree_rebuild_shadow_ms_per_frame;
+  p.build_ms = kinetic.runs.front().build_ms;
+  const auto& masks = kinetic.runs.front().masks;
+  for (size_t f = 0; f < masks.size(); ++f)
+    for (size_t i = 0; i < masks[f].size(); ++i) {
+      if (masks[f][i] != peers.bottom_up.runs.front().masks[f][i])
+        throw std::runtime_error("kinray bench: the " + p.tree +
+                                 " tree and the bottom-up tree disagree on a shadow ray");
+      p.embree_mask_mismatches += masks[f][i] != peers.refit.runs.front().masks[f][i];
+    }
+  p.stats = s;
+}
+
 std::vector<TreeBenchPoint> measure(const TreeBenchParams& bench, const std::string& sweep,
                                     const std::string& scene, int inbetweens) {
   RenderParams params = bench.base;
@@ -154,10 +206,11 @@ std::vector<TreeBenchPoint> measure(const TreeBenchParams& bench, const std::str
     }
     return m;
   };
-  const Measured bottom_up =
+  Peers peers;
+  peers.bottom_up =
       measure_tracer([&] { return make_tree_shadow_tracer(cs, ShadowTree::refit, false); });
-  const Measured refit = measure_tracer([&] { return make_embree_shadow_tracer(cs, true); });
-  const Measured rebuild = measure_tracer([&] { return make_embree_shadow_tracer(cs, false); });
+  peers.refit = measure_tracer([&] { return make_embree_shadow_tracer(cs, true); });
+  peers.rebuild = measure_tracer([&] { return make_embree_shadow_tracer(cs, false); });
 
   std::vector<TreeBenchPoint> points;
   const size_t intervals = std::max<size_t>(1, (times.size() - 1) / size_t(inbetweens));
@@ -174,48 +227,7 @@ std::vector<TreeBenchPoint> measure(const TreeBenchParams& bench, const std::str
     p.key_intervals = intervals;
     for (const auto& r : rays)
       p.shadow_rays_per_frame = std::max(p.shadow_rays_per_frame, r.size());
-    const nlohmann::json& s = kinetic.runs.front().stats["shadow_tree"];
-    const double n = double(intervals);
-    if (s.contains("events")) {
-      p.events_per_interval = s["events"]["total"].get<double>() / n;
-      p.failures_per_interval =
-          (s["events"]["leaf"].get<double>() + s["events"]["tree"].get<double>()) / n;
-      p.certificates_per_interval = s["certificates"]["computed"].get<double>() / n;
-    } else {  // refit: the bottom-up tree as the structure under test
-      p.events_per_interval = s["bv_updates"].get<double>() / n;
-    }
-    // The first pass builds the tree (not an update, as the first frame of every structure).
-    const nlohmann::json& b = bottom_up.runs.front().stats["shadow_tree"];
-    const double passes = b["updates"].get<double>();
-    p.bv_updates_per_interval = b["bv_updates"].get<double>() * (passes - 1) / passes / n;
-    p.kinetic_update_ms_per_frame = kinetic.update();
-    p.bottom_up_update_ms_per_frame = bottom_up.update();
-    p.embree_refit_update_ms_per_frame = refit.update();
-    p.embree_rebuild_update_ms_per_frame = rebuild.update();
-    p.update_speedup = p.kinetic_update_ms_per_frame > 0
-                           ? p.bottom_up_update_ms_per_frame / p.kinetic_update_ms_per_frame
-                           : 0;
-    p.shadow_ms_per_frame = kinetic.shadow();
-    p.bottom_up_shadow_ms_per_frame = bottom_up.shadow();
-    p.embree_refit_shadow_ms_per_frame = refit.shadow();
-    p.embree_rebuild_shadow_ms_per_frame = rebuild.shadow();
-    p.total_ms_per_frame = p.kinetic_update_ms_per_frame + p.shadow_ms_per_frame;
-    p.bottom_up_total_ms_per_frame =
-        p.bottom_up_update_ms_per_frame + p.bottom_up_shadow_ms_per_frame;
-    p.embree_refit_total_ms_per_frame =
-        p.embree_refit_update_ms_per_frame + p.embree_refit_shadow_ms_per_frame;
-    p.embree_rebuild_total_ms_per_frame =
-        p.embree_rebuild_update_ms_per_frame + p.embree_rebuild_shadow_ms_per_frame;
-    p.build_ms = kinetic.runs.front().build_ms;
-    const auto& masks = kinetic.runs.front().masks;
-    for (size_t f = 0; f < masks.size(); ++f)
-      for (size_t i = 0; i < masks[f].size(); ++i) {
-        if (masks[f][i] != bottom_up.runs.front().masks[f][i])
-          throw std::runtime_error("kinray bench: the " + p.tree +
-                                   " tree and the bottom-up tree disagree on a shadow ray");
-        p.embree_mask_mismatches += masks[f][i] != refit.runs.front().masks[f][i];
-      }
-    p.stats = s;
+    fill_measurements(p, kinetic, peers);
     points.push_back(std::move(p));
   }
   return points;
