@@ -23,7 +23,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libembree-dev libassimp-dev assimp-testmodels libosmesa6-dev
   libopencv-imgcodecs-dev libopencv-imgproc-dev libopencv-videoio-dev
-  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libgmp-dev
 )
 
 # dpkg-query answers in milliseconds, so a machine that has everything never touches apt.
