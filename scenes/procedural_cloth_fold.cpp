@@ -14,7 +14,7 @@ namespace kinray {
 namespace {
 
 constexpr double kSize = 2.0;
-constexpr double kRipple = 0.04;                 // amplitude of the rest shape's ripple
+constexpr double kRipple = 0.04;                   // amplitude of the rest shape's ripple
 constexpr double kFoldAngle = 200.0 * M_PI / 180;  // past flat, so the halves pass through
 
 }  // namespace
@@ -42,7 +42,8 @@ Scene make_cloth_fold(const ProceduralParams& params) {
                                 : Vec3(rest.x(), y, rest.z());
         }
       }));
-  scene.camera.keys = {Camera::look_at(0, Vec3(0.6, 2.6, -2.6), Vec3(0, 0.2, 0), Vec3::UnitY(), 45)};
+  scene.camera.keys = {
+      Camera::look_at(0, Vec3(0.6, 2.6, -2.6), Vec3(0, 0.2, 0), Vec3::UnitY(), 45)};
   return scene;
 }
 

@@ -8,10 +8,10 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -22,6 +22,7 @@
 #include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/json_output.h"
 
 namespace kinray {
 namespace {
@@ -111,12 +112,7 @@ ContactType query_type(const CcdQueriesOptions& options) {
 
 void run_ccd_queries(const CcdQueriesOptions& options) {
   const ContactType type = query_type(options);
-  if (!options.json.empty()) {
-    std::error_code error;
-    if (std::filesystem::is_directory(options.json, error))
-      throw InputError("--json", "'" + options.json + "' is a folder");
-    create_folder(std::filesystem::path(options.json).parent_path(), "--json");
-  }
+  prepare_json_output(options.json);
   const std::vector<CcdQuery> queries = read_queries(options.file);
   std::uint64_t tp = 0, fp = 0, fn = 0, tn = 0;
   PrimitiveCcdCounters counters;
@@ -133,18 +129,22 @@ void run_ccd_queries(const CcdQueriesOptions& options) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   const double us_per_query = 1e6 * seconds / double(queries.size());
-  std::printf("%s (%s): %zu queries, %llu true positives, %llu false positives, %llu false "
-              "negatives, %llu true negatives, %.2f us per query (%llu decided exactly)\n",
-              options.file.c_str(), contact_type_name(type), queries.size(),
-              (unsigned long long)tp, (unsigned long long)fp, (unsigned long long)fn,
-              (unsigned long long)tn, us_per_query, (unsigned long long)counters.exact_decisions);
+  std::printf(
+      "%s (%s): %zu queries, %llu true positives, %llu false positives, %llu false "
+      "negatives, %llu true negatives, %.2f us per query (%llu decided exactly)\n",
+      options.file.c_str(), contact_type_name(type), queries.size(), (unsigned long long)tp,
+      (unsigned long long)fp, (unsigned long long)fn, (unsigned long long)tn, us_per_query,
+      (unsigned long long)counters.exact_decisions);
   if (options.json.empty()) return;
-  const nlohmann::json report = {
-      {"file", options.file},        {"type", contact_type_name(type)},
-      {"queries", queries.size()},   {"true_positives", tp},
-      {"false_positives", fp},       {"false_negatives", fn},
-      {"true_negatives", tn},        {"us_per_query", us_per_query},
-      {"exact_decisions", counters.exact_decisions}};
+  const nlohmann::json report = {{"file", options.file},
+                                 {"type", contact_type_name(type)},
+                                 {"queries", queries.size()},
+                                 {"true_positives", tp},
+                                 {"false_positives", fp},
+                                 {"false_negatives", fn},
+                                 {"true_negatives", tn},
+                                 {"us_per_query", us_per_query},
+                                 {"exact_decisions", counters.exact_decisions}};
   write_file_atomically(options.json, report.dump(2) + "\n");
 }
 
@@ -153,7 +153,8 @@ void run_ccd_queries(const CcdQueriesOptions& options) {
 void register_ccd_queries_command(CLI::App& app) {
   auto options = std::make_shared<CcdQueriesOptions>();
   CLI::App* command = app.add_subcommand(
-      "ccd-queries", "Run a CCD query set (rational CSV with ground truth) through the exact primitive CCD");
+      "ccd-queries",
+      "Run a CCD query set (rational CSV with ground truth) through the exact primitive CCD");
   command->add_option("FILE", options->file, "Query file (8 rows per query)")->required();
   command->add_option("--type", options->type,
                       "vf or ee (default: from a path naming vertex-face or edge-edge)");

@@ -13,6 +13,7 @@
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/json_output.h"
 #include "tools/scene_contacts.h"
 
 namespace kinray {
@@ -70,13 +71,9 @@ void run_collide(const CollideOptions& options) {
   CollideParams params;
   params.structure = parse_contact_structure(options.structure);
   params.self = options.self;
-  if (!options.time.empty()) std::tie(params.time_begin, params.time_end) = parse_time_range(options.time);
-  if (!options.json.empty()) {
-    std::error_code error;
-    if (std::filesystem::is_directory(options.json, error))
-      throw InputError("--json", "'" + options.json + "' is a folder");
-    create_folder(std::filesystem::path(options.json).parent_path(), "--json");
-  }
+  if (!options.time.empty())
+    std::tie(params.time_begin, params.time_end) = parse_time_range(options.time);
+  prepare_json_output(options.json);
   const Scene scene = load_scene(options.scene.params.scene, model_options(options.scene.params));
   if (!options.objects.empty()) params.objects = parse_objects(options.objects, scene);
   const SceneContacts result = find_scene_contacts(scene, params);
@@ -86,9 +83,8 @@ void run_collide(const CollideOptions& options) {
     vf += c.type == ContactType::vertex_face;
     if (options.quiet) continue;
     std::printf("%.9f %s objects %u %u vertices %u %u %u %u point %.9g %.9g %.9g\n", c.time,
-                contact_type_name(c.type), c.objects[0], c.objects[1], c.vertices[0],
-                c.vertices[1], c.vertices[2], c.vertices[3], c.point.x(), c.point.y(),
-                c.point.z());
+                contact_type_name(c.type), c.objects[0], c.objects[1], c.vertices[0], c.vertices[1],
+                c.vertices[2], c.vertices[3], c.point.x(), c.point.y(), c.point.z());
   }
   std::printf("collide %s: %zu contacts (%zu vf, %zu ee) over %zu segments, %s, %.1f ms\n",
               options.scene.params.scene.c_str(), result.contacts.size(), vf,
@@ -115,7 +111,8 @@ void register_collide_command(CLI::App& app) {
       "collide", "Every contact between (--self: also within) the animated meshes, in time order");
   add_scene_options(*command, options->scene);
   command->add_flag("--self", options->self, "Also contacts of each object with itself");
-  command->add_option("--objects", options->objects, "Only these objects: names or indices A,B,...");
+  command->add_option("--objects", options->objects,
+                      "Only these objects: names or indices A,B,...");
   command->add_option("--time", options->time, "Only contacts in [A, B] seconds, given as A:B");
   command->add_option("--structure", options->structure, "swept | brute")->capture_default_str();
   command->add_option("--json", options->json, "Write every contact and the counters as JSON");

@@ -41,7 +41,8 @@ SceneContacts find_scene_contacts(const Scene& scene, const CollideParams& param
     for (std::uint32_t o = 0; o < scene.objects.size(); ++o) objects.push_back(o);
   for (std::uint32_t o : objects)
     if (o >= scene.objects.size())
-      throw InputError("--objects", "object " + std::to_string(o) + " out of range (the scene has " +
+      throw InputError("--objects", "object " + std::to_string(o) +
+                                        " out of range (the scene has " +
                                         std::to_string(scene.objects.size()) + " objects)");
   const double begin = std::max(params.time_begin, scene.time_begin);
   const double end = std::min(params.time_end, scene.time_end);

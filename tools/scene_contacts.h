@@ -15,7 +15,7 @@ enum class ContactStructure { swept, brute };
 
 struct CollideParams {
   ContactStructure structure = ContactStructure::swept;
-  bool self = false;                 ///< also contacts of each object with itself
+  bool self = false;                   ///< also contacts of each object with itself
   std::vector<std::uint32_t> objects;  ///< the objects to test; empty: all
   double time_begin = -kInfinity, time_end = kInfinity;  ///< clipped to the shot
 };

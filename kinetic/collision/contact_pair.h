@@ -5,7 +5,6 @@
 // this form to the same primitive test (primitive_ccd.h).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-
 #include <array>
 #include <cstdint>
 

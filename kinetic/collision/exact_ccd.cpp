@@ -45,7 +45,7 @@ bool is_zero_at(const PolyVec& v, const SignOracle& sign_of) {
 
 /// Point p on the closed segment [a, b] (a point when a == b).
 struct PointOnSegment {
-  PolyVec w, r, w_cross_r;       // w = b - a, r = p - a
+  PolyVec w, r, w_cross_r;            // w = b - a, r = p - a
   RationalPolynomial from_a, from_b;  // (p - a).(b - a), (p - b).(a - b)
 
   PointOnSegment(const PolyVec& p, const PolyVec& a, const PolyVec& b)
@@ -76,9 +76,7 @@ class ContactCondition {
 class VertexInTriangle final : public ContactCondition {
  public:
   explicit VertexInTriangle(const std::array<PolyVec, 4>& p)
-      : m_normal(cross(p[2] - p[1], p[3] - p[1])),
-        m_edges{PointOnSegment(p[0], p[1], p[2]), PointOnSegment(p[0], p[2], p[3]),
-                PointOnSegment(p[0], p[3], p[1])} {
+      : m_points(p), m_normal(cross(p[2] - p[1], p[3] - p[1])) {
     for (int i = 0; i < 3; ++i) {
       const PolyVec& a = p[1 + i];
       const PolyVec& b = p[1 + (i + 1) % 3];
@@ -89,18 +87,27 @@ class VertexInTriangle final : public ContactCondition {
     if (!is_zero_at(m_normal, sign_of))
       return std::ranges::all_of(m_barycentric,
                                  [&](const RationalPolynomial& s) { return sign_of(s) >= 0; });
-    return std::ranges::any_of(m_edges, [&](const PointOnSegment& e) { return e.holds(sign_of); });
+    return std::ranges::any_of(edges(), [&](const PointOnSegment& e) { return e.holds(sign_of); });
   }
   void collect(std::vector<const RationalPolynomial*>& out) const override {
     for (const RationalPolynomial& p : m_normal) out.push_back(&p);
     for (const RationalPolynomial& p : m_barycentric) out.push_back(&p);
-    for (const PointOnSegment& e : m_edges) e.collect(out);
+    for (const PointOnSegment& e : edges()) e.collect(out);
   }
 
  private:
+  /// Only a triangle without area needs them: built on first use.
+  const std::vector<PointOnSegment>& edges() const {
+    if (m_edges.empty())
+      for (int i = 0; i < 3; ++i)
+        m_edges.emplace_back(m_points[0], m_points[1 + i], m_points[1 + (i + 1) % 3]);
+    return m_edges;
+  }
+
+  std::array<PolyVec, 4> m_points;
   PolyVec m_normal;
   std::array<RationalPolynomial, 3> m_barycentric;
-  std::array<PointOnSegment, 3> m_edges;
+  mutable std::vector<PointOnSegment> m_edges;
 };
 
 /// Closed edges (a0, a1) and (b0, b1) meet: the crossing parameters of the two lines when they
@@ -108,9 +115,7 @@ class VertexInTriangle final : public ContactCondition {
 class EdgesMeet final : public ContactCondition {
  public:
   explicit EdgesMeet(const std::array<PolyVec, 4>& p)
-      : m_normal(cross(p[1] - p[0], p[3] - p[2])),
-        m_ends{PointOnSegment(p[0], p[2], p[3]), PointOnSegment(p[1], p[2], p[3]),
-               PointOnSegment(p[2], p[0], p[1]), PointOnSegment(p[3], p[0], p[1])} {
+      : m_points(p), m_normal(cross(p[1] - p[0], p[3] - p[2])) {
     const PolyVec d = p[2] - p[0];
     m_norm2 = dot(m_normal, m_normal);
     // a0 + s (a1 - a0) = b0 + u (b1 - b0) with s = m_s / m_norm2, u = m_u / m_norm2
@@ -123,19 +128,30 @@ class EdgesMeet final : public ContactCondition {
     if (!is_zero_at(m_normal, sign_of))
       return sign_of(m_s) >= 0 && sign_of(m_s_rest) >= 0 && sign_of(m_u) >= 0 &&
              sign_of(m_u_rest) >= 0;
-    return std::ranges::any_of(m_ends, [&](const PointOnSegment& e) { return e.holds(sign_of); });
+    return std::ranges::any_of(ends(), [&](const PointOnSegment& e) { return e.holds(sign_of); });
   }
   void collect(std::vector<const RationalPolynomial*>& out) const override {
     for (const RationalPolynomial& p : m_normal) out.push_back(&p);
     for (const RationalPolynomial* p : {&m_norm2, &m_s, &m_u, &m_s_rest, &m_u_rest})
       out.push_back(p);
-    for (const PointOnSegment& e : m_ends) e.collect(out);
+    for (const PointOnSegment& e : ends()) e.collect(out);
   }
 
  private:
+  /// Only parallel edges need them: built on first use.
+  const std::vector<PointOnSegment>& ends() const {
+    if (m_ends.empty()) {
+      const std::array<PolyVec, 4>& p = m_points;
+      m_ends = {PointOnSegment(p[0], p[2], p[3]), PointOnSegment(p[1], p[2], p[3]),
+                PointOnSegment(p[2], p[0], p[1]), PointOnSegment(p[3], p[0], p[1])};
+    }
+    return m_ends;
+  }
+
+  std::array<PolyVec, 4> m_points;
   PolyVec m_normal;
   RationalPolynomial m_norm2, m_s, m_u, m_s_rest, m_u_rest;
-  std::array<PointOnSegment, 4> m_ends;
+  mutable std::vector<PointOnSegment> m_ends;
 };
 
 double rounded_down(const mpq_class& t) {

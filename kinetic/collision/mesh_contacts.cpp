@@ -6,7 +6,9 @@
 namespace kinray {
 namespace {
 
-auto key(const Contact& c) { return std::tie(c.time, c.type, c.objects, c.vertices); }
+auto key(const Contact& c) {
+  return std::tie(c.time, c.type, c.objects, c.vertices);
+}
 
 PrimitiveMotion gather(const MeshSegment& first, std::span<const std::uint32_t> first_vertices,
                        const MeshSegment& second, std::span<const std::uint32_t> second_vertices) {
@@ -42,8 +44,12 @@ void test_pair(ContactType type, const MeshSegment& first, std::span<const std::
 
 }  // namespace
 
-bool operator<(const Contact& a, const Contact& b) { return key(a) < key(b); }
-bool operator==(const Contact& a, const Contact& b) { return key(a) == key(b); }
+bool operator<(const Contact& a, const Contact& b) {
+  return key(a) < key(b);
+}
+bool operator==(const Contact& a, const Contact& b) {
+  return key(a) == key(b);
+}
 
 ContactCounters& ContactCounters::operator+=(const ContactCounters& o) {
   segments += o.segments;
@@ -67,10 +73,10 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
   const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
   const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
   for (int i = 0; i < 3; ++i) {
-    test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end,
-              out, counters);
-    test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end,
-              out, counters);
+    test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end, out,
+              counters);
+    test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
+              counters);
   }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {

@@ -4,7 +4,6 @@
 // force, swept volumes, and later the kinetic separation list), so that all of them run the same
 // 15 primitive tests per triangle pair and report contacts the same way.
 #include <Eigen/Core>
-
 #include <array>
 #include <cstdint>
 #include <span>

@@ -13,13 +13,16 @@ namespace kinray {
 namespace {
 
 /// Points [0, first_points) belong to the first primitive (the vertex, or edge a).
-int first_points(ContactType type) { return type == ContactType::vertex_face ? 1 : 2; }
+int first_points(ContactType type) {
+  return type == ContactType::vertex_face ? 1 : 2;
+}
 
 /// Linear motion stays inside the box of its start and end positions; min and max are exact.
 bool swept_boxes_separated(ContactType type, const PrimitiveMotion& m) {
   const int first_end = first_points(type);
   for (int axis = 0; axis < 3; ++axis) {
-    double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    double lo[2] = {std::numeric_limits<double>::infinity(),
+                    std::numeric_limits<double>::infinity()};
     double hi[2] = {-lo[0], -lo[0]};
     for (int i = 0; i < 4; ++i) {
       const int side = i < first_end ? 0 : 1;
@@ -54,14 +57,13 @@ bool coplanarity_certainly_nonzero(const PrimitiveMotion& m) {
         // the permanent: |x| . (|y1 z2| + |y2 z1|, |y2 z0| + |y0 z2|, |y0 z1| + |y1 z0|)
         const Eigen::Vector3d y1(y.y(), y.z(), y.x()), y2(y.z(), y.x(), y.y());
         const Eigen::Vector3d z1(z.y(), z.z(), z.x()), z2(z.z(), z.x(), z.y());
-        error[i + j + l] += x.cwiseAbs().dot(y1.cwiseProduct(z2).cwiseAbs() +
-                                             y2.cwiseProduct(z1).cwiseAbs());
+        error[i + j + l] +=
+            x.cwiseAbs().dot(y1.cwiseProduct(z2).cwiseAbs() + y2.cwiseProduct(z1).cwiseAbs());
       }
   constexpr double eps = std::numeric_limits<double>::epsilon() / 2;
   int positive = 0, negative = 0;
   for (int k = 0; k < 4; ++k) {
-    const double bound =
-        16 * eps * error[k] + 64 * std::numeric_limits<double>::denorm_min();
+    const double bound = 16 * eps * error[k] + 64 * std::numeric_limits<double>::denorm_min();
     if (!std::isfinite(bound) || !std::isfinite(b[k])) return false;
     positive += b[k] > bound;
     negative += b[k] < -bound;

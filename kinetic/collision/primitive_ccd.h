@@ -11,11 +11,11 @@ namespace kinray {
 
 /// How the primitive tests were decided (for --stats).
 struct PrimitiveCcdCounters {
-  std::uint64_t tests = 0;            ///< primitive pairs tested
-  std::uint64_t box_rejections = 0;   ///< separated swept boxes
-  std::uint64_t cubic_rejections = 0; ///< coplanarity cubic of one certified sign on [0, 1]
-  std::uint64_t exact_decisions = 0;  ///< decided in rational arithmetic
-  std::uint64_t contacts = 0;         ///< pairs with at least one time of contact
+  std::uint64_t tests = 0;             ///< primitive pairs tested
+  std::uint64_t box_rejections = 0;    ///< separated swept boxes
+  std::uint64_t cubic_rejections = 0;  ///< coplanarity cubic of one certified sign on [0, 1]
+  std::uint64_t exact_decisions = 0;   ///< decided in rational arithmetic
+  std::uint64_t contacts = 0;          ///< pairs with at least one time of contact
 
   PrimitiveCcdCounters& operator+=(const PrimitiveCcdCounters& o);
 };

@@ -123,7 +123,9 @@ RationalPolynomial squarefree_part(const RationalPolynomial& f) {
   return g.degree() <= 0 ? f : divide(f, g).first;
 }
 
-int sign(const mpq_class& x) { return sgn(x); }
+int sign(const mpq_class& x) {
+  return sgn(x);
+}
 
 std::vector<mpq_class> bernstein_coefficients(const RationalPolynomial& f, const mpq_class& a,
                                               const mpq_class& b) {
@@ -187,11 +189,14 @@ std::vector<IsolatedRoot> isolate_roots(const RationalPolynomial& f, const mpq_c
 int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
   if (g.is_zero()) return 0;
   if (root.is_rational()) return sgn(g(root.lo));
-  const RationalPolynomial h = gcd(root.poly, g);
-  // h divides the square-free poly, so its roots are simple and, inside [lo, hi], can only be
-  // the isolated root itself; the ends are not roots of poly, hence not of h.
-  if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
-  for (;;) {
+  for (int attempt = 0;; ++attempt) {
+    if (attempt == 4) {
+      // Not decided by a few refinements: maybe g vanishes there. h = gcd divides the
+      // square-free poly, so its roots are simple and, inside [lo, hi], can only be the isolated
+      // root itself; the ends are not roots of poly, hence not of h.
+      const RationalPolynomial h = gcd(root.poly, g);
+      if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
+    }
     const std::vector<mpq_class> b = bernstein_coefficients(g, root.lo, root.hi);
     bool positive = true, negative = true;
     for (const mpq_class& x : b) {

@@ -5,7 +5,6 @@
 // pairs whose swept boxes overlap. Its work grows with the number of intervals asked for, which
 // is what the kinetic separation list avoids.
 #include <Eigen/Geometry>
-
 #include <cstdint>
 #include <vector>
 

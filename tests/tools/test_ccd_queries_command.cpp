@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "tests/tools/kinray_process.h"
-#include <fstream>
 
 namespace kinray {
 namespace {
@@ -22,8 +22,8 @@ TEST(CcdQueriesCommand, NoFalseNegativesOnAnySharedSet) {
   for (const auto& entry : fs::recursive_directory_iterator(data)) {
     if (entry.path().extension() != ".csv") continue;
     const fs::path json = folder / "result.json";
-    const test::CommandRun run =
-        test::run_kinray("ccd-queries '" + entry.path().string() + "' --json '" + json.string() + "'", folder);
+    const test::CommandRun run = test::run_kinray(
+        "ccd-queries '" + entry.path().string() + "' --json '" + json.string() + "'", folder);
     ASSERT_EQ(run.status, 0) << run.err;
     const nlohmann::json result = nlohmann::json::parse(test::read_text(json));
     EXPECT_EQ(result["false_negatives"], 0) << entry.path();
@@ -49,7 +49,8 @@ TEST(CcdQueriesCommand, BadInputIsOneLineAndExitTwo) {
   run = test::run_kinray("ccd-queries '" + bad.string() + "'", folder);
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.err.find("--type"), std::string::npos) << run.err;
-  run = test::run_kinray("ccd-queries '" + (folder / "missing.csv").string() + "' --type ee", folder);
+  run =
+      test::run_kinray("ccd-queries '" + (folder / "missing.csv").string() + "' --type ee", folder);
   EXPECT_EQ(run.status, 2);
   fs::remove_all(folder);
 }

@@ -17,7 +17,8 @@ class CollideCommand : public ::testing::Test {
  protected:
   void SetUp() override {
     m_dir = fs::temp_directory_path() /
-            ("kinray_collide_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("kinray_collide_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::create_directories(m_dir);
   }
   void TearDown() override { fs::remove_all(m_dir); }
@@ -69,8 +70,8 @@ TEST_F(CollideCommand, SpikeFallsOntoATriangleAtTheExpectedTime) {
 }
 
 TEST_F(CollideCommand, SweptVolumesAndBruteForceFindTheSameContactsInTimeOrder) {
-  for (const char* scene :
-       {"cloth-fold:triangles=200,duration=1,keyrate=6 --self", "crossing:triangles=250,duration=1,keyrate=6"}) {
+  for (const char* scene : {"cloth-fold:triangles=72,duration=1,keyrate=4 --self",
+                            "crossing:triangles=100,duration=1,keyrate=4"}) {
     SCOPED_TRACE(scene);
     const nlohmann::json swept = collide(std::string(scene) + " --structure swept");
     const nlohmann::json brute = collide(std::string(scene) + " --structure brute");
@@ -89,12 +90,14 @@ TEST_F(CollideCommand, SweptVolumesAndBruteForceFindTheSameContactsInTimeOrder) 
 
 TEST_F(CollideCommand, SelfContactsExcludeAdjacentTriangles) {
   // the cloth at rest before the fold: neighbours share vertices and edges but are not contacts
-  const nlohmann::json report = collide("cloth-fold:triangles=200,duration=1,keyrate=6 --self --time 0:0.1");
+  const nlohmann::json report =
+      collide("cloth-fold:triangles=72,duration=1,keyrate=4 --self --time 0:0.25");
   EXPECT_EQ(report["contacts"].size(), 0u);
 }
 
 TEST_F(CollideCommand, BadFlagsAreOneLineAndExitTwo) {
-  for (const char* args : {"crossing --structure ksl", "crossing --objects 0,7", "crossing --time 5:6"}) {
+  for (const char* args :
+       {"crossing --structure ksl", "crossing --objects 0,7", "crossing --time 5:6"}) {
     const test::CommandRun run = test::run_kinray(std::string("collide ") + args, m_dir);
     EXPECT_EQ(run.status, 2) << args;
     EXPECT_EQ(run.err.rfind("kinray: error: ", 0), 0u) << run.err;

@@ -12,7 +12,9 @@ namespace {
 
 using V = Eigen::Vector3d;
 
-PrimitiveMotion motion(std::array<V, 4> start, std::array<V, 4> end) { return {start, end}; }
+PrimitiveMotion motion(std::array<V, 4> start, std::array<V, 4> end) {
+  return {start, end};
+}
 
 /// The fixed triangle (0,0,0), (1,0,0), (0,1,0) and a vertex moving from a to b.
 PrimitiveMotion vertex_onto_triangle(const V& a, const V& b) {
@@ -40,35 +42,34 @@ TEST(PrimitiveCcd, VertexPassesBesideTriangle) {
 }
 
 TEST(PrimitiveCcd, ContactExactlyAtTheSegmentEnds) {
-  expect_times(contact_times(ContactType::vertex_face,
-                             vertex_onto_triangle(V(0.2, 0.2, 1), V(0.2, 0.2, 0))),
-               {1.0});
-  expect_times(contact_times(ContactType::vertex_face,
-                             vertex_onto_triangle(V(0.2, 0.2, 0), V(0.2, 0.2, 1))),
-               {0.0});
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(0.2, 0.2, 1), V(0.2, 0.2, 0))),
+      {1.0});
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(0.2, 0.2, 0), V(0.2, 0.2, 1))),
+      {0.0});
 }
 
 TEST(PrimitiveCcd, VertexHitsAnEdgeAndACorner) {
-  expect_times(contact_times(ContactType::vertex_face,
-                             vertex_onto_triangle(V(0.5, 0, 1), V(0.5, 0, -1))),
-               {0.5});
-  expect_times(contact_times(ContactType::vertex_face,
-                             vertex_onto_triangle(V(1, 0, 1), V(1, 0, -3))),
-               {0.25});
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(0.5, 0, 1), V(0.5, 0, -1))),
+      {0.5});
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(1, 0, 1), V(1, 0, -3))),
+      {0.25});
   // just outside the hypotenuse by one ulp: no contact
   const double x = std::nextafter(0.5, 1.0);
-  EXPECT_TRUE(contact_times(ContactType::vertex_face,
-                            vertex_onto_triangle(V(x, 0.5, 1), V(x, 0.5, -1)))
-                  .empty());
+  EXPECT_TRUE(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(x, 0.5, 1), V(x, 0.5, -1)))
+          .empty());
 }
 
 TEST(PrimitiveCcd, CoplanarMotionEntersAndLeaves) {
   // in the triangle's plane along y = 1/4: enters at x = 0 (t = 1/2), leaves at x = 3/4 (t = 7/8)
-  expect_times(contact_times(ContactType::vertex_face,
-                             vertex_onto_triangle(V(-1, 0.25, 0), V(1, 0.25, 0))),
-               {0.5, 0.875});
-  EXPECT_TRUE(contact_times(ContactType::vertex_face,
-                            vertex_onto_triangle(V(-1, 2, 0), V(2, 2, 0)))
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(-1, 0.25, 0), V(1, 0.25, 0))),
+      {0.5, 0.875});
+  EXPECT_TRUE(contact_times(ContactType::vertex_face, vertex_onto_triangle(V(-1, 2, 0), V(2, 2, 0)))
                   .empty());
 }
 

@@ -43,7 +43,8 @@ TEST(RationalPolynomial, InteriorRootBesideRootsAtTheEnds) {
 
 TEST(RationalPolynomial, IrrationalRootsAndExactSignsThere) {
   // t^2 - 1/2 has the root 1/sqrt(2) in [0, 1]
-  std::vector<IsolatedRoot> roots = isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1);
+  std::vector<IsolatedRoot> roots =
+      isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1);
   ASSERT_EQ(roots.size(), 1u);
   IsolatedRoot& r = roots[0];
   // 2 t^2 - 1 vanishes there exactly (a multiple sharing the root), t - 0.7071 is positive,
@@ -52,16 +53,18 @@ TEST(RationalPolynomial, IrrationalRootsAndExactSignsThere) {
   EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-7071, 10000), 1), r), 1);
   EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-7072, 10000), 1), r), -1);
   // (t^2 - 1/2)(t - 3): vanishes at the root through a common factor
-  EXPECT_EQ(sign_at(RationalPolynomial({mpq_class(-1, 2), 0, 1}) * RationalPolynomial::linear(-3, 1), r), 0);
+  EXPECT_EQ(
+      sign_at(RationalPolynomial({mpq_class(-1, 2), 0, 1}) * RationalPolynomial::linear(-3, 1), r),
+      0);
 }
 
 TEST(RationalPolynomial, BernsteinCoefficientsBoundTheRange) {
   const RationalPolynomial p({1, -3, 2});  // (1 - t)(1 - 2t)
   const std::vector<mpq_class> b = bernstein_coefficients(p, 0, 1);
   ASSERT_EQ(b.size(), 3u);
-  EXPECT_EQ(b[0], 1);                  // p(0)
-  EXPECT_EQ(b[1], mpq_class(-1, 2));   // 1 + (-3)/2
-  EXPECT_EQ(b[2], 0);                  // p(1)
+  EXPECT_EQ(b[0], 1);                 // p(0)
+  EXPECT_EQ(b[1], mpq_class(-1, 2));  // 1 + (-3)/2
+  EXPECT_EQ(b[2], 0);                 // p(1)
 }
 
 }  // namespace
