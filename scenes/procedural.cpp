@@ -30,6 +30,15 @@ const std::vector<BuiltinScene>& builtin_scenes() {
        "disappears",
        {10000, 2, 24},
        &make_static_moving},
+      {"cloth-fold",
+       "a rippled sheet whose right half folds over onto and through its left half "
+       "(self-collision)",
+       {2000, 2, 24},
+       &make_cloth_fold},
+      {"crossing",
+       "two wobbling spheres passing through each other (collision of deforming objects)",
+       {2000, 2, 24},
+       &make_crossing},
   };
   return scenes;
 }

@@ -57,5 +57,9 @@ struct BuiltinScene {
 [[nodiscard]] Scene make_flythrough(const ProceduralParams& params);
 /// A static ground and wall, a bouncing ball, and a spinning box that appears and disappears.
 [[nodiscard]] Scene make_static_moving(const ProceduralParams& params);
+/// A rippled sheet whose right half folds through 200 degrees onto and through its left half.
+[[nodiscard]] Scene make_cloth_fold(const ProceduralParams& params);
+/// Two wobbling spheres travelling towards each other and through each other.
+[[nodiscard]] Scene make_crossing(const ProceduralParams& params);
 
 }  // namespace kinray

@@ -10,5 +10,7 @@ void register_info_command(CLI::App& app);    // tools/info_command.cpp
 void register_diff_command(CLI::App& app);    // tools/diff_command.cpp
 void register_bench_command(CLI::App& app);   // tools/bench_command.cpp
 void register_regress_command(CLI::App& app); // tools/regress_command.cpp
+void register_ccd_queries_command(CLI::App& app);  // tools/ccd_queries_command.cpp
+void register_collide_command(CLI::App& app);      // tools/collide_command.cpp
 
 }  // namespace kinray

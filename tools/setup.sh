@@ -26,7 +26,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libembree-dev libassimp-dev assimp-testmodels libosmesa6-dev
   libopencv-imgcodecs-dev libopencv-imgproc-dev libopencv-videoio-dev
-  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+  libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libgmp-dev
 )
 # libFuzzer comes with clang's runtime; only the fuzz mode needs them.
 if [[ "$mode" == fuzz ]]; then packages+=(clang-14 libclang-rt-14-dev); fi

@@ -1,0 +1,211 @@
+// Exact primitive CCD. A contact needs the four points coplanar, so contact times are roots of
+// the cubic det(p1 - p0, p2 - p0, p3 - p0); at such a time the contact is real when a 2-D test
+// holds, written as sign conditions on polynomials in t and evaluated exactly at the algebraic
+// root (rational_polynomial.h). When the cubic is identically zero the 2-D test alone decides;
+// it holds on a closed set whose every component starts and ends at 0, 1 or a root of one of
+// its polynomials (elsewhere every sign, hence the test, is locally constant), so testing those
+// finitely many times finds every component.
+#include "kinetic/collision/exact_ccd.h"
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+
+#include "kinetic/collision/rational_polynomial.h"
+
+namespace kinray {
+namespace {
+
+using PolyVec = std::array<RationalPolynomial, 3>;
+
+PolyVec motion_of(const RationalPoint& start, const RationalPoint& end) {
+  PolyVec p;
+  for (int i = 0; i < 3; ++i) p[i] = RationalPolynomial::linear(start[i], end[i] - start[i]);
+  return p;
+}
+
+PolyVec operator-(const PolyVec& a, const PolyVec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+PolyVec cross(const PolyVec& a, const PolyVec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+RationalPolynomial dot(const PolyVec& a, const PolyVec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// Signs of polynomials at one candidate time.
+using SignOracle = std::function<int(const RationalPolynomial&)>;
+
+bool is_zero_at(const PolyVec& v, const SignOracle& sign_of) {
+  return sign_of(v[0]) == 0 && sign_of(v[1]) == 0 && sign_of(v[2]) == 0;
+}
+
+/// Point p on the closed segment [a, b] (a point when a == b).
+struct PointOnSegment {
+  PolyVec w, r, w_cross_r;            // w = b - a, r = p - a
+  RationalPolynomial from_a, from_b;  // (p - a).(b - a), (p - b).(a - b)
+
+  PointOnSegment(const PolyVec& p, const PolyVec& a, const PolyVec& b)
+      : w(b - a), r(p - a), w_cross_r(cross(w, r)), from_a(dot(r, w)), from_b(dot(p - b, a - b)) {}
+
+  [[nodiscard]] bool holds(const SignOracle& sign_of) const {
+    if (is_zero_at(w, sign_of)) return is_zero_at(r, sign_of);
+    return is_zero_at(w_cross_r, sign_of) && sign_of(from_a) >= 0 && sign_of(from_b) >= 0;
+  }
+  void collect(std::vector<const RationalPolynomial*>& out) const {
+    for (const PolyVec* v : {&w, &r, &w_cross_r})
+      for (const RationalPolynomial& p : *v) out.push_back(&p);
+    out.push_back(&from_a);
+    out.push_back(&from_b);
+  }
+};
+
+/// The 2-D test of a pair known to be coplanar at the candidate time, and its polynomials.
+class ContactCondition {
+ public:
+  virtual ~ContactCondition() = default;
+  [[nodiscard]] virtual bool holds(const SignOracle& sign_of) const = 0;
+  virtual void collect(std::vector<const RationalPolynomial*>& out) const = 0;
+};
+
+/// Vertex v in the closed triangle (f0, f1, f2): barycentric signs when the triangle has an
+/// area, else v on one of its (possibly degenerate) edges.
+class VertexInTriangle final : public ContactCondition {
+ public:
+  explicit VertexInTriangle(const std::array<PolyVec, 4>& p)
+      : m_points(p), m_normal(cross(p[2] - p[1], p[3] - p[1])) {
+    for (int i = 0; i < 3; ++i) {
+      const PolyVec& a = p[1 + i];
+      const PolyVec& b = p[1 + (i + 1) % 3];
+      m_barycentric[i] = dot(m_normal, cross(b - a, p[0] - a));
+    }
+  }
+  [[nodiscard]] bool holds(const SignOracle& sign_of) const override {
+    if (!is_zero_at(m_normal, sign_of))
+      return std::ranges::all_of(m_barycentric,
+                                 [&](const RationalPolynomial& s) { return sign_of(s) >= 0; });
+    return std::ranges::any_of(edges(), [&](const PointOnSegment& e) { return e.holds(sign_of); });
+  }
+  void collect(std::vector<const RationalPolynomial*>& out) const override {
+    for (const RationalPolynomial& p : m_normal) out.push_back(&p);
+    for (const RationalPolynomial& p : m_barycentric) out.push_back(&p);
+    for (const PointOnSegment& e : edges()) e.collect(out);
+  }
+
+ private:
+  /// Only a triangle without area needs them: built on first use.
+  const std::vector<PointOnSegment>& edges() const {
+    if (m_edges.empty())
+      for (int i = 0; i < 3; ++i)
+        m_edges.emplace_back(m_points[0], m_points[1 + i], m_points[1 + (i + 1) % 3]);
+    return m_edges;
+  }
+
+  std::array<PolyVec, 4> m_points;
+  PolyVec m_normal;
+  std::array<RationalPolynomial, 3> m_barycentric;
+  mutable std::vector<PointOnSegment> m_edges;
+};
+
+/// Closed edges (a0, a1) and (b0, b1) meet: the crossing parameters of the two lines when they
+/// are not parallel, else an end point of one lies on the other.
+class EdgesMeet final : public ContactCondition {
+ public:
+  explicit EdgesMeet(const std::array<PolyVec, 4>& p)
+      : m_points(p), m_normal(cross(p[1] - p[0], p[3] - p[2])) {
+    const PolyVec d = p[2] - p[0];
+    m_norm2 = dot(m_normal, m_normal);
+    // a0 + s (a1 - a0) = b0 + u (b1 - b0) with s = m_s / m_norm2, u = m_u / m_norm2
+    m_s = dot(cross(d, p[3] - p[2]), m_normal);
+    m_u = dot(cross(d, p[1] - p[0]), m_normal);
+    m_s_rest = m_norm2 - m_s;
+    m_u_rest = m_norm2 - m_u;
+  }
+  [[nodiscard]] bool holds(const SignOracle& sign_of) const override {
+    if (!is_zero_at(m_normal, sign_of))
+      return sign_of(m_s) >= 0 && sign_of(m_s_rest) >= 0 && sign_of(m_u) >= 0 &&
+             sign_of(m_u_rest) >= 0;
+    return std::ranges::any_of(ends(), [&](const PointOnSegment& e) { return e.holds(sign_of); });
+  }
+  void collect(std::vector<const RationalPolynomial*>& out) const override {
+    for (const RationalPolynomial& p : m_normal) out.push_back(&p);
+    for (const RationalPolynomial* p : {&m_norm2, &m_s, &m_u, &m_s_rest, &m_u_rest})
+      out.push_back(p);
+    for (const PointOnSegment& e : ends()) e.collect(out);
+  }
+
+ private:
+  /// Only parallel edges need them: built on first use.
+  const std::vector<PointOnSegment>& ends() const {
+    if (m_ends.empty()) {
+      const std::array<PolyVec, 4>& p = m_points;
+      m_ends = {PointOnSegment(p[0], p[2], p[3]), PointOnSegment(p[1], p[2], p[3]),
+                PointOnSegment(p[2], p[0], p[1]), PointOnSegment(p[3], p[0], p[1])};
+    }
+    return m_ends;
+  }
+
+  std::array<PolyVec, 4> m_points;
+  PolyVec m_normal;
+  RationalPolynomial m_norm2, m_s, m_u, m_s_rest, m_u_rest;
+  mutable std::vector<PointOnSegment> m_ends;
+};
+
+double rounded_down(const mpq_class& t) {
+  return mpq_get_d(t.get_mpq_t());  // truncates towards zero, and t >= 0
+}
+
+}  // namespace
+
+RationalMotion to_rational(const PrimitiveMotion& motion) {
+  RationalMotion m;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      m.start[i][k] = motion.start[i][k];
+      m.end[i][k] = motion.end[i][k];
+    }
+  return m;
+}
+
+std::vector<double> exact_contact_times(ContactType type, const RationalMotion& motion) {
+  std::array<PolyVec, 4> p;
+  for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
+  const RationalPolynomial coplanarity = dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+  std::unique_ptr<const ContactCondition> owned;
+  if (type == ContactType::vertex_face)
+    owned = std::make_unique<VertexInTriangle>(p);
+  else
+    owned = std::make_unique<EdgesMeet>(p);
+  const ContactCondition& condition = *owned;
+
+  const mpq_class zero = 0, one = 1;
+  std::vector<IsolatedRoot> candidates;
+  if (!coplanarity.is_zero()) {
+    candidates = isolate_roots(coplanarity, zero, one);
+  } else {
+    candidates.push_back({RationalPolynomial::linear(0, 1), zero, zero});
+    candidates.push_back({RationalPolynomial::linear(-1, 1), one, one});
+    std::vector<const RationalPolynomial*> polynomials;
+    condition.collect(polynomials);
+    for (const RationalPolynomial* q : polynomials)
+      if (q->degree() >= 1)
+        for (IsolatedRoot& r : isolate_roots(*q, zero, one)) candidates.push_back(std::move(r));
+  }
+
+  std::vector<double> times;
+  const mpq_class width = kContactTimeEarliness;
+  for (IsolatedRoot& root : candidates) {
+    const SignOracle sign_of = [&root](const RationalPolynomial& g) { return sign_at(g, root); };
+    if (!condition.holds(sign_of)) continue;
+    root.refine_to(width);
+    times.push_back(rounded_down(root.lo));
+  }
+  std::ranges::sort(times);
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  return times;
+}
+
+}  // namespace kinray

@@ -1,0 +1,119 @@
+#include "kinetic/collision/mesh_contacts.h"
+
+#include <algorithm>
+#include <tuple>
+
+namespace kinray {
+namespace {
+
+auto key(const Contact& c) {
+  return std::tie(c.time, c.type, c.objects, c.vertices);
+}
+
+PrimitiveMotion gather(const MeshSegment& first, std::span<const std::uint32_t> first_vertices,
+                       const MeshSegment& second, std::span<const std::uint32_t> second_vertices) {
+  PrimitiveMotion m;
+  int i = 0;
+  for (std::uint32_t v : first_vertices) {
+    m.start[i] = first.start[v];
+    m.end[i++] = first.end[v];
+  }
+  for (std::uint32_t v : second_vertices) {
+    m.start[i] = second.start[v];
+    m.end[i++] = second.end[v];
+  }
+  return m;
+}
+
+void test_pair(ContactType type, const MeshSegment& first, std::span<const std::uint32_t> fv,
+               const MeshSegment& second, std::span<const std::uint32_t> sv, double time_begin,
+               double time_end, std::vector<Contact>& out, PrimitiveCcdCounters& counters) {
+  const PrimitiveMotion motion = gather(first, fv, second, sv);
+  for (double local : contact_times(type, motion, &counters)) {
+    Contact c;
+    c.time = time_begin + local * (time_end - time_begin);
+    c.type = type;
+    c.objects = {first.object, second.object};
+    int i = 0;
+    for (std::uint32_t v : fv) c.vertices[i++] = v;
+    for (std::uint32_t v : sv) c.vertices[i++] = v;
+    c.point = contact_point(type, motion, local);
+    out.push_back(c);
+  }
+}
+
+}  // namespace
+
+bool operator<(const Contact& a, const Contact& b) {
+  return key(a) < key(b);
+}
+bool operator==(const Contact& a, const Contact& b) {
+  return key(a) == key(b);
+}
+
+ContactCounters& ContactCounters::operator+=(const ContactCounters& o) {
+  segments += o.segments;
+  triangle_pairs += o.triangle_pairs;
+  node_visits += o.node_visits;
+  primitives += o.primitives;
+  return *this;
+}
+
+bool triangles_adjacent(const std::array<std::uint32_t, 3>& a,
+                        const std::array<std::uint32_t, 3>& b) {
+  for (std::uint32_t u : a)
+    for (std::uint32_t v : b)
+      if (u == v) return true;
+  return false;
+}
+
+void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+                            std::uint32_t tb, double time_begin, double time_end,
+                            std::vector<Contact>& out, PrimitiveCcdCounters& counters) {
+  const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
+  const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
+  for (int i = 0; i < 3; ++i) {
+    test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end, out,
+              counters);
+    test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
+              counters);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const std::array<std::uint32_t, 2> ea = {fa[i], fa[(i + 1) % 3]};
+      const std::array<std::uint32_t, 2> eb = {fb[j], fb[(j + 1) % 3]};
+      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters);
+    }
+}
+
+void sort_contacts(std::vector<Contact>& contacts) {
+  // An edge shared by two triangles is tested from both, in either direction: one orientation
+  // of each edge (smaller vertex id first) and of each edge pair names the contact.
+  for (Contact& c : contacts) {
+    if (c.type != ContactType::edge_edge) continue;
+    if (c.vertices[0] > c.vertices[1]) std::swap(c.vertices[0], c.vertices[1]);
+    if (c.vertices[2] > c.vertices[3]) std::swap(c.vertices[2], c.vertices[3]);
+    if (std::tie(c.objects[0], c.vertices[0], c.vertices[1]) >
+        std::tie(c.objects[1], c.vertices[2], c.vertices[3])) {
+      std::swap(c.objects[0], c.objects[1]);
+      std::swap(c.vertices[0], c.vertices[2]);
+      std::swap(c.vertices[1], c.vertices[3]);
+    }
+  }
+  std::sort(contacts.begin(), contacts.end());
+  contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
+}
+
+void brute_force_contacts(const MeshSegment& a, const MeshSegment& b, double time_begin,
+                          double time_end, std::vector<Contact>& out, ContactCounters& counters) {
+  const bool self = &a == &b;
+  ++counters.segments;
+  for (std::uint32_t i = 0; i < a.triangles.size(); ++i)
+    for (std::uint32_t j = self ? i + 1 : 0; j < b.triangles.size(); ++j) {
+      if (self && triangles_adjacent(a.triangles[i], a.triangles[j])) continue;
+      ++counters.triangle_pairs;
+      triangle_pair_contacts(a, i, b, j, time_begin, time_end, out, counters.primitives);
+    }
+}
+
+}  // namespace kinray

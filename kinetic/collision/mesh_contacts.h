@@ -1,0 +1,67 @@
+#pragma once
+// Contacts between and within deforming triangle meshes over one flightplan segment, on which
+// every vertex moves linearly: the triangle-pair level shared by every contact finder (brute
+// force, swept volumes, and later the kinetic separation list), so that all of them run the same
+// 15 primitive tests per triangle pair and report contacts the same way.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "kinetic/collision/contact_pair.h"
+#include "kinetic/collision/primitive_ccd.h"
+
+namespace kinray {
+
+/// One object over one segment [time_begin, time_end]: its triangles (vertex indices in the
+/// object's own numbering) and every vertex's position at both ends.
+struct MeshSegment {
+  std::uint32_t object = 0;
+  std::span<const std::array<std::uint32_t, 3>> triangles;
+  std::span<const Eigen::Vector3d> start, end;
+};
+
+/// A time of contact between two primitives.
+struct Contact {
+  double time = 0;  ///< global time (a lower bound, see kContactTimeEarliness, scaled)
+  ContactType type = ContactType::vertex_face;
+  std::array<std::uint32_t, 2> objects{};  ///< of the first and of the second primitive
+  /// vf: the vertex, then the face's three; ee: edge a's two, then edge b's two (object numbering)
+  std::array<std::uint32_t, 4> vertices{};
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< where they touch at `time`
+
+  friend bool operator<(const Contact& a, const Contact& b);
+  friend bool operator==(const Contact& a, const Contact& b);  ///< all but `point`
+};
+
+/// What a contact finder did (for --stats).
+struct ContactCounters {
+  std::uint64_t segments = 0;        ///< (object pair, flightplan segment) pairs examined
+  std::uint64_t triangle_pairs = 0;  ///< pairs handed to the primitive tests
+  std::uint64_t node_visits = 0;     ///< bounding volume tests (swept volumes)
+  PrimitiveCcdCounters primitives;
+
+  ContactCounters& operator+=(const ContactCounters& o);
+};
+
+/// Triangles of one mesh that share a vertex (or an edge) touch by construction, not contacts.
+[[nodiscard]] bool triangles_adjacent(const std::array<std::uint32_t, 3>& a,
+                                      const std::array<std::uint32_t, 3>& b);
+
+/// The 15 primitive tests of triangle ta of `a` against triangle tb of `b` (6 vertex-face, 9
+/// edge-edge) on the segment [time_begin, time_end]; appends every contact.
+void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+                            std::uint32_t tb, double time_begin, double time_end,
+                            std::vector<Contact>& out, PrimitiveCcdCounters& counters);
+
+/// Sorts contacts in time order and removes the repeats that arise when a vertex or an edge
+/// belongs to several tested triangle pairs.
+void sort_contacts(std::vector<Contact>& contacts);
+
+/// Brute force: every triangle pair of a and b (or, when &a == &b, every non-adjacent pair of a
+/// with itself).
+void brute_force_contacts(const MeshSegment& a, const MeshSegment& b, double time_begin,
+                          double time_end, std::vector<Contact>& out, ContactCounters& counters);
+
+}  // namespace kinray

@@ -1,0 +1,137 @@
+// Floating-point filters in front of the exact decision. Both filters only ever say "no
+// contact", and only when the rounding error of the doubles cannot change the answer.
+#include "kinetic/collision/primitive_ccd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "kinetic/check.h"
+#include "kinetic/collision/exact_ccd.h"
+
+namespace kinray {
+namespace {
+
+/// Points [0, first_points) belong to the first primitive (the vertex, or edge a).
+int first_points(ContactType type) {
+  return type == ContactType::vertex_face ? 1 : 2;
+}
+
+/// Linear motion stays inside the box of its start and end positions; min and max are exact.
+bool swept_boxes_separated(ContactType type, const PrimitiveMotion& m) {
+  const int first_end = first_points(type);
+  for (int axis = 0; axis < 3; ++axis) {
+    double lo[2] = {std::numeric_limits<double>::infinity(),
+                    std::numeric_limits<double>::infinity()};
+    double hi[2] = {-lo[0], -lo[0]};
+    for (int i = 0; i < 4; ++i) {
+      const int side = i < first_end ? 0 : 1;
+      lo[side] = std::min({lo[side], m.start[i][axis], m.end[i][axis]});
+      hi[side] = std::max({hi[side], m.start[i][axis], m.end[i][axis]});
+    }
+    if (hi[0] < lo[1] || hi[1] < lo[0]) return true;
+  }
+  return false;
+}
+
+/// The coplanarity cubic det(X, Y, Z) with X, Y, Z the differences p1 - p0, p2 - p0, p3 - p0
+/// (linear in t) is trilinear, so its Bernstein coefficients on [0, 1] are
+/// b_k = sum_{i+j+l=k} det(X_i, Y_j, Z_l) / C(3, k). Each determinant of rounded differences is
+/// off by at most ~8 eps times its permanent (Shewchuk's orient3d bound); 16 eps leaves room for
+/// the sums. The cubic has no root, hence the pair no contact, when all b_k share a sign beyond
+/// their error.
+bool coplanarity_certainly_nonzero(const PrimitiveMotion& m) {
+  Eigen::Vector3d d[2][3];
+  for (int end = 0; end < 2; ++end) {
+    const auto& p = end == 0 ? m.start : m.end;
+    for (int k = 0; k < 3; ++k) d[end][k] = p[k + 1] - p[0];
+  }
+  double b[4] = {0, 0, 0, 0}, error[4] = {0, 0, 0, 0};
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int l = 0; l < 2; ++l) {
+        const Eigen::Vector3d& x = d[i][0];
+        const Eigen::Vector3d& y = d[j][1];
+        const Eigen::Vector3d& z = d[l][2];
+        b[i + j + l] += x.dot(y.cross(z));
+        // the permanent: |x| . (|y1 z2| + |y2 z1|, |y2 z0| + |y0 z2|, |y0 z1| + |y1 z0|)
+        const Eigen::Vector3d y1(y.y(), y.z(), y.x()), y2(y.z(), y.x(), y.y());
+        const Eigen::Vector3d z1(z.y(), z.z(), z.x()), z2(z.z(), z.x(), z.y());
+        error[i + j + l] +=
+            x.cwiseAbs().dot(y1.cwiseProduct(z2).cwiseAbs() + y2.cwiseProduct(z1).cwiseAbs());
+      }
+  constexpr double eps = std::numeric_limits<double>::epsilon() / 2;
+  int positive = 0, negative = 0;
+  for (int k = 0; k < 4; ++k) {
+    const double bound = 16 * eps * error[k] + 64 * std::numeric_limits<double>::denorm_min();
+    if (!std::isfinite(bound) || !std::isfinite(b[k])) return false;
+    positive += b[k] > bound;
+    negative += b[k] < -bound;
+  }
+  return positive == 4 || negative == 4;
+}
+
+}  // namespace
+
+PrimitiveCcdCounters& PrimitiveCcdCounters::operator+=(const PrimitiveCcdCounters& o) {
+  tests += o.tests;
+  box_rejections += o.box_rejections;
+  cubic_rejections += o.cubic_rejections;
+  exact_decisions += o.exact_decisions;
+  contacts += o.contacts;
+  return *this;
+}
+
+std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motion,
+                                  PrimitiveCcdCounters* counters) {
+  PrimitiveCcdCounters local;
+  PrimitiveCcdCounters& count = counters ? *counters : local;
+  ++count.tests;
+  for (int i = 0; i < 4; ++i)
+    KINRAY_CHECK_MSG(motion.start[i].allFinite() && motion.end[i].allFinite(),
+                     "primitive CCD needs finite coordinates");
+  if (swept_boxes_separated(type, motion)) {
+    ++count.box_rejections;
+    return {};
+  }
+  if (coplanarity_certainly_nonzero(motion)) {
+    ++count.cubic_rejections;
+    return {};
+  }
+  ++count.exact_decisions;
+  std::vector<double> times = exact_contact_times(type, to_rational(motion));
+  count.contacts += !times.empty();
+  return times;
+}
+
+Eigen::Vector3d contact_point(ContactType type, const PrimitiveMotion& motion, double t) {
+  const std::array<Eigen::Vector3d, 4> p = motion.at(t);
+  if (type == ContactType::vertex_face) return p[0];
+  // Closest points of two segments (Ericson, Real-Time Collision Detection, 5.1.9).
+  const Eigen::Vector3d d1 = p[1] - p[0], d2 = p[3] - p[2], r = p[0] - p[2];
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, u = 0;
+  if (a <= 0 && e <= 0) return 0.5 * (p[0] + p[2]);
+  if (a <= 0) {
+    u = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      u = (b * s + f) / e;
+      if (u < 0) {
+        u = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (u > 1) {
+        u = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return 0.5 * ((p[0] + s * d1) + (p[2] + u * d2));
+}
+
+}  // namespace kinray

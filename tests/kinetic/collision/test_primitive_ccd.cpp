@@ -1,0 +1,148 @@
+// Primitive CCD against analytic times of contact, including the degenerate cases: coplanar
+// motion, parallel edges, contact at a segment end, a vertex hitting an edge.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "kinetic/collision/exact_ccd.h"
+#include "kinetic/collision/primitive_ccd.h"
+
+namespace kinray {
+namespace {
+
+using V = Eigen::Vector3d;
+
+PrimitiveMotion motion(std::array<V, 4> start, std::array<V, 4> end) {
+  return {start, end};
+}
+
+/// The fixed triangle (0,0,0), (1,0,0), (0,1,0) and a vertex moving from a to b.
+PrimitiveMotion vertex_onto_triangle(const V& a, const V& b) {
+  return motion({a, V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}, {b, V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)});
+}
+
+void expect_times(const std::vector<double>& got, std::vector<double> expected) {
+  ASSERT_EQ(got.size(), expected.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_LE(got[i], expected[i]) << "reported late";
+    EXPECT_GE(got[i], expected[i] - kContactTimeEarliness) << "reported too early";
+  }
+}
+
+TEST(PrimitiveCcd, VertexFallsThroughTriangle) {
+  expect_times(contact_times(ContactType::vertex_face,
+                             vertex_onto_triangle(V(0.25, 0.25, 1), V(0.25, 0.25, -2))),
+               {1.0 / 3.0});
+}
+
+TEST(PrimitiveCcd, VertexPassesBesideTriangle) {
+  EXPECT_TRUE(contact_times(ContactType::vertex_face,
+                            vertex_onto_triangle(V(0.75, 0.75, 1), V(0.75, 0.75, -1)))
+                  .empty());
+}
+
+TEST(PrimitiveCcd, ContactExactlyAtTheSegmentEnds) {
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(0.2, 0.2, 1), V(0.2, 0.2, 0))),
+      {1.0});
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(0.2, 0.2, 0), V(0.2, 0.2, 1))),
+      {0.0});
+}
+
+TEST(PrimitiveCcd, VertexHitsAnEdgeAndACorner) {
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(0.5, 0, 1), V(0.5, 0, -1))),
+      {0.5});
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(1, 0, 1), V(1, 0, -3))),
+      {0.25});
+  // just outside the hypotenuse by one ulp: no contact
+  const double x = std::nextafter(0.5, 1.0);
+  EXPECT_TRUE(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(x, 0.5, 1), V(x, 0.5, -1)))
+          .empty());
+}
+
+TEST(PrimitiveCcd, CoplanarMotionEntersAndLeaves) {
+  // in the triangle's plane along y = 1/4: enters at x = 0 (t = 1/2), leaves at x = 3/4 (t = 7/8)
+  expect_times(
+      contact_times(ContactType::vertex_face, vertex_onto_triangle(V(-1, 0.25, 0), V(1, 0.25, 0))),
+      {0.5, 0.875});
+  EXPECT_TRUE(contact_times(ContactType::vertex_face, vertex_onto_triangle(V(-1, 2, 0), V(2, 2, 0)))
+                  .empty());
+}
+
+TEST(PrimitiveCcd, RotatingTriangleSweepsAVertexInItsPlaneAtAllTimes) {
+  // a degenerate triangle (all three corners equal) moving onto a vertex
+  const PrimitiveMotion m = motion({V(1, 1, 1), V(0, 0, 0), V(0, 0, 0), V(0, 0, 0)},
+                                   {V(1, 1, 1), V(2, 2, 2), V(2, 2, 2), V(2, 2, 2)});
+  expect_times(contact_times(ContactType::vertex_face, m), {0.5});
+}
+
+TEST(PrimitiveCcd, CrossingEdges) {
+  // edge a along x at z from 1 to -1, edge b along y at z = 0: they cross at t = 1/2
+  const PrimitiveMotion m = motion({V(-1, 0, 1), V(1, 0, 1), V(0, -1, 0), V(0, 1, 0)},
+                                   {V(-1, 0, -1), V(1, 0, -1), V(0, -1, 0), V(0, 1, 0)});
+  expect_times(contact_times(ContactType::edge_edge, m), {0.5});
+  // the same with edge b shifted past the end of edge a: no contact
+  const PrimitiveMotion miss = motion({V(-1, 0, 1), V(1, 0, 1), V(1.5, -1, 0), V(1.5, 1, 0)},
+                                      {V(-1, 0, -1), V(1, 0, -1), V(1.5, -1, 0), V(1.5, 1, 0)});
+  EXPECT_TRUE(contact_times(ContactType::edge_edge, miss).empty());
+}
+
+TEST(PrimitiveCcd, ParallelEdges) {
+  // parallel edges approaching in z with overlapping x ranges: touch at t = 1/2
+  const PrimitiveMotion approach = motion({V(0, 0, 0), V(1, 0, 0), V(0.5, 0, 1), V(2, 0, 1)},
+                                          {V(0, 0, 0), V(1, 0, 0), V(0.5, 0, -1), V(2, 0, -1)});
+  expect_times(contact_times(ContactType::edge_edge, approach), {0.5});
+  // collinear, sliding: b's first end reaches a's last end at x = 1, t = 4/5; they overlap after
+  const PrimitiveMotion slide = motion({V(0, 0, 0), V(1, 0, 0), V(3, 0, 0), V(4, 0, 0)},
+                                       {V(0, 0, 0), V(1, 0, 0), V(0.5, 0, 0), V(1.5, 0, 0)});
+  const std::vector<double> times = contact_times(ContactType::edge_edge, slide);
+  ASSERT_FALSE(times.empty());
+  expect_times({times.front()}, {0.8});
+  // parallel in one plane, never collinear
+  const PrimitiveMotion apart = motion({V(0, 0, 0), V(1, 0, 0), V(3, 1, 0), V(4, 1, 0)},
+                                       {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)});
+  EXPECT_TRUE(contact_times(ContactType::edge_edge, apart).empty());
+}
+
+TEST(PrimitiveCcd, ReportedTimeIsALowerBoundWithinTheStatedEarliness) {
+  // falls from z = 1 to z = -2: exact contact at t = 1/3, not a double
+  const std::vector<double> t = contact_times(
+      ContactType::vertex_face, vertex_onto_triangle(V(0.1, 0.1, 1), V(0.1, 0.1, -2)));
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_LE(mpq_class(t[0]), mpq_class(1, 3));
+  EXPECT_GE(mpq_class(t[0]), mpq_class(1, 3) - mpq_class(kContactTimeEarliness));
+}
+
+TEST(PrimitiveCcd, FiltersNeverChangeTheExactAnswer) {
+  // small integer coordinates: many coplanar, parallel and touching configurations
+  std::mt19937 rng(16);
+  std::uniform_int_distribution<int> coordinate(-2, 2);
+  int contacts = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    PrimitiveMotion m;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        m.start[i][k] = coordinate(rng) * 0.5;
+        m.end[i][k] = coordinate(rng) * 0.5;
+      }
+    for (ContactType type : {ContactType::vertex_face, ContactType::edge_edge}) {
+      const std::vector<double> filtered = contact_times(type, m);
+      ASSERT_EQ(filtered, exact_contact_times(type, to_rational(m))) << "trial " << trial;
+      contacts += !filtered.empty();
+    }
+  }
+  EXPECT_GT(contacts, 100);  // the sample does exercise contacts
+}
+
+TEST(PrimitiveCcd, ContactPointOfCrossingEdges) {
+  const PrimitiveMotion m = motion({V(-1, 0, 1), V(1, 0, 1), V(0, -1, 0), V(0, 1, 0)},
+                                   {V(-1, 0, -1), V(1, 0, -1), V(0, -1, 0), V(0, 1, 0)});
+  EXPECT_NEAR((contact_point(ContactType::edge_edge, m, 0.5) - V(0, 0, 0)).norm(), 0, 1e-12);
+}
+
+}  // namespace
+}  // namespace kinray

@@ -1,0 +1,71 @@
+// Exact root isolation and signs at algebraic roots, against roots known in closed form.
+#include <gtest/gtest.h>
+
+#include "kinetic/collision/rational_polynomial.h"
+
+namespace kinray {
+namespace {
+
+RationalPolynomial from_roots(std::initializer_list<mpq_class> roots) {
+  RationalPolynomial p({1});
+  for (const mpq_class& r : roots) p = p * RationalPolynomial::linear(-r, 1);
+  return p;
+}
+
+TEST(RationalPolynomial, IsolatesEachRootOnceWithMultiplicities) {
+  // (t - 1/3)(t - 1/2)^2 (t - 2): roots 1/3 and 1/2 (double) in [0, 1], 2 outside
+  const RationalPolynomial p =
+      from_roots({mpq_class(1, 3), mpq_class(1, 2), mpq_class(1, 2), mpq_class(2)});
+  std::vector<IsolatedRoot> roots = isolate_roots(p, 0, 1);
+  ASSERT_EQ(roots.size(), 2u);
+  for (IsolatedRoot& r : roots) r.refine_to(mpq_class(1, 1 << 30));
+  EXPECT_LE(roots[0].lo, mpq_class(1, 3));
+  EXPECT_GE(roots[0].hi, mpq_class(1, 3));
+  EXPECT_LE(roots[1].lo, mpq_class(1, 2));
+  EXPECT_GE(roots[1].hi, mpq_class(1, 2));
+}
+
+TEST(RationalPolynomial, FindsRootsAtTheIntervalEnds) {
+  const std::vector<IsolatedRoot> roots = isolate_roots(from_roots({0, 1}), 0, 1);
+  ASSERT_EQ(roots.size(), 2u);
+  EXPECT_TRUE(roots[0].is_rational() && roots[0].lo == 0);
+  EXPECT_TRUE(roots[1].is_rational() && roots[1].lo == 1);
+}
+
+TEST(RationalPolynomial, InteriorRootBesideRootsAtTheEnds) {
+  // t (t - 1/3)(t - 1): the interior root's interval must not contain the ends' roots
+  std::vector<IsolatedRoot> roots = isolate_roots(from_roots({0, mpq_class(1, 3), 1}), 0, 1);
+  ASSERT_EQ(roots.size(), 3u);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(-1, 3), roots[1]), 0);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(0, 1), roots[1]), 1);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 2), 1), roots[1]), -1);
+}
+
+TEST(RationalPolynomial, IrrationalRootsAndExactSignsThere) {
+  // t^2 - 1/2 has the root 1/sqrt(2) in [0, 1]
+  std::vector<IsolatedRoot> roots =
+      isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1);
+  ASSERT_EQ(roots.size(), 1u);
+  IsolatedRoot& r = roots[0];
+  // 2 t^2 - 1 vanishes there exactly (a multiple sharing the root), t - 0.7071 is positive,
+  // t - 0.7072 negative.
+  EXPECT_EQ(sign_at(RationalPolynomial({-1, 0, 2}), r), 0);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-7071, 10000), 1), r), 1);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-7072, 10000), 1), r), -1);
+  // (t^2 - 1/2)(t - 3): vanishes at the root through a common factor
+  EXPECT_EQ(
+      sign_at(RationalPolynomial({mpq_class(-1, 2), 0, 1}) * RationalPolynomial::linear(-3, 1), r),
+      0);
+}
+
+TEST(RationalPolynomial, BernsteinCoefficientsBoundTheRange) {
+  const RationalPolynomial p({1, -3, 2});  // (1 - t)(1 - 2t)
+  const std::vector<mpq_class> b = bernstein_coefficients(p, 0, 1);
+  ASSERT_EQ(b.size(), 3u);
+  EXPECT_EQ(b[0], 1);                 // p(0)
+  EXPECT_EQ(b[1], mpq_class(-1, 2));  // 1 + (-3)/2
+  EXPECT_EQ(b[2], 0);                 // p(1)
+}
+
+}  // namespace
+}  // namespace kinray

@@ -1,0 +1,109 @@
+// `kinray collide`: a contact at a known time, identical contact sets from swept volumes and brute
+// force on the collision scenes, time order, and bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/tools/kinray_process.h"
+
+namespace kinray {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CollideCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir = fs::temp_directory_path() /
+            ("kinray_collide_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::create_directories(m_dir);
+  }
+  void TearDown() override { fs::remove_all(m_dir); }
+
+  nlohmann::json collide(const std::string& args) {
+    const fs::path json = m_dir / "contacts.json";
+    const test::CommandRun run =
+        test::run_kinray("collide " + args + " -q --json '" + json.string() + "'", m_dir);
+    EXPECT_EQ(run.status, 0) << run.err;
+    return run.status == 0 ? nlohmann::json::parse(test::read_text(json)) : nlohmann::json{};
+  }
+
+  fs::path m_dir;
+};
+
+/// The contacts without their points (which are rounded doubles, compared separately).
+nlohmann::json identities(const nlohmann::json& report) {
+  nlohmann::json out = nlohmann::json::array();
+  for (nlohmann::json c : report["contacts"]) {
+    c.erase("point");
+    out.push_back(c);
+  }
+  return out;
+}
+
+TEST_F(CollideCommand, SpikeFallsOntoATriangleAtTheExpectedTime) {
+  // a static triangle at z = 0 and a spike whose tip falls from z = 1 to z = -0.5 in one second:
+  // the tip touches the triangle at t = 2/3, and nothing else ever touches
+  const fs::path scene = m_dir / "spike.json";
+  std::ofstream(scene) << R"({"shot": {"begin": 0, "end": 1},
+    "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]},
+    "objects": [
+      {"kind": "mesh", "name": "floor", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]]},
+      {"kind": "mesh", "name": "spike", "triangles": [[0, 1, 2]],
+       "keys": [{"time": 0, "vertices": [[0.2, 0.2, 1], [0.2, 0.2, 2], [0.3, 0.2, 2]]},
+                {"time": 1, "vertices": [[0.2, 0.2, -0.5], [0.2, 0.2, 0.5], [0.3, 0.2, 0.5]]}]}]})";
+  for (const char* structure : {"brute", "swept"}) {
+    SCOPED_TRACE(structure);
+    const nlohmann::json report = collide("'" + scene.string() + "' --structure " + structure);
+    ASSERT_EQ(report["contacts"].size(), 1u);
+    const nlohmann::json& c = report["contacts"][0];
+    EXPECT_EQ(c["type"], "vf");
+    EXPECT_EQ(c["objects"], (nlohmann::json{1, 0}));
+    EXPECT_EQ(c["vertices"], (nlohmann::json{0, 0, 1, 2}));
+    EXPECT_LE(c["time"].get<double>(), 2.0 / 3.0);
+    EXPECT_NEAR(c["time"].get<double>(), 2.0 / 3.0, 1e-12);
+    EXPECT_NEAR(c["point"][2].get<double>(), 0.0, 1e-12);
+  }
+}
+
+TEST_F(CollideCommand, SweptVolumesAndBruteForceFindTheSameContactsInTimeOrder) {
+  for (const char* scene : {"cloth-fold:triangles=72,duration=1,keyrate=4 --self",
+                            "crossing:triangles=100,duration=1,keyrate=4"}) {
+    SCOPED_TRACE(scene);
+    const nlohmann::json swept = collide(std::string(scene) + " --structure swept");
+    const nlohmann::json brute = collide(std::string(scene) + " --structure brute");
+    EXPECT_GT(swept["contacts"].size(), 10u) << "the scene has real contacts";
+    EXPECT_EQ(identities(swept), identities(brute));
+    double last = -1;
+    for (const nlohmann::json& c : swept["contacts"]) {
+      EXPECT_GE(c["time"].get<double>(), last);
+      last = c["time"].get<double>();
+    }
+    // the swept boxes prune: fewer triangle pairs reach the primitive tests
+    EXPECT_LT(swept["stats"]["triangle_pairs"].get<double>(),
+              brute["stats"]["triangle_pairs"].get<double>());
+  }
+}
+
+TEST_F(CollideCommand, SelfContactsExcludeAdjacentTriangles) {
+  // the cloth at rest before the fold: neighbours share vertices and edges but are not contacts
+  const nlohmann::json report =
+      collide("cloth-fold:triangles=72,duration=1,keyrate=4 --self --time 0:0.25");
+  EXPECT_EQ(report["contacts"].size(), 0u);
+}
+
+TEST_F(CollideCommand, BadFlagsAreOneLineAndExitTwo) {
+  for (const char* args :
+       {"crossing --structure ksl", "crossing --objects 0,7", "crossing --time 5:6"}) {
+    const test::CommandRun run = test::run_kinray(std::string("collide ") + args, m_dir);
+    EXPECT_EQ(run.status, 2) << args;
+    EXPECT_EQ(run.err.rfind("kinray: error: ", 0), 0u) << run.err;
+    EXPECT_TRUE(run.out.empty());
+  }
+}
+
+}  // namespace
+}  // namespace kinray

@@ -1,0 +1,124 @@
+// kinray collide SCENE: every contact between (and with --self, within) the scene's animated
+// meshes, in time order, found by exact continuous collision detection on each flightplan
+// segment (kinetic/collision/), with swept volumes or brute force.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "renderer/frame_schedule.h"
+#include "renderer/image_io.h"
+#include "scenes/error.h"
+#include "scenes/scene_loader.h"
+#include "tools/cli_options.h"
+#include "tools/commands.h"
+#include "tools/json_output.h"
+#include "tools/scene_contacts.h"
+
+namespace kinray {
+namespace {
+
+struct CollideOptions {
+  RenderOptions scene;  ///< SCENE, --animation, --keyrate
+  bool self = false, stats = false, quiet = false;
+  std::string objects, time, json, structure = "swept";
+};
+
+/// "A,B,...": object indices or names.
+std::vector<std::uint32_t> parse_objects(const std::string& text, const Scene& scene) {
+  std::vector<std::uint32_t> objects;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, comma - begin);
+    begin = comma + 1;
+    std::int64_t index = -1;
+    for (std::uint32_t o = 0; o < scene.objects.size(); ++o)
+      if (scene.objects[o].name == item) index = o;
+    if (index < 0 && !item.empty() && item.find_first_not_of("0123456789") == std::string::npos)
+      index = std::stoll(item.substr(0, 9));
+    if (index < 0 || index >= std::int64_t(scene.objects.size()))
+      throw InputError("--objects", "'" + item + "' is neither an object name nor an index below " +
+                                        std::to_string(scene.objects.size()));
+    objects.push_back(std::uint32_t(index));
+  }
+  return objects;
+}
+
+nlohmann::json to_json(const Contact& c) {
+  return {{"time", c.time},
+          {"type", contact_type_name(c.type)},
+          {"objects", c.objects},
+          {"vertices", c.vertices},
+          {"point", {c.point.x(), c.point.y(), c.point.z()}}};
+}
+
+nlohmann::json stats_json(const SceneContacts& r) {
+  const PrimitiveCcdCounters& p = r.counters.primitives;
+  return {{"segments", r.segments},
+          {"object_segments", r.counters.segments},
+          {"node_visits", r.counters.node_visits},
+          {"triangle_pairs", r.counters.triangle_pairs},
+          {"primitive_tests", p.tests},
+          {"box_rejections", p.box_rejections},
+          {"cubic_rejections", p.cubic_rejections},
+          {"exact_decisions", p.exact_decisions},
+          {"primitive_pairs_in_contact", p.contacts}};
+}
+
+void run_collide(const CollideOptions& options) {
+  CollideParams params;
+  params.structure = parse_contact_structure(options.structure);
+  params.self = options.self;
+  if (!options.time.empty())
+    std::tie(params.time_begin, params.time_end) = parse_time_range(options.time);
+  prepare_json_output(options.json);
+  const Scene scene = load_scene(options.scene.params.scene, model_options(options.scene.params));
+  if (!options.objects.empty()) params.objects = parse_objects(options.objects, scene);
+  const SceneContacts result = find_scene_contacts(scene, params);
+
+  std::size_t vf = 0;
+  for (const Contact& c : result.contacts) {
+    vf += c.type == ContactType::vertex_face;
+    if (options.quiet) continue;
+    std::printf("%.9f %s objects %u %u vertices %u %u %u %u point %.9g %.9g %.9g\n", c.time,
+                contact_type_name(c.type), c.objects[0], c.objects[1], c.vertices[0], c.vertices[1],
+                c.vertices[2], c.vertices[3], c.point.x(), c.point.y(), c.point.z());
+  }
+  std::printf("collide %s: %zu contacts (%zu vf, %zu ee) over %zu segments, %s, %.1f ms\n",
+              options.scene.params.scene.c_str(), result.contacts.size(), vf,
+              result.contacts.size() - vf, result.segments, options.structure.c_str(),
+              1e3 * result.seconds);
+  if (options.stats) std::printf("%s\n", stats_json(result).dump(2).c_str());
+  if (options.json.empty()) return;
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const Contact& c : result.contacts) contacts.push_back(to_json(c));
+  const nlohmann::json report = {{"scene", options.scene.params.scene},
+                                 {"structure", options.structure},
+                                 {"self", options.self},
+                                 {"contacts", contacts},
+                                 {"ms", 1e3 * result.seconds},
+                                 {"stats", stats_json(result)}};
+  write_file_atomically(options.json, report.dump(1) + "\n");
+}
+
+}  // namespace
+
+void register_collide_command(CLI::App& app) {
+  auto options = std::make_shared<CollideOptions>();
+  CLI::App* command = app.add_subcommand(
+      "collide", "Every contact between (--self: also within) the animated meshes, in time order");
+  add_scene_options(*command, options->scene);
+  command->add_flag("--self", options->self, "Also contacts of each object with itself");
+  command->add_option("--objects", options->objects,
+                      "Only these objects: names or indices A,B,...");
+  command->add_option("--time", options->time, "Only contacts in [A, B] seconds, given as A:B");
+  command->add_option("--structure", options->structure, "swept | brute")->capture_default_str();
+  command->add_option("--json", options->json, "Write every contact and the counters as JSON");
+  command->add_flag("--stats", options->stats, "Print the counters");
+  command->add_flag("-q,--quiet", options->quiet, "Only the summary line");
+  command->callback([options] { run_collide(*options); });
+}
+
+}  // namespace kinray
