@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "kinetic/frustum_grid.h"
+#include "renderer/kinetic_shadow_tracer.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -44,7 +45,13 @@ class KineticBackend final : public Backend {
     }
     m_grid_config.threads = config.threads;
     m_grid_config.audit = config.audit;
+    // Primary hits come from the grid; shadow rays, only when there are lights, from the tracer
+    // --shadow-tree chooses.
+    if (!scene.scene->lights.empty())
+      m_shadows = make_kinetic_shadow_tracer(scene, config.shadow_tree, config.audit);
   }
+
+  [[nodiscard]] ShadowTracer* shadow_tracer() override { return m_shadows.get(); }
 
   [[nodiscard]] std::string name() const override { return "kinetic"; }
 
@@ -68,6 +75,7 @@ class KineticBackend final : public Backend {
   }
 
   void write_stats(nlohmann::json& stats) const override {
+    if (m_shadows) m_shadows->write_stats(stats);
     if (!m_grid) return;
     const GridStats s = m_grid->stats();
     const GridTimings& timings = m_grid->timings();
@@ -126,6 +134,7 @@ class KineticBackend final : public Backend {
   BackendConfig m_config;
   FrustumGridConfig m_grid_config;
   std::unique_ptr<FrustumGrid> m_grid;
+  std::unique_ptr<ShadowTracer> m_shadows;  ///< when the scene has lights
   std::vector<double> m_events_s, m_readout_s;
   std::vector<uint64_t> m_events;
 };

@@ -11,8 +11,12 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "renderer/kinetic_shadow_tracer.h"
+#include "renderer/light_flag.h"
+#include "renderer/lighting.h"
 #include "renderer/progress.h"
 #include "renderer/shading.h"
+#include "renderer/shadow_rays.h"
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
@@ -93,6 +97,11 @@ void validate(const RenderParams& params) {
   if (!std::isfinite(params.keyrate) || params.keyrate < 0)
     throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
   if (!params.video.empty()) VideoWriter::validate_path(params.video);
+  for (const std::string& light : params.lights) (void)parse_light_flag(light);
+  if (params.lights.size() > kMaxLights)
+    throw InputError("--light", "at most " + std::to_string(kMaxLights) + " lights, got " +
+                                    std::to_string(params.lights.size()));
+  (void)parse_shadow_tree(params.shadow_tree);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -113,6 +122,7 @@ BackendConfig backend_config(const RenderParams& params) {
   config.embree_packet = params.packet;
   config.sort = params.sort;
   config.audit = params.audit;
+  config.shadow_tree = parse_shadow_tree(params.shadow_tree);
   return config;
 }
 
@@ -143,7 +153,17 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   validate(m_params);
   m_scene = load_scene(m_params.scene, model_options(m_params));
   m_scene.validate(m_params.scene);
+  if (!m_params.lights.empty()) {
+    m_scene.lights.clear();
+    for (const std::string& light : m_params.lights)
+      m_scene.lights.push_back(parse_light_flag(light));
+  }
+  if (m_scene.lights.size() > kMaxLights)
+    throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
+                                         " lights; at most " + std::to_string(kMaxLights) +
+                                         " fit a frame's per-pixel light mask");
   m_camera_space = CameraSpaceScene::build(m_scene);
+  m_lights = CameraSpaceLights(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_timings.load = now_s() - m_started;
 }
@@ -161,7 +181,16 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   backend.render(m_frame_times.at(index), frame);
   m_timings.render += now_s() - start;
   start = now_s();
-  shade_frame(m_camera_space, frame, m_params.threads);
+  if (m_lights.empty()) {
+    shade_frame(m_camera_space, frame, m_params.threads);
+  } else {
+    ShadowTracer* tracer = backend.shadow_tracer();
+    if (tracer == nullptr)
+      throw InputError("--backend", "the " + backend.name() +
+                                        " backend traces no shadow rays; scenes with lights "
+                                        "render with kinetic or embree");
+    shade_frame_lit(m_camera_space, m_lights, *tracer, frame, m_params.threads);
+  }
   m_timings.shade += now_s() - start;
 }
 
@@ -196,6 +225,7 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
       {"triangles", job.scene().triangle_count()},
       {"vertices", job.scene().vertex_count()},
       {"objects", job.scene().objects.size()},
+      {"lights", job.scene().lights.size()},
       {"shot", {job.scene().time_begin, job.scene().time_end}},
       {"frame_times", job.frame_times()},
       {"time_s",
