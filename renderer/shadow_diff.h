@@ -34,8 +34,8 @@ struct LightMismatches {
 };
 
 /// Per-light mismatch counts of two frames' masks and, per pixel, the worst class (nullopt:
-/// the masks agree or the primary hits differ). Frames without masks compare as equal; a frame
-/// with a mask against one without throws std::invalid_argument.
+/// the masks agree or the primary hits differ). When either frame has no masks (no lights, or
+/// read back from files) nothing is compared and `lights` is empty.
 struct ShadowDiff {
   std::vector<LightMismatches> lights;
   std::vector<int8_t> pixels;  ///< -1: agree, else ShadowClass
