@@ -185,10 +185,13 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
     shade_frame(m_camera_space, frame, m_params.threads);
   } else {
     ShadowTracer* tracer = backend.shadow_tracer();
-    if (tracer == nullptr)
-      throw InputError("--backend", "the " + backend.name() +
-                                        " backend traces no shadow rays; scenes with lights "
-                                        "render with kinetic or embree");
+    if (tracer == nullptr) {
+      // A backend that traces no shadow rays (OSMesa) borrows Embree's occlusion rays.
+      if (!m_shadow_helper)
+        m_shadow_helper = kinray::make_backend("embree", m_camera_space, backend_config(m_params));
+      m_shadow_helper->render(frame.time, m_shadow_scratch);
+      tracer = m_shadow_helper->shadow_tracer();
+    }
     shade_frame_lit(m_camera_space, m_lights, *tracer, frame, m_params.threads);
   }
   m_timings.shade += now_s() - start;

@@ -113,6 +113,8 @@ class RenderJob {
   Scene m_scene;
   CameraSpaceScene m_camera_space;
   CameraSpaceLights m_lights;  ///< empty: the headlight, no shadow rays
+  std::unique_ptr<Backend> m_shadow_helper;  ///< Embree, for backends that trace no shadow rays
+  Frame m_shadow_scratch;                    ///< the helper's primary hits, unused
   std::vector<double> m_frame_times;
   RenderTimings m_timings;
   double m_started = 0;  ///< steady-clock seconds when the job was made

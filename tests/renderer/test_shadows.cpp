@@ -306,6 +306,27 @@ TEST(Shadows, EmbreeAndKineticMasksAgreeOnBuiltInScenes) {
     expect_masks_agree(spec);
 }
 
+#ifdef KINRAY_WITH_OSMESA
+TEST(Shadows, OsmesaBorrowsEmbreesOcclusionRays) {
+  RenderParams params;
+  params.scene = "static-moving:triangles=2000";
+  params.width = params.height = 32;
+  params.frames = 1;
+  params.lights = {"point:2,5,-3"};
+  RenderJob job(params);
+  std::unique_ptr<Backend> osmesa = job.make_backend("osmesa");
+  std::unique_ptr<Backend> embree = job.make_backend("embree");
+  Frame a, b;
+  job.render_frame(*osmesa, 0, a);
+  job.render_frame(*embree, 0, b);
+  ASSERT_EQ(a.lit.size(), a.pixel_count());
+  FrameComparator comparator(job.camera_space());
+  const FrameDiff diff = comparator.compare(a, b);
+  ASSERT_EQ(diff.shadow_lights.size(), 1u);
+  EXPECT_EQ(diff.shadow_lights[0].real, 0u);
+}
+#endif
+
 TEST(Shadows, NoLightsMeansNoMaskAndTheHeadlight) {
   RenderParams params;
   params.scene = "static-moving";
