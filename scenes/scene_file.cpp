@@ -478,7 +478,9 @@ struct Reader {
         light.kind = Light::Kind::directional;
         const Vec3 direction = node.at("direction").vec3();
         if (!(direction.norm() > 0)) node.at("direction").fail("the direction must not be zero");
-        light.direction = direction.normalized();
+        // A unit vector (as save_scene_file writes) is kept bit for bit.
+        light.direction =
+            std::abs(direction.norm() - 1) > 1e-12 ? Vec3(direction.normalized()) : direction;
       } else {
         node.at("kind").fail("unknown light kind '" + kind + "'; the kinds are point, directional");
       }
