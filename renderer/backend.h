@@ -7,6 +7,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "renderer/frame.h"
+#include "renderer/shadow_tracer.h"
 #include "scenes/camera_space.h"
 
 namespace kinray {
@@ -19,6 +20,7 @@ struct BackendConfig {
   int embree_packet = 1;        ///< embree: 1 (single rays), 4, 8 or 16
   std::string sort = "list";    ///< kinetic: list | tournament | heap
   bool audit = false;           ///< kinetic: audit every certificate between events
+  ShadowTree shadow_tree = ShadowTree::aabb;  ///< kinetic: what traces shadow rays (--shadow-tree)
 };
 
 class Backend {
@@ -30,6 +32,9 @@ class Backend {
   virtual void render(double t, Frame& frame) = 0;
   /// Adds this backend's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}
+  /// What traces this backend's shadow rays at the frame it rendered last; nullptr when the
+  /// scene has no lights (or the backend traces no shadow rays).
+  [[nodiscard]] virtual ShadowTracer* shadow_tracer() { return nullptr; }
 };
 
 /// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.

@@ -1,8 +1,6 @@
 #include "renderer/embree_backend.h"
 
 #include <embree3/rtcore.h>
-#include <pmmintrin.h>
-#include <xmmintrin.h>
 
 #include <algorithm>
 #include <atomic>
@@ -18,6 +16,8 @@
 #include <vector>
 
 #include "kinetic/parallel.h"
+#include "renderer/embree_shadow_tracer.h"
+#include "renderer/flush_denormals.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -28,23 +28,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-/// Flush-to-zero and denormals-are-zero for the lifetime of the guard on this thread (Embree's
-/// advice for every thread that builds or traces); the caller's mode is restored afterwards so
-/// that other code on the thread (the kinetic root solver) keeps IEEE denormals.
-class FlushDenormals {
- public:
-  FlushDenormals() : m_saved(_mm_getcsr()) {
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-  }
-  ~FlushDenormals() { _mm_setcsr(m_saved); }
-  FlushDenormals(const FlushDenormals&) = delete;
-  FlushDenormals& operator=(const FlushDenormals&) = delete;
-
- private:
-  unsigned m_saved;
-};
 
 const char* error_name(RTCError code) {
   switch (code) {
@@ -187,6 +170,8 @@ class EmbreeBackend final : public Backend {
     const RTCDevice device = m_device.handle();
     const uint64_t mark = m_device.error_count();
     m_meshes.resize(scene.objects.size());
+    // Shadow rays only when the scene has lights: without them nothing changes.
+    if (!scene.scene->lights.empty()) m_shadows = std::make_unique<EmbreeShadowTracer>();
     for (size_t o = 0; o < scene.objects.size(); ++o) {
       const CameraSpaceObject& cs = scene.objects[o];
       const std::vector<Triangle>& triangles = scene.triangles(o);
@@ -213,6 +198,7 @@ class EmbreeBackend final : public Backend {
                                    mesh.moving ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
       else
         rtcSetGeometryBuildQuality(mesh.geometry, kRebuildQuality);
+      if (m_shadows) EmbreeShadowTracer::install_filter(mesh.geometry);
       rtcCommitGeometry(mesh.geometry);
     }
     if (m_refit) {
@@ -249,6 +235,7 @@ class EmbreeBackend final : public Backend {
     auto start = Clock::now();
     update_scene(t);
     m_build_s.push_back(seconds_since(start));
+    if (m_shadows) m_shadows->bind(m_rtc_scene, t);
 
     start = Clock::now();
     const uint64_t mark = m_device.error_count();
@@ -274,7 +261,10 @@ class EmbreeBackend final : public Backend {
     m_depth_s.push_back(seconds_since(start));
   }
 
+  [[nodiscard]] ShadowTracer* shadow_tracer() override { return m_shadows.get(); }
+
   void write_stats(nlohmann::json& stats) const override {
+    if (m_shadows) m_shadows->write_stats(stats);
     auto total = [](const std::vector<double>& v) {
       double sum = 0;
       for (double x : v) sum += x;
@@ -482,6 +472,7 @@ class EmbreeBackend final : public Backend {
   bool m_refit = true;
   RTCScene m_rtc_scene = nullptr;
   std::vector<Mesh> m_meshes;
+  std::unique_ptr<EmbreeShadowTracer> m_shadows;  ///< when the scene has lights
   std::vector<double> m_build_s, m_trace_s, m_depth_s;
 };
 

@@ -1,19 +1,40 @@
 #pragma once
-// Shadow rays through Embree (rtcOccluded1), refitted or rebuilt at each frame time from the same
-// interpolated camera-space positions as every backend: the peer of the kinetic trees in
-// `kinray bench --structure aabb,boxtree` and their reference in the tests. The triangle a ray
-// leaves from is skipped by a context filter, as renderer/shadow_tracer.h asks.
-#include <memory>
+// Shadow rays through the Embree backend's own scene: the geometries and float vertices that it
+// traced the frame's primary rays through, queried with occlusion rays (rtcOccluded1, tnear 0,
+// tfar = s_max). The triangle a ray leaves from is skipped by an occlusion filter installed on
+// every geometry (the geometry id is the object index, the primitive id the triangle index), so
+// the rule against self-intersection is the one of renderer/shadow_tracer.h.
+#include <embree3/rtcore.h>
+
+#include <atomic>
 
 #include "renderer/shadow_tracer.h"
-#include "scenes/camera_space.h"
 
 namespace kinray {
 
-/// Embree's answer to shadow rays over `scene` (which must outlive it): `refit` refits one
-/// dynamic scene at each advance_to, else the scene is rebuilt from scratch. Builds run on one
-/// thread (a device of its own with threads=1).
-[[nodiscard]] std::unique_ptr<ShadowTracer> make_embree_shadow_tracer(const CameraSpaceScene& scene,
-                                                                      bool refit);
+/// Occlusion queries on the scene an Embree backend has committed for the current frame.
+class EmbreeShadowTracer final : public ShadowTracer {
+ public:
+  /// Installs the filter that skips a ray's own triangle; call before committing `geometry`.
+  static void install_filter(RTCGeometry geometry);
+  /// The backend hands over the scene it committed for frame time t (it stays valid until the
+  /// next bind).
+  void bind(RTCScene scene, double t) {
+    m_rtc_scene = scene;
+    m_time = t;
+  }
+
+  [[nodiscard]] std::string name() const override { return "embree"; }
+  /// Checks that the backend has committed its scene at t (the backend, not the tracer, moves
+  /// the geometry); throws std::logic_error otherwise.
+  void advance_to(double t) override;
+  void occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const override;
+  void write_stats(nlohmann::json& stats) const override;
+
+ private:
+  RTCScene m_rtc_scene = nullptr;
+  double m_time = 0;
+  mutable std::atomic<uint64_t> m_rays{0}, m_blocked{0};
+};
 
 }  // namespace kinray

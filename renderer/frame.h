@@ -18,6 +18,9 @@ struct Frame {
   std::vector<uint32_t> prim;    ///< triangle index within the object
   std::vector<float> depth;      ///< +inf for background
   std::vector<Color> color;      ///< linear RGB
+  /// Per pixel, bit l set when light l reaches the hit (renderer/lighting.h); empty when the
+  /// scene has no lights (the headlight casts no shadows).
+  std::vector<uint32_t> lit;
 
   void resize(int w, int h) {
     width = w;
@@ -27,6 +30,7 @@ struct Frame {
     prim.assign(n, kNoHit);
     depth.assign(n, std::numeric_limits<float>::infinity());
     color.assign(n, Color::Zero());
+    lit.clear();
   }
   [[nodiscard]] size_t pixel_count() const { return object.size(); }
   [[nodiscard]] size_t index(int i, int j) const { return size_t(j) * size_t(width) + size_t(i); }

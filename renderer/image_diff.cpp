@@ -93,7 +93,10 @@ struct FrameComparator::Adjacency {
 };
 
 FrameComparator::FrameComparator(const CameraSpaceScene& scene, TieTolerance tolerance)
-    : m_scene(scene), m_tolerance(tolerance), m_adjacency(scene.objects.size()) {}
+    : m_scene(scene),
+      m_lights(*scene.scene),
+      m_tolerance(tolerance),
+      m_adjacency(scene.objects.size()) {}
 
 FrameComparator::~FrameComparator() = default;
 
@@ -237,6 +240,14 @@ FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) 
       ++(tie ? diff.mismatch_tie : diff.mismatch_real);
       if (is_crack) ++diff.cracks;
     }
+  const ShadowDiff shadows = compare_shadows(m_scene, m_lights, tested, reference);
+  diff.shadow_lights = shadows.lights;
+  for (size_t px = 0; px < diff.pixels.size(); ++px) {
+    if (shadows.pixels[px] < 0 || diff.pixels[px] != PixelClass::kEqual) continue;
+    const bool tie = shadows.pixels[px] == int8_t(ShadowClass::kTie);
+    diff.pixels[px] = tie ? PixelClass::kTie : PixelClass::kReal;
+    ++(tie ? diff.mismatch_tie : diff.mismatch_real);
+  }
   return diff;
 }
 
@@ -310,6 +321,7 @@ FrameDiffSummary summarize(size_t frame, const FrameDiff& diff) {
   line.mismatch_real = diff.mismatch_real;
   line.mismatch_tie = diff.mismatch_tie;
   line.cracks = diff.cracks;
+  line.shadow_lights = diff.shadow_lights;
   return line;
 }
 
@@ -319,6 +331,11 @@ void DiffSummary::add(FrameDiffSummary line) {
   mismatch_real += line.mismatch_real;
   mismatch_tie += line.mismatch_tie;
   cracks += line.cracks;
+  shadow_lights.resize(std::max(shadow_lights.size(), line.shadow_lights.size()));
+  for (size_t l = 0; l < line.shadow_lights.size(); ++l) {
+    shadow_lights[l].real += line.shadow_lights[l].real;
+    shadow_lights[l].tie += line.shadow_lights[l].tie;
+  }
   per_frame.push_back(std::move(line));
 }
 
@@ -355,7 +372,24 @@ void DiffSummary::print(std::ostream& out) const {
                 pixels ? 100.0 * double(mismatch_real) / double(pixels) : 0.0, mismatch_tie,
                 pixels ? 100.0 * double(mismatch_tie) / double(pixels) : 0.0, cracks);
   out << buffer;
+  for (size_t l = 0; l < shadow_lights.size(); ++l) {
+    std::snprintf(buffer, sizeof buffer, "shadows of light %zu: %zu real mismatches, %zu ties\n", l,
+                  shadow_lights[l].real, shadow_lights[l].tie);
+    out << buffer;
+  }
 }
+
+namespace {
+
+nlohmann::json shadow_json(const std::vector<LightMismatches>& lights) {
+  nlohmann::json result = nlohmann::json::array();
+  for (size_t l = 0; l < lights.size(); ++l)
+    result.push_back(
+        {{"light", l}, {"mismatch_real", lights[l].real}, {"mismatch_tie", lights[l].tie}});
+  return result;
+}
+
+}  // namespace
 
 std::string DiffSummary::to_json() const {
   nlohmann::json lines = nlohmann::json::array();
@@ -370,21 +404,23 @@ std::string DiffSummary::to_json() const {
         {"psnr", nullptr},
         {"max_error", nullptr},
         {"heat_map", line.heat_map.empty() ? nlohmann::json() : nlohmann::json(line.heat_map)}};
+    if (!line.shadow_lights.empty()) entry["shadows"] = shadow_json(line.shadow_lights);
     if (line.color) {
       if (const std::optional<double> psnr = line.color->psnr()) entry["psnr"] = *psnr;
       entry["max_error"] = line.color->max_error;
     }
     lines.push_back(std::move(entry));
   }
-  const nlohmann::json summary = {{"scene", scene},
-                                  {"tested", tested},
-                                  {"reference", reference},
-                                  {"frames", frames},
-                                  {"pixels", pixels},
-                                  {"mismatch_real", mismatch_real},
-                                  {"mismatch_tie", mismatch_tie},
-                                  {"cracks", cracks},
-                                  {"per_frame", std::move(lines)}};
+  nlohmann::json summary = {{"scene", scene},
+                            {"tested", tested},
+                            {"reference", reference},
+                            {"frames", frames},
+                            {"pixels", pixels},
+                            {"mismatch_real", mismatch_real},
+                            {"mismatch_tie", mismatch_tie},
+                            {"cracks", cracks},
+                            {"per_frame", std::move(lines)}};
+  if (!shadow_lights.empty()) summary["shadows"] = shadow_json(shadow_lights);
   return summary.dump(2) + "\n";
 }
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "renderer/frame.h"
+#include "renderer/shadow_diff.h"
 #include "scenes/camera_space.h"
 
 namespace kinray {
@@ -48,6 +49,9 @@ struct FrameDiff {
   size_t mismatch_real = 0, mismatch_tie = 0;
   /// Of the real mismatches, those where a backend leaked through a closed surface at an edge.
   size_t cracks = 0;
+  /// Per light, pixels that see the same triangle in both frames but disagree whether the light
+  /// reaches it (shadow_diff.h); such a pixel counts once in mismatch_real or mismatch_tie.
+  std::vector<LightMismatches> shadow_lights;
   [[nodiscard]] size_t pixel_count() const { return pixels.size(); }
 };
 
@@ -74,6 +78,7 @@ class FrameComparator {
   const Adjacency& adjacency(uint32_t object);
 
   const CameraSpaceScene& m_scene;
+  CameraSpaceLights m_lights;
   TieTolerance m_tolerance;
   std::vector<std::unique_ptr<Adjacency>> m_adjacency;  ///< per object, built on first need
 };
@@ -92,14 +97,16 @@ struct FrameDiffSummary {
   size_t frame = 0;  ///< index in the frame schedule
   double time = 0;
   size_t pixels = 0, mismatch_real = 0, mismatch_tie = 0, cracks = 0;
-  std::optional<ColorError> color;  ///< when the colours were compared
-  std::string heat_map;             ///< path of the written heat map, empty if none
+  std::vector<LightMismatches> shadow_lights;  ///< per light; empty without lights
+  std::optional<ColorError> color;             ///< when the colours were compared
+  std::string heat_map;                        ///< path of the written heat map, empty if none
 };
 
 /// Totals over the frames of a `kinray diff` run.
 struct DiffSummary {
   std::string scene, tested, reference;  ///< names, for the table and the JSON
   size_t frames = 0, pixels = 0, mismatch_real = 0, mismatch_tie = 0, cracks = 0;
+  std::vector<LightMismatches> shadow_lights;  ///< per light, over all frames
   std::vector<FrameDiffSummary> per_frame;
 
   /// Appends one frame's line and adds it to the totals.
@@ -111,7 +118,8 @@ struct DiffSummary {
   /// The summary as JSON: {"scene", "tested", "reference", "frames", "pixels", "mismatch_real",
   /// "mismatch_tie", "cracks", "per_frame": [{"frame", "time", "pixels", "mismatch_real",
   /// "mismatch_tie", "cracks", "psnr", "max_error", "heat_map"}]}; psnr is null for identical
-  /// colours.
+  /// colours. With lights, the summary and every frame add "shadows": [{"light",
+  /// "mismatch_real", "mismatch_tie"}] (those pixels are already in mismatch_real/tie).
   [[nodiscard]] std::string to_json() const;
   /// Writes to_json() to `path` (write_file_atomically: std::runtime_error when the write fails).
   void write_json(const std::string& path) const;

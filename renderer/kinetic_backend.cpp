@@ -7,6 +7,7 @@
 
 #include "kinetic/frustum_grid.h"
 #include "renderer/grid_meshes.h"
+#include "renderer/kinetic_shadow_tracer.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -33,7 +34,13 @@ class KineticBackend final : public Backend {
     }
     m_grid_config.threads = config.threads;
     m_grid_config.audit = config.audit;
+    // Primary hits come from the grid; shadow rays, only when there are lights, from the tracer
+    // --shadow-tree chooses.
+    if (!scene.scene->lights.empty())
+      m_shadows = make_kinetic_shadow_tracer(scene, config.shadow_tree, config.audit);
   }
+
+  [[nodiscard]] ShadowTracer* shadow_tracer() override { return m_shadows.get(); }
 
   [[nodiscard]] std::string name() const override { return "kinetic"; }
 
@@ -58,6 +65,7 @@ class KineticBackend final : public Backend {
   }
 
   void write_stats(nlohmann::json& stats) const override {
+    if (m_shadows) m_shadows->write_stats(stats);
     if (!m_grid) return;
     const GridStats s = m_grid->stats();
     const GridTimings& timings = m_grid->timings();
@@ -116,6 +124,7 @@ class KineticBackend final : public Backend {
   BackendConfig m_config;
   FrustumGridConfig m_grid_config;
   std::unique_ptr<FrustumGrid> m_grid;
+  std::unique_ptr<ShadowTracer> m_shadows;  ///< when the scene has lights
   std::vector<double> m_events_s, m_readout_s;
   std::vector<uint64_t> m_events;
 };

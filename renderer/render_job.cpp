@@ -12,8 +12,12 @@
 #include <system_error>
 
 #include "renderer/memory_estimate.h"
+#include "renderer/kinetic_shadow_tracer.h"
+#include "renderer/light_flag.h"
+#include "renderer/lighting.h"
 #include "renderer/progress.h"
 #include "renderer/shading.h"
+#include "renderer/shadow_rays.h"
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
@@ -94,6 +98,11 @@ void validate(const RenderParams& params) {
   if (!std::isfinite(params.keyrate) || params.keyrate < 0)
     throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
   if (!params.video.empty()) VideoWriter::validate_path(params.video);
+  for (const std::string& light : params.lights) (void)parse_light_flag(light);
+  if (params.lights.size() > kMaxLights)
+    throw InputError("--light", "at most " + std::to_string(kMaxLights) + " lights, got " +
+                                    std::to_string(params.lights.size()));
+  (void)parse_shadow_tree(params.shadow_tree);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -114,6 +123,7 @@ BackendConfig backend_config(const RenderParams& params) {
   config.embree_packet = params.packet;
   config.sort = params.sort;
   config.audit = params.audit;
+  config.shadow_tree = parse_shadow_tree(params.shadow_tree);
   return config;
 }
 
@@ -146,7 +156,17 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   m_scene = load_scene(m_params.scene, model_options(m_params));
   m_scene.validate(m_params.scene);
   check_render_memory(m_params, &m_scene);
+  if (!m_params.lights.empty()) {
+    m_scene.lights.clear();
+    for (const std::string& light : m_params.lights)
+      m_scene.lights.push_back(parse_light_flag(light));
+  }
+  if (m_scene.lights.size() > kMaxLights)
+    throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
+                                         " lights; at most " + std::to_string(kMaxLights) +
+                                         " fit a frame's per-pixel light mask");
   m_camera_space = CameraSpaceScene::build(m_scene);
+  m_lights = CameraSpaceLights(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_timings.load = now_s() - m_started;
 }
@@ -164,7 +184,19 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   backend.render(m_frame_times.at(index), frame);
   m_timings.render += now_s() - start;
   start = now_s();
-  shade_frame(m_camera_space, frame, m_params.threads);
+  if (m_lights.empty()) {
+    shade_frame(m_camera_space, frame, m_params.threads);
+  } else {
+    ShadowTracer* tracer = backend.shadow_tracer();
+    if (tracer == nullptr) {
+      // A backend that traces no shadow rays (OSMesa) borrows Embree's occlusion rays.
+      if (!m_shadow_helper)
+        m_shadow_helper = kinray::make_backend("embree", m_camera_space, backend_config(m_params));
+      m_shadow_helper->render(frame.time, m_shadow_scratch);
+      tracer = m_shadow_helper->shadow_tracer();
+    }
+    shade_frame_lit(m_camera_space, m_lights, *tracer, frame, m_params.threads);
+  }
   m_timings.shade += now_s() - start;
 }
 
@@ -199,6 +231,7 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
       {"triangles", job.scene().triangle_count()},
       {"vertices", job.scene().vertex_count()},
       {"objects", job.scene().objects.size()},
+      {"lights", job.scene().lights.size()},
       {"shot", {job.scene().time_begin, job.scene().time_end}},
       {"frame_times", job.frame_times()},
       {"time_s",

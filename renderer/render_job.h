@@ -15,6 +15,7 @@
 #include "renderer/frame.h"
 #include "renderer/frame_schedule.h"
 #include "scenes/camera_space.h"
+#include "scenes/camera_space_lights.h"
 #include "scenes/model_import.h"
 #include "scenes/scene.h"
 
@@ -38,6 +39,8 @@ struct RenderParams {
   int packet = 1;                                 ///< --packet 1|4|8|16
   std::string sort = "list";                      ///< --sort list|tournament|heap
   bool audit = false;                             ///< --audit
+  std::vector<std::string> lights;                ///< --light (repeatable): replace the scene's
+  std::string shadow_tree = "aabb";               ///< --shadow-tree aabb|boxtree|refit|brute
   std::string animation;                          ///< --animation NAME|INDEX (model files)
   double keyrate = 0;                             ///< --keyrate HZ (model files)
   bool quiet = false;                             ///< --quiet
@@ -95,7 +98,9 @@ class RenderJob {
   /// Creates backend `name` (empty: params().backend) for this scene; throws InputError for an
   /// unknown backend or bad backend flags.
   [[nodiscard]] std::unique_ptr<Backend> make_backend(const std::string& name = "");
-  /// Renders and shades frame `index` into `frame`, adding the time spent to timings().
+  /// Renders and shades frame `index` into `frame`, adding the time spent to timings(). With
+  /// lights, shadow rays go to backend.shadow_tracer() (InputError naming --backend if it has
+  /// none).
   void render_frame(Backend& backend, size_t index, Frame& frame);
   /// The frame loop: every frame time in order, rendered, shaded and handed to `sink` (timed as
   /// "write"), with a progress bar on stderr when it is a terminal and params().quiet is false.
@@ -107,6 +112,9 @@ class RenderJob {
   RenderParams m_params;
   Scene m_scene;
   CameraSpaceScene m_camera_space;
+  CameraSpaceLights m_lights;  ///< empty: the headlight, no shadow rays
+  std::unique_ptr<Backend> m_shadow_helper;  ///< Embree, for backends that trace no shadow rays
+  Frame m_shadow_scratch;                    ///< the helper's primary hits, unused
   std::vector<double> m_frame_times;
   RenderTimings m_timings;
   double m_started = 0;  ///< steady-clock seconds when the job was made

@@ -7,13 +7,16 @@
 
 namespace kinray {
 
-Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
-                uint32_t object, uint32_t prim, double t) {
+SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+                           uint32_t object, uint32_t prim, double t) {
   const CameraSpaceObject& cs = scene.objects[object];
   const Object& source = scene.scene->objects[object];
   const Triangle& tri = source.triangles[prim];
-  const Vec3 d = image.direction(i, j);
-  const Vec3 p0 = cs.position(tri[0], t), p1 = cs.position(tri[1], t), p2 = cs.position(tri[2], t);
+  SurfacePoint surface;
+  const Vec3 d = surface.ray = image.direction(i, j);
+  const Vec3 p0 = surface.p0 = cs.position(tri[0], t);
+  const Vec3 p1 = surface.p1 = cs.position(tri[1], t);
+  const Vec3 p2 = surface.p2 = cs.position(tri[2], t);
   // Barycentrics of the ray's hit on the triangle's plane (Moller-Trumbore without the bounds
   // test: the backend has decided the hit; the fov folding is linear so they equal the true ones).
   const Vec3 e1 = p1 - p0, e2 = p2 - p0;
@@ -27,20 +30,28 @@ Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i
     v = std::clamp(d.dot(qvec) / det, 0.0, 1.0 - u);
   }
   const float w0 = float(1.0 - u - v), w1 = float(u), w2 = float(v);
-  Eigen::Vector3f n = w0 * cs.normal(tri[0], t) + w1 * cs.normal(tri[1], t) + w2 * cs.normal(tri[2], t);
+  Eigen::Vector3f n =
+      w0 * cs.normal(tri[0], t) + w1 * cs.normal(tri[1], t) + w2 * cs.normal(tri[2], t);
   const float length = n.norm();
-  n = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
-  const double tan_half = scene.tan_half_fov(t);
-  const Eigen::Vector3f view = Vec3(d.x() * tan_half, d.y() * tan_half, 1.0).normalized().cast<float>();
-  const float lambert = std::abs(n.dot(view));
+  surface.normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
+  surface.tan_half_fov = scene.tan_half_fov(t);
+  surface.view = unfold(d, surface.tan_half_fov).normalized().cast<float>();
 
   const Material& material = scene.scene->materials[source.material];
-  Color base = material.base_color;
+  surface.base = material.base_color;
   if (material.texture >= 0 && !source.uvs.empty()) {
     const Vec2f uv = w0 * source.uvs[tri[0]] + w1 * source.uvs[tri[1]] + w2 * source.uvs[tri[2]];
-    base = base.cwiseProduct(scene.scene->textures[size_t(material.texture)].sample(uv));
+    surface.base =
+        surface.base.cwiseProduct(scene.scene->textures[size_t(material.texture)].sample(uv));
   }
-  return base * (0.15f + 0.85f * lambert);
+  return surface;
+}
+
+Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+                uint32_t object, uint32_t prim, double t) {
+  const SurfacePoint surface = surface_point(scene, image, i, j, object, prim, t);
+  const float lambert = std::abs(surface.normal.dot(surface.view));
+  return surface.base * (kAmbient + kDiffuse * lambert);
 }
 
 void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {
@@ -49,9 +60,9 @@ void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {
     const int j = int(row);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
-      frame.color[p] = frame.object[p] == kNoHit
-                           ? kBackground
-                           : shade_hit(scene, image, i, j, frame.object[p], frame.prim[p], frame.time);
+      frame.color[p] = frame.object[p] == kNoHit ? kBackground
+                                                 : shade_hit(scene, image, i, j, frame.object[p],
+                                                             frame.prim[p], frame.time);
     }
   });
 }

@@ -4,15 +4,35 @@
 // agree have identical colours.
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
+#include "scenes/camera_space_lights.h"
 
 namespace kinray {
 
 inline const Color kBackground(0.06f, 0.07f, 0.09f);
+/// The share of the base colour that every hit receives, lit or not.
+inline constexpr float kAmbient = 0.15f;
+/// The share a light at normal incidence adds (white light: ambient + diffuse = 1).
+inline constexpr float kDiffuse = 0.85f;
+
+/// What shading needs of the exact hit of pixel (i, j) on (object, prim) at time t.
+struct SurfacePoint {
+  Vec3 ray = Vec3::Zero();                                       ///< the pixel's direction d_ij
+  Vec3 p0 = Vec3::Zero(), p1 = Vec3::Zero(), p2 = Vec3::Zero();  ///< camera-space vertices at t
+  Eigen::Vector3f normal =
+      Eigen::Vector3f(0, 0, -1);  ///< interpolated vertex normal, true camera space
+  Eigen::Vector3f view = Eigen::Vector3f(0, 0, 1);  ///< unit view direction, true camera space
+  double tan_half_fov = 1;                          ///< undoes the fov folding (unfold())
+  Color base = Color::Zero();                       ///< base colour times texture
+};
+
+/// The SurfacePoint of pixel (i, j) hitting (object, prim) at time t.
+[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image,
+                                         int i, int j, uint32_t object, uint32_t prim, double t);
 
 /// Base colour (or texture) with a two-sided headlight Lambert term, using vertex normals
 /// interpolated at the exact hit of pixel (i, j) on (object, prim) at time t.
-[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
-                              uint32_t object, uint32_t prim, double t);
+[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i,
+                              int j, uint32_t object, uint32_t prim, double t);
 
 /// Fills frame.color from frame.object / frame.prim (all cores).
 void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads = 0);

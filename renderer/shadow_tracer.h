@@ -38,6 +38,8 @@ class ShadowTracer {
   virtual void advance_to(double t) = 0;
   /// blocked[i] = 1 when some triangle present at the current time, other than the one ray i
   /// leaves from, meets the ray at 0 < s < s_max; else 0.
+  /// The shading pass (renderer/lighting.h) calls it concurrently from its threads, one call per
+  /// image row, between advance_to calls.
   virtual void occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const = 0;
   /// Adds this tracer's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}

@@ -7,7 +7,7 @@
 
 #include "renderer/backend.h"
 #include "renderer/bench_support.h"
-#include "renderer/embree_shadow_tracer.h"
+#include "renderer/embree_shadow_peer.h"
 #include "renderer/frame.h"
 #include "renderer/tree_shadow_tracer.h"
 #include "renderer/tree_stats_json.h"

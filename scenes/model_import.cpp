@@ -17,6 +17,7 @@
 #include "scenes/model_animation.h"
 #include "scenes/model_camera.h"
 #include "scenes/model_guard.h"
+#include "scenes/model_lights.h"
 #include "scenes/model_morph.h"
 #include "scenes/model_skinning.h"
 #include "scenes/model_textures.h"
@@ -358,6 +359,7 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
     camera.reset();
   }
   scene.camera = camera ? *camera : frame_bounds(scene.bounds(), seconds.front());
+  scene.lights = model_lights(model, graph, ticks.front(), source);
   return scene;
 }
 

@@ -356,6 +356,7 @@ struct Reader {
   bool has_materials = false;                ///< the file lists materials: the first is the default
   std::optional<uint32_t> default_material;  ///< else one is made when an object needs it
   std::optional<Scene> first_provided;  ///< camera and shot of the first builtin or model object
+  std::vector<Light> model_lights;      ///< lights brought by builtin and model objects
 
   [[nodiscard]] fs::path resolve(const std::string& relative) const {
     const fs::path p(relative);
@@ -430,6 +431,7 @@ struct Reader {
     }
     for (Texture& t : other.textures) scene.textures.push_back(std::move(t));
     const Placement placement = parse_placement(object, true);
+    merge_lights(other.lights, placement);
     for (Object& o : other.objects) {
       o.material = material ? *material : o.material + material_offset;
       if (!prefix.empty()) o.name = prefix + "/" + o.name;
@@ -439,6 +441,56 @@ struct Reader {
     }
     other.objects.clear();
     if (!first_provided) first_provided = std::move(other);
+  }
+
+  /// Lights a builtin or model object brings, moved as its meshes are: lights do not move in
+  /// kinray, so TRS keys apply as they stand at the first key.
+  void merge_lights(const std::vector<Light>& lights, const Placement& placement) {
+    Eigen::Affine3d matrix = Eigen::Affine3d::Identity();
+    if (!placement.keys.empty()) matrix = placement.at(placement.times.front()).matrix();
+    if (placement.rest) matrix = matrix * *placement.rest;
+    for (Light light : lights) {
+      light.position = matrix * light.position;
+      const Vec3 direction = matrix.linear() * light.direction;
+      if (direction.norm() > 0) light.direction = direction.normalized();
+      model_lights.push_back(light);
+    }
+  }
+
+  /// "lights": point and directional lights in world space; when the key is absent the lights of
+  /// the file's builtin and model objects are used.
+  void read_lights(const Node& root) {
+    const auto lights = root.find("lights");
+    if (!lights) {
+      scene.lights = model_lights;
+      return;
+    }
+    for (size_t l = 0; l < lights->size(); ++l) {
+      const Node node = (*lights)[l];
+      Light light;
+      const std::string kind = node.at("kind").string();
+      if (kind == "point") {
+        node.expect_object({"kind", "position", "color"});
+        light.kind = Light::Kind::point;
+        light.position = node.at("position").vec3();
+      } else if (kind == "directional") {
+        node.expect_object({"kind", "direction", "color"});
+        light.kind = Light::Kind::directional;
+        const Vec3 direction = node.at("direction").vec3();
+        if (!(direction.norm() > 0)) node.at("direction").fail("the direction must not be zero");
+        // A unit vector (as save_scene_file writes) is kept bit for bit.
+        light.direction =
+            std::abs(direction.norm() - 1) > 1e-12 ? Vec3(direction.normalized()) : direction;
+      } else {
+        node.at("kind").fail("unknown light kind '" + kind + "'; the kinds are point, directional");
+      }
+      if (auto color = node.find("color")) {
+        const Vec3 rgb = color->vec3();
+        if ((rgb.array() < 0).any()) color->fail("light colours must be >= 0");
+        light.color = rgb.cast<float>();
+      }
+      scene.lights.push_back(light);
+    }
   }
 
   static void read_visibility(const Node& node, Object& object) {
@@ -729,13 +781,14 @@ struct Reader {
 
   void read(const json& document) {
     const Node root(document, file, "");
-    root.expect_object({"name", "description", "shot", "materials", "camera", "objects"});
+    root.expect_object({"name", "description", "shot", "materials", "camera", "lights", "objects"});
     scene.name = root.has("name") ? root.at("name").string() : fs::path(file).stem().string();
     if (auto description = root.find("description")) (void)description->string();
     read_materials(root);
     const Node objects = root.at("objects");
     for (size_t o = 0; o < objects.size(); ++o) read_object(objects[o], o);
     read_camera(root);
+    read_lights(root);
     read_shot(root);
     if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
   }
@@ -848,6 +901,20 @@ void save_scene_file(const Scene& scene, const std::string& path) {
                            {"fov_y", key.fov_y_degrees}});
   }
   document["camera"] = {{"keys", std::move(camera_keys)}};
+  if (!scene.lights.empty()) {
+    json lights = json::array();
+    for (const Light& light : scene.lights) {
+      const json color = json::array(
+          {shortest(light.color.x()), shortest(light.color.y()), shortest(light.color.z())});
+      if (light.kind == Light::Kind::point)
+        lights.push_back(
+            {{"kind", "point"}, {"position", vec3_json(light.position)}, {"color", color}});
+      else
+        lights.push_back(
+            {{"kind", "directional"}, {"direction", vec3_json(light.direction)}, {"color", color}});
+    }
+    document["lights"] = std::move(lights);
+  }
 
   json objects = json::array();
   for (const Object& object : scene.objects) {

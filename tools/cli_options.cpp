@@ -86,6 +86,17 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
       ->capture_default_str()
       ->group(group);
   command
+      .add_option("--light", options.params.lights,
+                  "A world-space light, point:X,Y,Z[:R,G,B] or dir:X,Y,Z[:R,G,B] (repeatable; "
+                  "replaces the scene's lights)")
+      ->allow_extra_args(false)
+      ->group(group);
+  command
+      .add_option("--shadow-tree", options.params.shadow_tree,
+                  "Kinetic: what traces shadow rays, aabb | boxtree | refit | brute")
+      ->capture_default_str()
+      ->group(group);
+  command
       .add_flag("--audit", options.params.audit,
                 "Kinetic: re-check every certificate between events (slow)")
       ->group(group);

@@ -30,7 +30,7 @@ struct RenderOptions {
 void add_scene_options(CLI::App& command, RenderOptions& options);
 /// --size, --frames | --fps | --inbetweens, --time, --threads.
 void add_frame_options(CLI::App& command, RenderOptions& options);
-/// --backend, --embree-mode, --packet, --sort, --audit.
+/// --backend, --embree-mode, --packet, --sort, --light, --shadow-tree, --audit.
 void add_backend_options(CLI::App& command, RenderOptions& options);
 /// --out, --video, --aov, --stats, --quiet.
 void add_output_options(CLI::App& command, RenderOptions& options);

@@ -59,6 +59,14 @@ nlohmann::json describe(const std::string& spec, const Scene& scene) {
                       {"up", vec(rotation * Vec3(0, 1, 0))},
                       {"fov_y_degrees", key.fov_y_degrees}});
   }
+  nlohmann::json lights = nlohmann::json::array();
+  for (const Light& light : scene.lights) {
+    const bool point = light.kind == Light::Kind::point;
+    lights.push_back(
+        {{"kind", point ? "point" : "directional"},
+         {point ? "position" : "direction", vec(point ? light.position : light.direction)},
+         {"color", {light.color.x(), light.color.y(), light.color.z()}}});
+  }
   const std::vector<double> key_times = scene.key_times();
   return {{"scene", spec},
           {"name", scene.name},
@@ -77,6 +85,7 @@ nlohmann::json describe(const std::string& spec, const Scene& scene) {
                          ? nlohmann::json(nullptr)
                          : nlohmann::json{{"min", vec(bounds.min())}, {"max", vec(bounds.max())}}},
           {"camera_keys", camera},
+          {"lights", lights},
           {"object_list", objects}};
 }
 
@@ -107,6 +116,15 @@ void print_text(const Scene& scene, const nlohmann::json& info) {
                 key["time"].get<double>(), p[0].get<double>(), p[1].get<double>(),
                 p[2].get<double>(), d[0].get<double>(), d[1].get<double>(), d[2].get<double>(),
                 key["fov_y_degrees"].get<double>());
+  }
+  std::printf("lights      %zu%s\n", scene.lights.size(),
+              scene.lights.empty() ? " (the headlight)" : "");
+  for (const auto& light : info["lights"]) {
+    const bool point = light["kind"] == "point";
+    const auto v = light[point ? "position" : "direction"], c = light["color"];
+    std::printf("  %-11s %s (%g, %g, %g)  colour (%g, %g, %g)\n", point ? "point" : "directional",
+                point ? "at" : "along", v[0].get<double>(), v[1].get<double>(), v[2].get<double>(),
+                c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
   }
   size_t listed = 0;
   for (const auto& object : info["object_list"]) {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "renderer/embree_shadow_tracer.h"
+#include "renderer/embree_shadow_peer.h"
 #include "renderer/tree_shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "scenes/procedural.h"

@@ -73,6 +73,13 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.materials[m].base_color, b.materials[m].base_color);
     EXPECT_EQ(a.materials[m].texture, b.materials[m].texture);
   }
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (size_t l = 0; l < a.lights.size(); ++l) {
+    EXPECT_EQ(a.lights[l].kind, b.lights[l].kind);
+    EXPECT_EQ(a.lights[l].position, b.lights[l].position);
+    EXPECT_EQ(a.lights[l].direction, b.lights[l].direction);
+    EXPECT_EQ(a.lights[l].color, b.lights[l].color);
+  }
   ASSERT_EQ(a.textures.size(), b.textures.size());
   for (size_t t = 0; t < a.textures.size(); ++t) {
     EXPECT_EQ(a.textures[t].width, b.textures[t].width);
@@ -113,7 +120,7 @@ TEST_F(SceneFile, EveryExampleLoadsAndRoundTrips) {
     save_scene_file(scene, copy);
     expect_same_scene(scene, load_scene_file(copy));
   }
-  EXPECT_GE(examples, 7u);
+  EXPECT_GE(examples, 8u);
 }
 
 TEST_F(SceneFile, BuiltinObjectsReproduceTheBuiltinScene) {
