@@ -17,22 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliVerdicts : public ::testing::Test {
- protected:
-  void SetUp() override {
-    m_dir = fs::temp_directory_path() /
-            ("kinray_verdicts_" +
-             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  void TearDown() override { fs::remove_all(m_dir); }
-  [[nodiscard]] test::CommandRun kinray(const std::string& args) const {
-    return test::run_kinray(args, m_dir);
-  }
-  [[nodiscard]] std::string path(const std::string& name) const { return (m_dir / name).string(); }
-  fs::path m_dir;
-};
+class CliVerdicts : public test::CommandTest {};
 
 /// A one-triangle scene whose third vertex is at (0, `far`, 3).
 std::string scene_with_vertex_at(const std::string& far) {
