@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "scenes/camera_space.h"
@@ -104,6 +105,16 @@ void check_times(const std::vector<double>& times, const std::string& where) {
 
 }  // namespace
 
+namespace {
+
+std::string describe_far(const Vec3& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%g, %g, %g", p.x(), p.y(), p.z());
+  return text;
+}
+
+}  // namespace
+
 void Scene::validate(const std::string& source) const {
   if (!std::isfinite(time_begin) || !std::isfinite(time_end) || !(time_end > time_begin))
     throw InputError(source, "the shot must have finite times with end > begin, got [" +
@@ -130,10 +141,16 @@ void Scene::validate(const std::string& source) const {
         throw InputError(where, "key " + std::to_string(k) + " has " +
                                     std::to_string(object.key_positions[k].size()) +
                                     " vertices, key 0 has " + std::to_string(nv));
-      for (size_t v = 0; v < nv; ++v)
+      for (size_t v = 0; v < nv; ++v) {
         if (!object.key_positions[k][v].allFinite())
           throw InputError(where, "vertex " + std::to_string(v) + " at key " + std::to_string(k) +
                                       " is NaN or infinite");
+        if (object.key_positions[k][v].cwiseAbs().maxCoeff() > kMaxCoordinate)
+          throw InputError(where, "vertex " + std::to_string(v) + " at key " + std::to_string(k) +
+                                      " has a coordinate beyond +-1e15 (" +
+                                      describe_far(object.key_positions[k][v]) +
+                                      "), which the float references cannot trace");
+      }
     }
     for (size_t f = 0; f < object.triangles.size(); ++f)
       for (uint32_t index : object.triangles[f])
@@ -154,6 +171,10 @@ void Scene::validate(const std::string& source) const {
     camera_times.push_back(key.time);
     if (!key.position.allFinite() || !key.orientation.coeffs().allFinite())
       throw InputError(source + ": camera", "a key has a NaN or infinite position or orientation");
+    if (key.position.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      throw InputError(source + ": camera", "a key's position has a coordinate beyond +-1e15 (" +
+                                                describe_far(key.position) +
+                                                "), which the float references cannot trace");
     if (!(key.fov_y_degrees > 0.5 && key.fov_y_degrees < 179.5))
       throw InputError(source + ": camera", "fov_y must lie in (0.5, 179.5) degrees, got " +
                                                 std::to_string(key.fov_y_degrees));

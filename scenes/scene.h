@@ -20,6 +20,11 @@ using Color = Eigen::Vector3f;  // linear RGB in [0, 1]
 using Triangle = std::array<uint32_t, 3>;
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// The largest world coordinate a scene may have. The references trace in float: Embree's edge
+/// tests multiply two coordinates and sum such products, which must stay far below float's
+/// 3.4e38 (and a model whose buffer is garbage, bounds 1.7e40, is refused as bad input rather
+/// than rendered blank). At 1e15 a product is at most 1e30.
+inline constexpr double kMaxCoordinate = 1e15;
 
 /// An RGB texture read from an image file, sampled bilinearly with wrap-around.
 struct Texture {

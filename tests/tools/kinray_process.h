@@ -1,7 +1,9 @@
 #pragma once
 // Runs the kinray program as a user does, for the tests of its commands: the exit status and
 // what it printed on stdout and stderr.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -39,5 +41,26 @@ inline CommandRun run_kinray(const std::string& args, const std::filesystem::pat
   std::filesystem::remove(err);
   return run;
 }
+
+/// A test of the program with an empty folder of its own, named after the test and the process
+/// (several checkouts may run the suite on one machine at once).
+class CommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir =
+        std::filesystem::temp_directory_path() /
+        ("kinray_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+         "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(m_dir);
+    std::filesystem::create_directories(m_dir);
+  }
+  void TearDown() override { std::filesystem::remove_all(m_dir); }
+  /// Runs `kinray ARGS` with stdin closed and stdout/stderr captured.
+  [[nodiscard]] CommandRun kinray(const std::string& args) const { return run_kinray(args, m_dir); }
+  /// `name` in the test's folder.
+  [[nodiscard]] std::string path(const std::string& name) const { return (m_dir / name).string(); }
+
+  std::filesystem::path m_dir;
+};
 
 }  // namespace kinray::test

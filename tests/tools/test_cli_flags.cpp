@@ -14,22 +14,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliFlags : public ::testing::Test {
- protected:
-  void SetUp() override {
-    m_dir = fs::temp_directory_path() /
-            ("kinray_flags_" +
-             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  void TearDown() override { fs::remove_all(m_dir); }
-  [[nodiscard]] test::CommandRun kinray(const std::string& args) const {
-    return test::run_kinray(args, m_dir);
-  }
-  [[nodiscard]] std::string path(const std::string& name) const { return (m_dir / name).string(); }
-  fs::path m_dir;
-};
+class CliFlags : public test::CommandTest {};
 
 TEST_F(CliFlags, FlagsThatNothingReadsAreRefused) {
   const std::string render =

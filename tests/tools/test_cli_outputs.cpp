@@ -88,7 +88,9 @@ TEST_F(CliOutputs, UnwritableOutputsAreRefusedBeforeAnythingIsWritten) {
       {bench + "--json /proc/b.json", "--json"},
       {bench + "--csv " + path("base"), "--csv"},
       {bench + "--charts " + path("a-file"), "--charts"},
-      {"regress --case wavy-sphere --report /proc/r", "--report"},
+      {"regress --case wavy-sphere --references '" + std::string(KINRAY_SOURCE_DIR) +
+           "/images/regression' --report /proc/r",
+       "--report"},
   };
   for (const auto& [args, flag] : cases) {
     SCOPED_TRACE(args);

@@ -17,21 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliResources : public ::testing::Test {
- protected:
-  void SetUp() override {
-    m_dir = fs::temp_directory_path() /
-            ("kinray_resources_" +
-             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(m_dir);
-    fs::create_directories(m_dir);
-  }
-  void TearDown() override { fs::remove_all(m_dir); }
-  [[nodiscard]] test::CommandRun kinray(const std::string& args) const {
-    return test::run_kinray(args, m_dir);
-  }
-  fs::path m_dir;
-};
+class CliResources : public test::CommandTest {};
 
 TEST_F(CliResources, RequestsThatCannotFitAreRefusedNamingTheFlag) {
   const std::optional<double> available = available_memory_bytes();
