@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <system_error>
+#include <tuple>
 
 #include "renderer/progress.h"
 #include "renderer/shading.h"
@@ -143,6 +144,11 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   validate(m_params);
   m_scene = load_scene(m_params.scene, model_options(m_params));
   m_scene.validate(m_params.scene);
+  // A scene that names its image size and frame count (BART) gets them unless flags say otherwise.
+  if (m_params.scene_size && m_scene.image_width > 0)
+    std::tie(m_params.width, m_params.height) = std::pair(m_scene.image_width, m_scene.image_height);
+  if (!m_params.frames && !m_params.fps && !m_params.inbetweens && m_scene.frame_count > 0)
+    m_params.frames = m_scene.frame_count;
   m_camera_space = CameraSpaceScene::build(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_timings.load = now_s() - m_started;

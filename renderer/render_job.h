@@ -41,6 +41,7 @@ struct RenderParams {
   std::string animation;                          ///< --animation NAME|INDEX (model files)
   double keyrate = 0;                             ///< --keyrate HZ (model files)
   bool quiet = false;                             ///< --quiet
+  bool scene_size = false;  ///< no --size given: the scene's own image size when it has one
 };
 
 inline constexpr int kMaxImageSide = 16384;

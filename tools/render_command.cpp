@@ -56,8 +56,9 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
   }
 }
 
-void run_render(const RenderParams& params) {
-  RenderJob job(params);
+void run_render(const RenderParams& flags) {
+  RenderJob job(flags);
+  const RenderParams& params = job.params();  // with the scene's own size and frame count
   std::unique_ptr<Backend> backend = job.make_backend();
   const std::string out = output_folder(params);
   check_output_paths(out, params);
