@@ -94,6 +94,8 @@ void validate(const RenderParams& params) {
   if (!std::isfinite(params.keyrate) || params.keyrate < 0)
     throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
   if (!params.video.empty()) VideoWriter::validate_path(params.video);
+  if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
+  if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -151,6 +153,7 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
     m_params.frames = m_scene.frame_count;
   m_camera_space = CameraSpaceScene::build(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
+  m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
   m_timings.load = now_s() - m_started;
 }
 
@@ -173,17 +176,18 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
 
 const RenderTimings& RenderJob::run(Backend& backend,
                                     const std::function<void(size_t, const Frame&)>& sink) {
-  Progress progress(m_frame_times.size(), !m_params.quiet && Progress::stderr_is_terminal());
+  Progress progress(m_slice.size(), !m_params.quiet && Progress::stderr_is_terminal());
   Frame frame;
   frame.resize(m_params.width, m_params.height);
   progress.update(0);
-  for (size_t index = 0; index < m_frame_times.size(); ++index) {
+  // The kinetic backend is built at the first time it renders: the slice's first frame.
+  for (size_t index = m_slice.begin; index < m_slice.end; ++index) {
     render_frame(backend, index, frame);
     const double start = now_s();
     if (sink) sink(index, frame);
     m_timings.write += now_s() - start;
     ++m_timings.frames;
-    progress.update(index + 1);
+    progress.update(index + 1 - m_slice.begin);
   }
   progress.finish();
   m_timings.total = now_s() - m_started;

@@ -95,8 +95,9 @@ void run_render(const RenderParams& flags) {
     std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s\n", n,
                 n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
                 params.height, backend->name().c_str(), timings.total);
-    const std::string last = n > 1 ? " .. " + numbered("frame", n - 1, ".png") : "";
-    std::printf("frames: %s/%s%s\n", out.c_str(), numbered("frame", 0, ".png").c_str(),
+    const FrameSlice& slice = job.slice();
+    const std::string last = n > 1 ? " .. " + numbered("frame", slice.end - 1, ".png") : "";
+    std::printf("frames: %s/%s%s\n", out.c_str(), numbered("frame", slice.begin, ".png").c_str(),
                 last.c_str());
     if (video) std::printf("video:  %s (%s)\n", params.video.c_str(), video->codec().c_str());
     if (!params.stats.empty()) std::printf("stats:  %s\n", params.stats.c_str());
@@ -111,6 +112,14 @@ void register_render_command(CLI::App& app) {
                                          "... (and a video, ID/depth buffers, stats)");
   auto options = std::make_shared<RenderOptions>();
   add_render_options(*command, *options);
+  command
+      ->add_option("--chunk", options->params.chunk,
+                   "Render farms: only the I-th of N consecutive slices of the frames (I/N, 1-based)")
+      ->group("Frames");
+  command
+      ->add_option("--frame-range", options->params.frame_range,
+                   "Render farms: only frames A..B of the schedule (A:B, 0-based, both included)")
+      ->group("Frames");
   command->footer(describe_scene_spec_syntax());
   command->callback([options] { run_render(options->resolve()); });
 }
