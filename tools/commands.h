@@ -10,5 +10,6 @@ void register_info_command(CLI::App& app);    // tools/info_command.cpp
 void register_diff_command(CLI::App& app);    // tools/diff_command.cpp
 void register_bench_command(CLI::App& app);   // tools/bench_command.cpp
 void register_regress_command(CLI::App& app); // tools/regress_command.cpp
+void register_video_command(CLI::App& app);   // tools/video_command.cpp
 
 }  // namespace kinray
