@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <system_error>
+#include <tuple>
 
 #include "renderer/memory_estimate.h"
 #include "renderer/kinetic_shadow_tracer.h"
@@ -103,6 +104,8 @@ void validate(const RenderParams& params) {
     throw InputError("--light", "at most " + std::to_string(kMaxLights) + " lights, got " +
                                     std::to_string(params.lights.size()));
   (void)parse_shadow_tree(params.shadow_tree);
+  if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
+  if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -155,7 +158,6 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   check_render_memory(m_params, nullptr);  // a built-in that cannot fit is not built
   m_scene = load_scene(m_params.scene, model_options(m_params));
   m_scene.validate(m_params.scene);
-  check_render_memory(m_params, &m_scene);
   if (!m_params.lights.empty()) {
     m_scene.lights.clear();
     for (const std::string& light : m_params.lights)
@@ -165,9 +167,16 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
     throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
                                          " lights; at most " + std::to_string(kMaxLights) +
                                          " fit a frame's per-pixel light mask");
+  // A scene that names its image size and frame count (BART) gets them unless flags say otherwise.
+  if (m_params.scene_size && m_scene.image_width > 0)
+    std::tie(m_params.width, m_params.height) = std::pair(m_scene.image_width, m_scene.image_height);
+  if (!m_params.frames && !m_params.fps && !m_params.inbetweens && m_scene.frame_count > 0)
+    m_params.frames = m_scene.frame_count;
+  check_render_memory(m_params, &m_scene);
   m_camera_space = CameraSpaceScene::build(m_scene);
   m_lights = CameraSpaceLights(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
+  m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
   m_timings.load = now_s() - m_started;
 }
 
@@ -202,17 +211,18 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
 
 const RenderTimings& RenderJob::run(Backend& backend,
                                     const std::function<void(size_t, const Frame&)>& sink) {
-  Progress progress(m_frame_times.size(), !m_params.quiet && Progress::stderr_is_terminal());
+  Progress progress(m_slice.size(), !m_params.quiet && Progress::stderr_is_terminal());
   Frame frame;
   frame.resize(m_params.width, m_params.height);
   progress.update(0);
-  for (size_t index = 0; index < m_frame_times.size(); ++index) {
+  // The kinetic backend is built at the first time it renders: the slice's first frame.
+  for (size_t index = m_slice.begin; index < m_slice.end; ++index) {
     render_frame(backend, index, frame);
     const double start = now_s();
     if (sink) sink(index, frame);
     m_timings.write += now_s() - start;
     ++m_timings.frames;
-    progress.update(index + 1);
+    progress.update(index + 1 - m_slice.begin);
   }
   progress.finish();
   m_timings.total = now_s() - m_started;

@@ -14,6 +14,7 @@
 #include "renderer/backend.h"
 #include "renderer/frame.h"
 #include "renderer/frame_schedule.h"
+#include "renderer/frame_slice.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
 #include "scenes/model_import.h"
@@ -44,6 +45,9 @@ struct RenderParams {
   std::string animation;                          ///< --animation NAME|INDEX (model files)
   double keyrate = 0;                             ///< --keyrate HZ (model files)
   bool quiet = false;                             ///< --quiet
+  bool scene_size = false;  ///< no --size given: the scene's own image size when it has one
+  std::string chunk;        ///< --chunk I/N: render only the I-th of N slices of the schedule
+  std::string frame_range;  ///< --frame-range A:B: render only frames A..B of the schedule
 };
 
 inline constexpr int kMaxImageSide = 16384;
@@ -92,6 +96,8 @@ class RenderJob {
   [[nodiscard]] const Scene& scene() const { return m_scene; }
   [[nodiscard]] const CameraSpaceScene& camera_space() const { return m_camera_space; }
   [[nodiscard]] const std::vector<double>& frame_times() const { return m_frame_times; }
+  /// The frames run() renders (--chunk, --frame-range; else all), indices into frame_times().
+  [[nodiscard]] const FrameSlice& slice() const { return m_slice; }
   /// Timings so far: load (and setup once make_backend was called).
   [[nodiscard]] const RenderTimings& timings() const { return m_timings; }
 
@@ -102,7 +108,8 @@ class RenderJob {
   /// lights, shadow rays go to backend.shadow_tracer() (InputError naming --backend if it has
   /// none).
   void render_frame(Backend& backend, size_t index, Frame& frame);
-  /// The frame loop: every frame time in order, rendered, shaded and handed to `sink` (timed as
+  /// The frame loop: every frame time of slice() in order (the index handed to `sink` is the one
+  /// in the whole schedule), rendered, shaded and handed to `sink` (timed as
   /// "write"), with a progress bar on stderr when it is a terminal and params().quiet is false.
   /// Returns the timings of the whole job.
   const RenderTimings& run(Backend& backend,
@@ -116,6 +123,7 @@ class RenderJob {
   std::unique_ptr<Backend> m_shadow_helper;  ///< Embree, for backends that trace no shadow rays
   Frame m_shadow_scratch;                    ///< the helper's primary hits, unused
   std::vector<double> m_frame_times;
+  FrameSlice m_slice;
   RenderTimings m_timings;
   double m_started = 0;  ///< steady-clock seconds when the job was made
 };

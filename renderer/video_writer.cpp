@@ -88,6 +88,13 @@ void VideoWriter::write(const Frame& frame) {
   ++m_frames;
 }
 
+void VideoWriter::write(const cv::Mat& bgr) {
+  if (bgr.cols != m_width || bgr.rows != m_height || bgr.type() != CV_8UC3)
+    throw std::runtime_error("video frame size differs from the video's size");
+  m_writer.write(bgr);
+  ++m_frames;
+}
+
 void VideoWriter::close() {
   if (m_closed) return;
   m_writer.release();

@@ -32,6 +32,8 @@ class VideoWriter {
 
   /// Appends frame.color (converted to 8-bit sRGB).
   void write(const Frame& frame);
+  /// Appends an 8-bit BGR image of the video's size (frames read back from PNG files).
+  void write(const cv::Mat& bgr);
   /// Finishes the file and renames it to the target path.
   void close();
   /// The fourcc in use, e.g. "avc1".

@@ -101,6 +101,10 @@ struct Scene {
   std::vector<Light> lights;
   double time_begin = 0;  ///< the shot, in seconds
   double time_end = 1;
+  /// The image size and frame count the scene's author chose (BART's `resolution` and `a`), which
+  /// `render` uses unless --size or --frames/--fps/--inbetweens say otherwise; 0: none.
+  int image_width = 0, image_height = 0;
+  int frame_count = 0;
 
   /// Throws InputError (with `source` as the place) on NaN/infinite positions, indices out of
   /// range, unsorted or duplicate key times, mismatched key counts, bad materials or an empty shot.

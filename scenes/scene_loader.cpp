@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "scenes/aff_scene.h"
 #include "scenes/error.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_file.h"
@@ -66,6 +67,7 @@ Scene load_scene(const std::string& spec, const ModelOptions& model_options) {
   std::error_code error;
   if (ends_with_json(spec)) return load_scene_file(spec);
   if (std::filesystem::is_regular_file(spec, error)) {
+    if (is_aff_file(spec)) return load_aff(spec, model_options.keyrate);
     if (is_model_file(spec)) {
       Scene scene = load_model(spec, model_options);
       scene.validate(spec);
@@ -87,8 +89,8 @@ std::string describe_scene_spec_syntax() {
   std::ostringstream text;
   text << "A scene is a built-in name with optional parameters "
           "(NAME[:triangles=N,duration=S,keyrate=K]),\n"
-          "a JSON scene file (*.json, see docs/scene_format.md) or a model file assimp can import\n"
-          "(glTF, FBX, COLLADA, OBJ, ...). Built-in scenes (defaults in brackets):\n";
+          "a JSON scene file (*.json, see docs/scene_format.md), a BART scene (*.aff, docs/bart.md)\n"
+          "or a model file assimp can import (glTF, FBX, COLLADA, OBJ, ...). Built-in scenes (defaults in brackets):\n";
   for (const BuiltinScene& scene : builtin_scenes())
     text << "  " << scene.name << " [triangles=" << scene.defaults.triangles
          << ", duration=" << scene.defaults.duration << ", keyrate=" << scene.defaults.keyrate

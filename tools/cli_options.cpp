@@ -11,6 +11,7 @@ namespace kinray {
 RenderParams RenderOptions::resolve() const {
   RenderParams resolved = params;
   std::tie(resolved.width, resolved.height) = parse_size(size);
+  resolved.scene_size = !(size_option && size_option->count() > 0);
   if (frames_option && frames_option->count() > 0) resolved.frames = frames;
   if (fps_option && fps_option->count() > 0) resolved.fps = fps;
   if (inbetweens_option && inbetweens_option->count() > 0) resolved.inbetweens = inbetweens;
@@ -40,7 +41,11 @@ void add_scene_options(CLI::App& command, RenderOptions& options) {
 
 void add_frame_options(CLI::App& command, RenderOptions& options) {
   const char* group = "Frames";
-  command.add_option("--size", options.size, "Image size WxH")->capture_default_str()->group(group);
+  options.size_option = command
+                            .add_option("--size", options.size,
+                                        "Image size WxH (default: the scene's own, else 512x512)")
+                            ->capture_default_str()
+                            ->group(group);
   options.frames_option =
       command
           .add_option("--frames", options.frames,

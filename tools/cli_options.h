@@ -16,6 +16,7 @@ struct RenderOptions {
   int frames = 0, inbetweens = 0;
   double fps = 0;
   std::string time, aov;
+  CLI::Option* size_option = nullptr;
   CLI::Option* frames_option = nullptr;
   CLI::Option* fps_option = nullptr;
   CLI::Option* inbetweens_option = nullptr;

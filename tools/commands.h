@@ -12,5 +12,6 @@ void register_bench_command(CLI::App& app);   // tools/bench_command.cpp
 void register_regress_command(CLI::App& app); // tools/regress_command.cpp
 void register_ccd_queries_command(CLI::App& app);  // tools/ccd_queries_command.cpp
 void register_collide_command(CLI::App& app);      // tools/collide_command.cpp
+void register_video_command(CLI::App& app);   // tools/video_command.cpp
 
 }  // namespace kinray

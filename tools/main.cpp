@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
   kinray::register_regress_command(app);
   kinray::register_ccd_queries_command(app);
   kinray::register_collide_command(app);
+  kinray::register_video_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -40,11 +40,12 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
   if (!params.video.empty()) check_output_file(params.video, "--video");
 }
 
-void run_render(const RenderParams& params) {
-  check_options_apply(params, std::array{params.backend});
-  const std::string out = output_folder(params);
-  check_output_paths(out, params);
-  RenderJob job(params);
+void run_render(const RenderParams& flags) {
+  check_options_apply(flags, std::array{flags.backend});
+  const std::string out = output_folder(flags);
+  check_output_paths(out, flags);
+  RenderJob job(flags);
+  const RenderParams& params = job.params();  // with the scene's own size and frame count
   std::unique_ptr<Backend> backend = job.make_backend();
 
   // Everything is valid: from here on files are written.
@@ -86,14 +87,19 @@ void run_render(const RenderParams& params) {
           {"path", params.video}, {"codec", video->codec()}, {"frames", video->frames_written()}};
     write_file_atomically(params.stats, stats.dump(2) + "\n");
   }
-  const std::vector<std::string> stale = remove_stale_frames(folder, written);
+  // A slice of the schedule (--chunk, --frame-range) shares its folder with the other slices:
+  // only a whole render owns the folder's numbered frames.
+  const bool whole = job.slice().begin == 0 && job.slice().end == job.frame_times().size();
+  const std::vector<std::string> stale =
+      whole ? remove_stale_frames(folder, written) : std::vector<std::string>{};
   if (!params.quiet) {
     const size_t n = timings.frames;
     std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s\n", n,
                 n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
                 params.height, backend->name().c_str(), timings.total);
-    const std::string last = n > 1 ? " .. " + numbered_file("frame", n - 1, ".png") : "";
-    std::printf("frames: %s/%s%s\n", out.c_str(), numbered_file("frame", 0, ".png").c_str(),
+    const FrameSlice& slice = job.slice();
+    const std::string last = n > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
+    std::printf("frames: %s/%s%s\n", out.c_str(), numbered_file("frame", slice.begin, ".png").c_str(),
                 last.c_str());
     if (!stale.empty())
       std::printf("removed %zu file%s of an earlier render from %s (%s%s)\n", stale.size(),
@@ -112,6 +118,14 @@ void register_render_command(CLI::App& app) {
                                          "... (and a video, ID/depth buffers, stats)");
   auto options = std::make_shared<RenderOptions>();
   add_render_options(*command, *options);
+  command
+      ->add_option("--chunk", options->params.chunk,
+                   "Render farms: only the I-th of N consecutive slices of the frames (I/N, 1-based)")
+      ->group("Frames");
+  command
+      ->add_option("--frame-range", options->params.frame_range,
+                   "Render farms: only frames A..B of the schedule (A:B, 0-based, both included)")
+      ->group("Frames");
   command->footer(describe_scene_spec_syntax());
   command->callback([options] { run_render(options->resolve()); });
 }
