@@ -28,6 +28,10 @@ const BackendEntry kBackends[] = {
 
 }  // namespace
 
+void Backend::render_shutter(const ShutterWindow&, Frame&) {
+  throw InputError("--shutter", "the " + name() + " backend has no motion blur");
+}
+
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config) {
   std::string names;

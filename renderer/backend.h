@@ -7,6 +7,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "renderer/frame.h"
+#include "renderer/shutter.h"
 #include "scenes/camera_space.h"
 
 namespace kinray {
@@ -19,6 +20,7 @@ struct BackendConfig {
   int embree_packet = 1;        ///< embree: 1 (single rays), 4, 8 or 16
   std::string sort = "list";    ///< kinetic: list | tournament | heap
   bool audit = false;           ///< kinetic: audit every certificate between events
+  ShutterParams shutter;        ///< motion blur: samples (sampling backends), order (kinetic)
 };
 
 class Backend {
@@ -28,6 +30,11 @@ class Backend {
   /// Renders frame time t into `frame` (object, prim and depth; colour is filled by shade_frame).
   /// Frame times must not decrease between calls for the kinetic backend.
   virtual void render(double t, Frame& frame) = 0;
+  /// Motion blur (renderer/shutter.h): frame.color is the time average of the shaded radiance over
+  /// the window; object, prim and depth are those of render(window.time). Windows' open times
+  /// must not decrease between calls for the kinetic backend. Throws InputError naming --shutter
+  /// when this backend has no motion blur.
+  virtual void render_shutter(const ShutterWindow& window, Frame& frame);
   /// Adds this backend's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}
 };

@@ -1,8 +1,6 @@
 #include "renderer/embree_backend.h"
 
 #include <embree3/rtcore.h>
-#include <pmmintrin.h>
-#include <xmmintrin.h>
 
 #include <atomic>
 #include <chrono>
@@ -16,6 +14,9 @@
 #include <vector>
 
 #include "kinetic/parallel.h"
+#include "renderer/embree_motion_blur.h"
+#include "renderer/flush_denormals.h"
+#include "renderer/plane_depth.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -26,23 +27,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-/// Flush-to-zero and denormals-are-zero for the lifetime of the guard on this thread (Embree's
-/// advice for every thread that builds or traces); the caller's mode is restored afterwards so
-/// that other code on the thread (the kinetic root solver) keeps IEEE denormals.
-class FlushDenormals {
- public:
-  FlushDenormals() : m_saved(_mm_getcsr()) {
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-  }
-  ~FlushDenormals() { _mm_setcsr(m_saved); }
-  FlushDenormals(const FlushDenormals&) = delete;
-  FlushDenormals& operator=(const FlushDenormals&) = delete;
-
- private:
-  unsigned m_saved;
-};
 
 const char* error_name(RTCError code) {
   switch (code) {
@@ -259,7 +243,20 @@ class EmbreeBackend final : public Backend {
     m_depth_s.push_back(seconds_since(start));
   }
 
+  void render_shutter(const ShutterWindow& window, Frame& frame) override {
+    if (frame.width != m_config.width || frame.height != m_config.height ||
+        frame.pixel_count() == 0)
+      frame.resize(m_config.width, m_config.height);
+    if (!m_motion_blur)
+      m_motion_blur = std::make_unique<EmbreeMotionBlur>(m_scene, m_device.handle(), m_threads,
+                                                         m_config.shutter.samples);
+    const uint64_t mark = m_device.error_count();
+    m_motion_blur->render(window, frame);
+    m_device.check(mark, "motion blur");
+  }
+
   void write_stats(nlohmann::json& stats) const override {
+    if (m_motion_blur) m_motion_blur->write_stats(stats);
     auto total = [](const std::vector<double>& v) {
       double sum = 0;
       for (double x : v) sum += x;
@@ -454,12 +451,8 @@ class EmbreeBackend final : public Backend {
         if (frame.object[p] == kNoHit) continue;
         const Mesh& mesh = m_meshes[frame.object[p]];
         const Triangle& tri = m_scene.triangles(frame.object[p])[frame.prim[p]];
-        const Vec3& p0 = mesh.positions[tri[0]];
-        const Vec3& p1 = mesh.positions[tri[1]];
-        const Vec3& p2 = mesh.positions[tri[2]];
-        const double numerator = p0.dot(p1.cross(p2));
-        const double denominator = (p1 - p0).cross(p2 - p0).dot(image.direction(i, j));
-        const double z = numerator / denominator;
+        const double z = exact_plane_depth(mesh.positions[tri[0]], mesh.positions[tri[1]],
+                                     mesh.positions[tri[2]], image.direction(i, j));
         if (std::isfinite(z) && z > 0) frame.depth[p] = float(z);
       }
     });
@@ -469,6 +462,7 @@ class EmbreeBackend final : public Backend {
   BackendConfig m_config;
   int m_threads = 1;
   Device& m_device;
+  std::unique_ptr<EmbreeMotionBlur> m_motion_blur;  ///< made by the first render_shutter
   bool m_refit = true;
   RTCScene m_rtc_scene = nullptr;
   std::vector<Mesh> m_meshes;

@@ -93,6 +93,7 @@ void validate(const RenderParams& params) {
   if (!std::isfinite(params.keyrate) || params.keyrate < 0)
     throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
   if (!params.video.empty()) VideoWriter::validate_path(params.video);
+  validate(params.shutter);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -113,6 +114,7 @@ BackendConfig backend_config(const RenderParams& params) {
   config.embree_packet = params.packet;
   config.sort = params.sort;
   config.audit = params.audit;
+  config.shutter = params.shutter;
   return config;
 }
 
@@ -145,6 +147,8 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   m_scene.validate(m_params.scene);
   m_camera_space = CameraSpaceScene::build(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
+  if (m_params.shutter.enabled())
+    m_windows = kinray::shutter_windows(m_frame_times, m_scene.key_times(), m_params.shutter.shutter);
   m_timings.load = now_s() - m_started;
 }
 
@@ -158,6 +162,11 @@ std::unique_ptr<Backend> RenderJob::make_backend(const std::string& name) {
 
 void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   double start = now_s();
+  if (!m_windows.empty()) {
+    backend.render_shutter(m_windows.at(index), frame);
+    m_timings.render += now_s() - start;
+    return;
+  }
   backend.render(m_frame_times.at(index), frame);
   m_timings.render += now_s() - start;
   start = now_s();
@@ -198,6 +207,7 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
       {"objects", job.scene().objects.size()},
       {"shot", {job.scene().time_begin, job.scene().time_end}},
       {"frame_times", job.frame_times()},
+      {"shutter", job.params().shutter.shutter},
       {"time_s",
        {{"total", timings.total},
         {"load", timings.load},

@@ -41,6 +41,7 @@ struct RenderParams {
   std::string animation;                          ///< --animation NAME|INDEX (model files)
   double keyrate = 0;                             ///< --keyrate HZ (model files)
   bool quiet = false;                             ///< --quiet
+  ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
 };
 
 inline constexpr int kMaxImageSide = 16384;
@@ -89,13 +90,16 @@ class RenderJob {
   [[nodiscard]] const Scene& scene() const { return m_scene; }
   [[nodiscard]] const CameraSpaceScene& camera_space() const { return m_camera_space; }
   [[nodiscard]] const std::vector<double>& frame_times() const { return m_frame_times; }
+  /// With --shutter: each frame's shutter window (renderer/shutter.h); empty without.
+  [[nodiscard]] const std::vector<ShutterWindow>& shutter_windows() const { return m_windows; }
   /// Timings so far: load (and setup once make_backend was called).
   [[nodiscard]] const RenderTimings& timings() const { return m_timings; }
 
   /// Creates backend `name` (empty: params().backend) for this scene; throws InputError for an
   /// unknown backend or bad backend flags.
   [[nodiscard]] std::unique_ptr<Backend> make_backend(const std::string& name = "");
-  /// Renders and shades frame `index` into `frame`, adding the time spent to timings().
+  /// Renders and shades frame `index` into `frame`, adding the time spent to timings(); with
+  /// --shutter the backend renders the frame's window and shades it itself (timed as render).
   void render_frame(Backend& backend, size_t index, Frame& frame);
   /// The frame loop: every frame time in order, rendered, shaded and handed to `sink` (timed as
   /// "write"), with a progress bar on stderr when it is a terminal and params().quiet is false.
@@ -108,6 +112,7 @@ class RenderJob {
   Scene m_scene;
   CameraSpaceScene m_camera_space;
   std::vector<double> m_frame_times;
+  std::vector<ShutterWindow> m_windows;
   RenderTimings m_timings;
   double m_started = 0;  ///< steady-clock seconds when the job was made
 };

@@ -10,6 +10,7 @@
 #include "renderer/benchmark.h"
 #include "renderer/image_io.h"
 #include "scenes/error.h"
+#include "tools/bench_motion_blur.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 
@@ -22,6 +23,7 @@ struct BenchOptions {
   std::string json, csv, charts;
   int repetitions = 3, reference_frames = 12;
   bool quiet = false;
+  MotionBlurBenchOptions motion_blur;  ///< --shutter and its flags
 };
 
 BenchParams resolve(const BenchOptions& options) {
@@ -42,6 +44,11 @@ BenchParams resolve(const BenchOptions& options) {
 }
 
 void run_bench(const BenchOptions& options) {
+  if (options.motion_blur.shutter != 0) {
+    RenderParams base = options.render.resolve();
+    return run_motion_blur_bench_command(base, options.motion_blur, options.json, options.charts,
+                                         options.quiet);
+  }
   const BenchParams params = resolve(options);
   // Flags and scene are checked before anything is measured or written.
   for (const std::string* path : {&options.json, &options.csv})
@@ -89,6 +96,7 @@ void register_bench_command(CLI::App& app) {
   command->add_option("--csv", options->csv, "Write one row per configuration and backend mode as CSV");
   command->add_option("--charts", options->charts, "Write PNG charts of each sweep into this folder");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+  add_motion_blur_bench_options(*command, options->motion_blur);
   command->callback([options] { run_bench(*options); });
 }
 
