@@ -35,12 +35,14 @@ class Backend {
   /// must not decrease between calls for the kinetic backend. Throws InputError naming --shutter
   /// when this backend has no motion blur.
   virtual void render_shutter(const ShutterWindow& window, Frame& frame);
+  /// True if render_shutter is implemented (make_backend rejects --shutter otherwise).
+  [[nodiscard]] virtual bool has_motion_blur() const { return false; }
   /// Adds this backend's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}
 };
 
 /// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.
-/// Throws InputError for an unknown or unavailable backend.
+/// Throws InputError for an unknown or unavailable backend, or --shutter for one without motion blur.
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config);
 

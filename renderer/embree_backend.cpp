@@ -243,6 +243,8 @@ class EmbreeBackend final : public Backend {
     m_depth_s.push_back(seconds_since(start));
   }
 
+  [[nodiscard]] bool has_motion_blur() const override { return true; }
+
   void render_shutter(const ShutterWindow& window, Frame& frame) override {
     if (frame.width != m_config.width || frame.height != m_config.height ||
         frame.pixel_count() == 0)

@@ -68,6 +68,8 @@ class KineticBackend final : public Backend {
     m_events.push_back(m_grid->event_count() - events_before);
   }
 
+  [[nodiscard]] bool has_motion_blur() const override { return true; }
+
   void render_shutter(const ShutterWindow& window, Frame& frame) override {
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_grid ? m_grid->event_count() : 0;

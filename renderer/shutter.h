@@ -20,7 +20,7 @@ struct ShutterParams {
 };
 
 /// The kinetic backend's Gauss-Legendre order when --shutter-order is 0 (see docs/motion_blur.md).
-inline constexpr int kDefaultShutterOrder = 2;
+inline constexpr int kDefaultShutterOrder = 4;
 inline constexpr int kMaxShutterOrder = 16;
 inline constexpr int kMaxShutterSamples = 65536;
 

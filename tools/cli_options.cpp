@@ -72,7 +72,7 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
       ->group(group);
   command
       .add_option("--shutter-order", options.params.shutter.order,
-                  "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 2)")
+                  "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 4)")
       ->capture_default_str()
       ->group(group);
   command.add_option("--threads", options.params.threads, "Render threads (0: all cores)")
