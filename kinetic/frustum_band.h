@@ -21,6 +21,7 @@
 #include "kinetic/band_motion.h"
 #include "kinetic/coverage_rule.h"
 #include "kinetic/event_queue.h"
+#include "kinetic/front_change_log.h"
 #include "kinetic/grid_scene.h"
 #include "kinetic/grid_stats.h"
 #include "kinetic/kinetic_sort.h"
@@ -95,6 +96,8 @@ class FrustumBand {
   /// pixel order's own audit. Returns the problems found (at most `limit`).
   [[nodiscard]] std::vector<std::string> audit(double t, size_t limit = 20) const;
   [[nodiscard]] GridStats stats() const;
+  /// Motion blur: appends every later change of a pixel's front to `log` (nullptr: none).
+  void set_front_log(FrontChangeLog* log) { m_front_log = log; }
 
  private:
   struct PixelCell {
@@ -244,6 +247,8 @@ class FrustumBand {
     const uint32_t tri = m_pixels[k].order.front().value_or(kNoFront);
     const bool changed = tri != m_fronts[k];
     m_fronts[k] = tri;
+    if (changed && m_front_log) [[unlikely]]
+      m_front_log->record(uint32_t(size_t(m_row_begin) * size_t(m_width) + k), m_now, tri);
     return changed;
   }
   void pixel_insert(uint32_t tri, int column, int row);
@@ -279,6 +284,7 @@ class FrustumBand {
   KineticSortStats m_sort_stats;
   std::vector<PixelCell> m_pixels;  ///< reserved once: the orders point at their keys
   std::vector<uint32_t> m_fronts;   ///< per pixel: its order's front, or kNoFront
+  FrontChangeLog* m_front_log = nullptr;  ///< motion blur: where front changes go, if anywhere
 
   GridStats m_stats;
   bool m_front_changed = false;  ///< set by pixel changes during one event

@@ -64,6 +64,8 @@ class FrustumGrid::Bands {
   virtual std::vector<std::string> audit(double t, int threads) const = 0;
   virtual GridStats stats() const = 0;
   virtual int count() const = 0;
+  /// Band b logs its front changes into logs[b] (logs == nullptr: no band logs).
+  virtual void set_front_logs(FrontChangeLog* logs) = 0;
 };
 
 namespace {
@@ -116,6 +118,9 @@ class BandsOf final : public FrustumGrid::Bands {
     return s;
   }
   int count() const override { return int(m_bands.size()); }
+  void set_front_logs(FrontChangeLog* logs) override {
+    for (size_t b = 0; b < m_bands.size(); ++b) m_bands[b]->set_front_log(logs ? &logs[b] : nullptr);
+  }
 
  private:
   size_t band_of(int row) const {
@@ -159,6 +164,11 @@ FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridCo
 FrustumGrid::~FrustumGrid() = default;
 
 int FrustumGrid::band_count() const { return m_bands->count(); }
+
+void FrustumGrid::log_front_changes(bool on) {
+  m_front_logs.resize(on ? size_t(m_bands->count()) : 0);
+  m_bands->set_front_logs(on ? m_front_logs.data() : nullptr);
+}
 
 void FrustumGrid::advance_to(double t) {
   if (!(t >= m_now)) throw std::invalid_argument("kinetic grid: frame times must not decrease");

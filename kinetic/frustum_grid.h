@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetic/front_change_log.h"
 #include "kinetic/grid_input.h"
 #include "kinetic/grid_scene.h"
 #include "kinetic/grid_stats.h"
@@ -89,6 +90,12 @@ class FrustumGrid {
   /// Largest memory_bytes seen after initialisation and after each advance.
   [[nodiscard]] size_t memory_bytes_peak() const { return m_memory_peak; }
   [[nodiscard]] int band_count() const;
+  /// Motion blur: while on, every front change made by advance_to is appended, with its event
+  /// time, to the log of the band that made it (kinetic/front_change_log.h); the caller reads and
+  /// clears the logs. Off (the default) costs one null test per front change.
+  void log_front_changes(bool on);
+  /// One log per band, each in time order (empty when logging is off).
+  [[nodiscard]] std::span<FrontChangeLog> front_logs() { return m_front_logs; }
   [[nodiscard]] const GridScene& scene() const { return m_scene; }
   [[nodiscard]] const FrustumGridConfig& config() const { return m_config; }
 
@@ -101,6 +108,7 @@ class FrustumGrid {
   int m_threads = 1;
   double m_now = 0;
   std::unique_ptr<Bands> m_bands;
+  std::vector<FrontChangeLog> m_front_logs;  ///< motion blur: one per band while logging
   mutable GridTimings m_timings;
   size_t m_memory_peak = 0;
 };

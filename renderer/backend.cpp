@@ -28,12 +28,22 @@ const BackendEntry kBackends[] = {
 
 }  // namespace
 
+void Backend::render_shutter(const ShutterWindow&, Frame&) {
+  throw InputError("--shutter", "the " + name() + " backend has no motion blur");
+}
+
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config) {
   std::string names;
   for (const BackendEntry& entry : kBackends) {
-    if (name == entry.name) return entry.make(scene, config);
-    names += (names.empty() ? "" : ", ") + std::string(entry.name);
+    if (name != entry.name) {
+      names += (names.empty() ? "" : ", ") + std::string(entry.name);
+      continue;
+    }
+    std::unique_ptr<Backend> backend = entry.make(scene, config);
+    if (config.shutter.enabled() && !backend->has_motion_blur())
+      throw InputError("--shutter", "the " + name + " backend has no motion blur (kinetic and embree have)");
+    return backend;
   }
   throw InputError("--backend", "unknown backend '" + name + "' (available: " + names + ")");
 }

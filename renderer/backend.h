@@ -8,6 +8,7 @@
 
 #include "renderer/frame.h"
 #include "renderer/shadow_tracer.h"
+#include "renderer/shutter.h"
 #include "scenes/camera_space.h"
 
 namespace kinray {
@@ -21,6 +22,7 @@ struct BackendConfig {
   std::string sort = "list";    ///< kinetic: list | tournament | heap
   bool audit = false;           ///< kinetic: audit every certificate between events
   ShadowTree shadow_tree = ShadowTree::aabb;  ///< kinetic: what traces shadow rays (--shadow-tree)
+  ShutterParams shutter;        ///< motion blur: samples (sampling backends), order (kinetic)
 };
 
 class Backend {
@@ -30,6 +32,13 @@ class Backend {
   /// Renders frame time t into `frame` (object, prim and depth; colour is filled by shade_frame).
   /// Frame times must not decrease between calls for the kinetic backend.
   virtual void render(double t, Frame& frame) = 0;
+  /// Motion blur (renderer/shutter.h): frame.color is the time average of the shaded radiance over
+  /// the window; object, prim and depth are those of render(window.time). Windows' open times
+  /// must not decrease between calls for the kinetic backend. Throws InputError naming --shutter
+  /// when this backend has no motion blur.
+  virtual void render_shutter(const ShutterWindow& window, Frame& frame);
+  /// True if render_shutter is implemented (make_backend rejects --shutter otherwise).
+  [[nodiscard]] virtual bool has_motion_blur() const { return false; }
   /// Adds this backend's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}
   /// What traces this backend's shadow rays at the frame it rendered last; nullptr when the
@@ -38,7 +47,7 @@ class Backend {
 };
 
 /// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.
-/// Throws InputError for an unknown or unavailable backend.
+/// Throws InputError for an unknown or unavailable backend, or --shutter for one without motion blur.
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config);
 

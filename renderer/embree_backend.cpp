@@ -16,8 +16,10 @@
 #include <vector>
 
 #include "kinetic/parallel.h"
+#include "renderer/embree_motion_blur.h"
 #include "renderer/embree_shadow_tracer.h"
 #include "renderer/flush_denormals.h"
+#include "renderer/plane_depth.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -263,7 +265,22 @@ class EmbreeBackend final : public Backend {
 
   [[nodiscard]] ShadowTracer* shadow_tracer() override { return m_shadows.get(); }
 
+  [[nodiscard]] bool has_motion_blur() const override { return true; }
+
+  void render_shutter(const ShutterWindow& window, Frame& frame) override {
+    if (frame.width != m_config.width || frame.height != m_config.height ||
+        frame.pixel_count() == 0)
+      frame.resize(m_config.width, m_config.height);
+    if (!m_motion_blur)
+      m_motion_blur = std::make_unique<EmbreeMotionBlur>(m_scene, m_device.handle(), m_threads,
+                                                         m_config.shutter.samples);
+    const uint64_t mark = m_device.error_count();
+    m_motion_blur->render(window, frame);
+    m_device.check(mark, "motion blur");
+  }
+
   void write_stats(nlohmann::json& stats) const override {
+    if (m_motion_blur) m_motion_blur->write_stats(stats);
     if (m_shadows) m_shadows->write_stats(stats);
     auto total = [](const std::vector<double>& v) {
       double sum = 0;
@@ -454,12 +471,8 @@ class EmbreeBackend final : public Backend {
         if (frame.object[p] == kNoHit) continue;
         const Mesh& mesh = m_meshes[frame.object[p]];
         const Triangle& tri = m_scene.triangles(frame.object[p])[frame.prim[p]];
-        const Vec3& p0 = mesh.positions[tri[0]];
-        const Vec3& p1 = mesh.positions[tri[1]];
-        const Vec3& p2 = mesh.positions[tri[2]];
-        const double numerator = p0.dot(p1.cross(p2));
-        const double denominator = (p1 - p0).cross(p2 - p0).dot(image.direction(i, j));
-        const double z = numerator / denominator;
+        const double z = exact_plane_depth(mesh.positions[tri[0]], mesh.positions[tri[1]],
+                                     mesh.positions[tri[2]], image.direction(i, j));
         if (std::isfinite(z) && z > 0) frame.depth[p] = float(z);
       }
     });
@@ -469,6 +482,7 @@ class EmbreeBackend final : public Backend {
   BackendConfig m_config;
   int m_threads = 1;
   Device& m_device;
+  std::unique_ptr<EmbreeMotionBlur> m_motion_blur;  ///< made by the first render_shutter
   bool m_refit = true;
   RTCScene m_rtc_scene = nullptr;
   std::vector<Mesh> m_meshes;

@@ -8,6 +8,7 @@
 #include "kinetic/frustum_grid.h"
 #include "renderer/grid_meshes.h"
 #include "renderer/kinetic_shadow_tracer.h"
+#include "renderer/kinetic_shutter.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -64,9 +65,32 @@ class KineticBackend final : public Backend {
     m_events.push_back(m_grid->event_count() - events_before);
   }
 
+  [[nodiscard]] bool has_motion_blur() const override { return true; }
+
+  void render_shutter(const ShutterWindow& window, Frame& frame) override {
+    const auto start = std::chrono::steady_clock::now();
+    const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
+    if (!m_grid)
+      m_grid = std::make_unique<FrustumGrid>(grid_input(m_scene, m_config), window.open, m_grid_config);
+    if (!m_shutter)
+      m_shutter = std::make_unique<KineticShutter>(m_scene, m_config.shutter.order, m_config.threads);
+    m_shutter->render(*m_grid, window, frame);
+    m_events_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    m_readout_s.push_back(0);
+    m_events.push_back(m_grid->event_count() - events_before);
+  }
+
   void write_stats(nlohmann::json& stats) const override {
     if (m_shadows) m_shadows->write_stats(stats);
     if (!m_grid) return;
+    if (m_shutter) {
+      const KineticShutterStats& s = m_shutter->stats();
+      stats["shutter"] = {{"order", m_shutter->order()},
+                          {"front_changes", s.front_changes},
+                          {"pixels_split", s.pixels_split},
+                          {"shading_nodes", s.shading_nodes},
+                          {"integrate_s", s.integrate_s}};
+    }
     const GridStats s = m_grid->stats();
     const GridTimings& timings = m_grid->timings();
     stats["events"] = {
@@ -125,6 +149,7 @@ class KineticBackend final : public Backend {
   FrustumGridConfig m_grid_config;
   std::unique_ptr<FrustumGrid> m_grid;
   std::unique_ptr<ShadowTracer> m_shadows;  ///< when the scene has lights
+  std::unique_ptr<KineticShutter> m_shutter;  ///< motion blur, made by the first render_shutter
   std::vector<double> m_events_s, m_readout_s;
   std::vector<uint64_t> m_events;
 };

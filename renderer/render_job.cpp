@@ -106,6 +106,7 @@ void validate(const RenderParams& params) {
   (void)parse_shadow_tree(params.shadow_tree);
   if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
   if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
+  validate(params.shutter);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -127,6 +128,7 @@ BackendConfig backend_config(const RenderParams& params) {
   config.sort = params.sort;
   config.audit = params.audit;
   config.shadow_tree = parse_shadow_tree(params.shadow_tree);
+  config.shutter = params.shutter;
   return config;
 }
 
@@ -177,6 +179,14 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   m_lights = CameraSpaceLights(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
+  // The blurred frames are shaded by the headlight inside the backends' window integration;
+  // shadow rays over a shutter window are not integrated, so lights and a shutter are refused
+  // rather than shaded wrongly.
+  if (m_params.shutter.enabled() && !m_scene.lights.empty())
+    throw InputError("--shutter", "motion blur of a scene with lights (shadows) is not supported; "
+                                  "drop --shutter, or the scene's lights and --light");
+  if (m_params.shutter.enabled())
+    m_windows = kinray::shutter_windows(m_frame_times, m_scene.key_times(), m_params.shutter.shutter);
   m_timings.load = now_s() - m_started;
 }
 
@@ -190,6 +200,11 @@ std::unique_ptr<Backend> RenderJob::make_backend(const std::string& name) {
 
 void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   double start = now_s();
+  if (!m_windows.empty()) {
+    backend.render_shutter(m_windows.at(index), frame);
+    m_timings.render += now_s() - start;
+    return;
+  }
   backend.render(m_frame_times.at(index), frame);
   m_timings.render += now_s() - start;
   start = now_s();
@@ -244,6 +259,7 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
       {"lights", job.scene().lights.size()},
       {"shot", {job.scene().time_begin, job.scene().time_end}},
       {"frame_times", job.frame_times()},
+      {"shutter", job.params().shutter.shutter},
       {"time_s",
        {{"total", timings.total},
         {"load", timings.load},

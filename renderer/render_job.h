@@ -48,6 +48,7 @@ struct RenderParams {
   bool scene_size = false;  ///< no --size given: the scene's own image size when it has one
   std::string chunk;        ///< --chunk I/N: render only the I-th of N slices of the schedule
   std::string frame_range;  ///< --frame-range A:B: render only frames A..B of the schedule
+  ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
 };
 
 inline constexpr int kMaxImageSide = 16384;
@@ -98,6 +99,8 @@ class RenderJob {
   [[nodiscard]] const std::vector<double>& frame_times() const { return m_frame_times; }
   /// The frames run() renders (--chunk, --frame-range; else all), indices into frame_times().
   [[nodiscard]] const FrameSlice& slice() const { return m_slice; }
+  /// With --shutter: each frame's shutter window (renderer/shutter.h); empty without.
+  [[nodiscard]] const std::vector<ShutterWindow>& shutter_windows() const { return m_windows; }
   /// Timings so far: load (and setup once make_backend was called).
   [[nodiscard]] const RenderTimings& timings() const { return m_timings; }
 
@@ -106,7 +109,8 @@ class RenderJob {
   [[nodiscard]] std::unique_ptr<Backend> make_backend(const std::string& name = "");
   /// Renders and shades frame `index` into `frame`, adding the time spent to timings(). With
   /// lights, shadow rays go to backend.shadow_tracer() (InputError naming --backend if it has
-  /// none).
+  /// none); with --shutter the backend renders the frame's window and shades it itself (timed as
+  /// render).
   void render_frame(Backend& backend, size_t index, Frame& frame);
   /// The frame loop: every frame time of slice() in order (the index handed to `sink` is the one
   /// in the whole schedule), rendered, shaded and handed to `sink` (timed as
@@ -124,6 +128,7 @@ class RenderJob {
   Frame m_shadow_scratch;                    ///< the helper's primary hits, unused
   std::vector<double> m_frame_times;
   FrameSlice m_slice;
+  std::vector<ShutterWindow> m_windows;
   RenderTimings m_timings;
   double m_started = 0;  ///< steady-clock seconds when the job was made
 };

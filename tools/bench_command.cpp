@@ -17,6 +17,7 @@
 #include "renderer/output_check.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "tools/bench_motion_blur.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
@@ -31,6 +32,7 @@ struct BenchOptions {
   std::string structure = "grid";  ///< grid, or kinetic trees (tools/tree_bench_command.cpp)
   int repetitions = 3, reference_frames = 12;
   bool quiet = false;
+  MotionBlurBenchOptions motion_blur;  ///< --shutter and its flags
 };
 
 BenchParams resolve(const BenchOptions& options) {
@@ -114,6 +116,11 @@ void run_bench(const BenchOptions& options) {
                    options.repetitions, options.json, options.charts, options.quiet);
     return;
   }
+  if (options.motion_blur.shutter != 0) {
+    RenderParams base = options.render.resolve();
+    return run_motion_blur_bench_command(base, options.motion_blur, options.json, options.charts,
+                                         options.quiet);
+  }
   const BenchParams params = resolve(options);
   check_options_apply(params.base, std::array<std::string, 2>{"kinetic", "embree"});
   check_configurations(params);
@@ -169,6 +176,7 @@ void register_bench_command(CLI::App& app) {
                       "grid (the kinetic grid against Embree), or kinetic trees for shadow rays: aabb,boxtree[,refit]")
       ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+  add_motion_blur_bench_options(*command, options->motion_blur);
   command->callback([options] { run_bench(*options); });
 }
 

@@ -65,6 +65,21 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
       command
           .add_option("--time", options.time, "Restrict the shot to [A, B] seconds, given as A:B")
           ->group(group);
+  command
+      .add_option("--shutter", options.params.shutter.shutter,
+                  "Motion blur: shutter open for this fraction of the frame interval, centred on "
+                  "each frame (0.5: 180 degrees; 0: sharp)")
+      ->group(group);
+  command
+      .add_option("--shutter-samples", options.params.shutter.samples,
+                  "Motion blur, sampling backends: stratified time samples per pixel")
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_option("--shutter-order", options.params.shutter.order,
+                  "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 4)")
+      ->capture_default_str()
+      ->group(group);
   command.add_option("--threads", options.params.threads, "Render threads (0: all cores)")
       ->capture_default_str()
       ->group(group);

@@ -19,6 +19,7 @@
 #include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/shutter_diff.h"
 
 namespace kinray {
 namespace {
@@ -75,6 +76,7 @@ struct DiffOptions {
   std::string report;
   std::string budget;
   std::string json;
+  int reference_samples = 0;  ///< --shutter: the reference's time samples per pixel
 };
 
 std::string numbered(const char* prefix, size_t index) {
@@ -85,6 +87,8 @@ std::string numbered(const char* prefix, size_t index) {
 
 void run_diff(const DiffOptions& options) {
   const RenderParams params = options.render.resolve();
+  if (params.shutter.enabled())
+    return run_shutter_diff(params, {options.reference_samples, options.report, options.json});
   if (options.against != "embree" && options.against != "osmesa")
     throw InputError("--against",
                      "the reference must be embree or osmesa, not '" + options.against + "'");
@@ -173,6 +177,8 @@ void register_diff_command(CLI::App& app) {
       "reference in dim grey), "
       "both shaded frames where a frame has real mismatches, and summary.json"));
   output_path(command->add_option("--json", options->json, "Write the summary as JSON to FILE"));
+  command->add_option("--reference-samples", options->reference_samples,
+                      "With --shutter: time samples per pixel of the Embree reference (default 4096)");
   command->add_flag("-q,--quiet", options->render.params.quiet, "No progress bar and no table");
   command->callback([options] { run_diff(*options); });
 }

@@ -1,0 +1,129 @@
+#include "renderer/kinetic_shutter.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "kinetic/parallel.h"
+#include "renderer/plane_depth.h"
+#include "renderer/shading.h"
+
+namespace kinray {
+
+KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int threads)
+    : m_scene(scene),
+      m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
+      m_threads(threads) {}
+
+void KineticShutter::roll_to(FrustumGrid& grid, double open) {
+  if (!m_started) {
+    // The fronts at the grid's time, and from now on every change is logged.
+    const GridScene& scene = grid.scene();
+    m_open_front.assign(size_t(scene.width()) * size_t(scene.height()), kNoGridHit);
+    for (int j = 0; j < scene.height(); ++j)
+      for (int i = 0; i < scene.width(); ++i)
+        if (const auto hit = grid.front(i, j))
+          m_open_front[size_t(j) * size_t(scene.width()) + size_t(i)] =
+              scene.triangle_begin(hit->mesh) + hit->triangle;
+    grid.log_front_changes(true);
+    m_started = true;
+  }
+  if (open > grid.now()) grid.advance_to(open);
+  for (FrontChangeLog& log : grid.front_logs()) {
+    auto& changes = log.changes;
+    const auto end = std::find_if(changes.begin(), changes.end(),
+                                  [&](const FrontChange& c) { return c.time > open; });
+    for (auto c = changes.begin(); c != end; ++c) m_open_front[c->pixel] = c->front;
+    changes.erase(changes.begin(), end);
+  }
+}
+
+void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
+                               double t1, double length, ColorAverage& average) const {
+  if (!(t1 > t0)) return;
+  const double share = (t1 - t0) / length;
+  if (front == kNoGridHit) {
+    average.add(kBackground, share);
+    return;
+  }
+  const uint32_t m = grid.mesh_of_triangle(front);
+  const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
+  const ImageGeometry image{grid.width(), grid.height()};
+  // The shading is smooth between the keys of the front's object, not across them (its vertices
+  // and normals turn there): each piece between keys gets its own rule.
+  const std::vector<double>& keys = m_scene.objects[object].key_times;
+  auto key = std::upper_bound(keys.begin(), keys.end(), t0);
+  for (double a = t0; a < t1;) {
+    const double b = key != keys.end() && *key < t1 ? *key++ : t1;
+    const double middle = (a + b) / 2, half = (b - a) / 2;
+    for (size_t k = 0; k < m_rule.nodes.size(); ++k)
+      average.add(shade_hit(m_scene, image, i, j, object, prim, middle + half * m_rule.nodes[k]),
+                  share * (half / (t1 - t0)) * m_rule.weights[k]);
+    a = b;
+  }
+}
+
+void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Frame& frame) {
+  roll_to(grid, window.open);
+  grid.advance_to(std::max(window.close, grid.now()));
+  const auto started = std::chrono::steady_clock::now();
+  const GridScene& scene = grid.scene();
+  const int w = scene.width(), h = scene.height();
+  const size_t n = size_t(w) * size_t(h);
+  if (frame.width != w || frame.height != h) frame.resize(w, h);
+  frame.time = window.time;
+  const double length = window.length();
+
+  // Each band's log touches only its own rows' pixels, so the logs are walked in parallel: each
+  // change closes the pixel's current interval and opens the next.
+  std::vector<uint32_t> current(m_open_front), at_time(m_open_front);
+  std::vector<double> since(n, window.open);
+  std::vector<ColorAverage> average(n);
+  std::vector<uint8_t> split(n, 0);
+  const std::span<FrontChangeLog> logs = grid.front_logs();
+  std::atomic<uint64_t> changes{0};
+  parallel_for_dynamic(logs.size(), m_threads, [&](size_t b) {
+    for (const FrontChange& c : logs[b].changes) {
+      if (c.time > window.close) break;
+      const size_t p = c.pixel;
+      const int i = int(p % size_t(w)), j = int(p / size_t(w));
+      integrate(scene, current[p], i, j, since[p], c.time, length, average[p]);
+      current[p] = c.front;
+      since[p] = c.time;
+      split[p] = 1;
+      if (c.time <= window.time) at_time[p] = c.front;
+    }
+    changes.fetch_add(logs[b].changes.size(), std::memory_order_relaxed);
+  });
+  const ImageGeometry image{w, h};
+  parallel_for(size_t(h), m_threads, [&](size_t row) {
+    const int j = int(row);
+    for (int i = 0; i < w; ++i) {
+      const size_t p = size_t(j) * size_t(w) + size_t(i);
+      integrate(scene, current[p], i, j, since[p], window.close, length, average[p]);
+      frame.color[p] = average[p].result();
+      const uint32_t front = at_time[p];
+      if (front == kNoGridHit) {
+        frame.object[p] = frame.prim[p] = kNoHit;
+        frame.depth[p] = std::numeric_limits<float>::infinity();
+        continue;
+      }
+      const uint32_t m = scene.mesh_of_triangle(front);
+      frame.object[p] = scene.mesh(m).id;
+      frame.prim[p] = front - scene.triangle_begin(m);
+      frame.depth[p] = exact_plane_depth(m_scene, frame.object[p], frame.prim[p],
+                                         image.direction(i, j), window.time);
+    }
+  });
+  uint64_t split_count = 0;
+  for (uint8_t s : split) split_count += s;
+  m_stats.front_changes += changes.load();
+  m_stats.pixels_split += split_count;
+  m_stats.shading_nodes += (n + changes.load()) * m_rule.nodes.size();
+  m_stats.integrate_s +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+}  // namespace kinray

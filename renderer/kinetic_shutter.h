@@ -1,0 +1,57 @@
+#pragma once
+// Exact motion blur on the kinetic grid (DESIGN.md, "Exact motion blur"). The grid processes
+// every event of a shutter window in time order and logs each change of a pixel's front
+// (kinetic/front_change_log.h); between two changes the front is fixed, so each pixel's window
+// splits into intervals with one front each, and the visibility part of the time average is
+// exact. Each interval's shading (which varies smoothly while the front is fixed) is integrated
+// by Gauss-Legendre quadrature; the background counts for its share of the window.
+//
+// The timeline keeps the fronts at the open time of the last window and the grid's log of the
+// changes since, so windows may overlap (an irregular schedule): the grid only ever moves forward.
+#include <cstdint>
+#include <vector>
+
+#include "kinetic/frustum_grid.h"
+#include "renderer/frame.h"
+#include "renderer/shutter.h"
+#include "scenes/camera_space.h"
+
+namespace kinray {
+
+/// Counters of the blurred frames, for --stats.
+struct KineticShutterStats {
+  uint64_t front_changes = 0;  ///< logged changes inside the windows
+  uint64_t pixels_split = 0;   ///< pixels whose window has more than one interval, summed
+  uint64_t shading_nodes = 0;  ///< shade_hit calls
+  double integrate_s = 0;      ///< seconds spent integrating (the events are the grid's)
+};
+
+class KineticShutter {
+ public:
+  /// `order` Gauss-Legendre nodes per interval (0: kDefaultShutterOrder).
+  KineticShutter(const CameraSpaceScene& scene, int order, int threads);
+
+  /// Renders `window` from `grid` (at a time <= window.open on the first call; the grid is
+  /// advanced to window.close): frame.color is the time average over the window; object, prim
+  /// and depth are the front at window.time, as the sharp frame has them.
+  void render(FrustumGrid& grid, const ShutterWindow& window, Frame& frame);
+
+  [[nodiscard]] const KineticShutterStats& stats() const { return m_stats; }
+  [[nodiscard]] int order() const { return int(m_rule.nodes.size()); }
+
+ private:
+  /// Brings the fronts to time `open`: applies and drops the logged changes up to it.
+  void roll_to(FrustumGrid& grid, double open);
+  /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`.
+  void integrate(const GridScene& grid, uint32_t front, int i, int j, double t0, double t1,
+                 double length, ColorAverage& average) const;
+
+  const CameraSpaceScene& m_scene;
+  GaussLegendre m_rule;
+  int m_threads;
+  bool m_started = false;
+  std::vector<uint32_t> m_open_front;  ///< per pixel, global triangle id at the last open time
+  KineticShutterStats m_stats;
+};
+
+}  // namespace kinray

@@ -1,0 +1,95 @@
+// `--shutter` as a user runs it: bad values are one line naming the flag and exit 2 with nothing
+// written; a blurred render writes its frames and an id buffer equal to the sharp render's; `diff
+// --shutter` passes for the kinetic backend and reports RMSE and max error; `bench --shutter`
+// writes the "motion_blur" JSON.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "renderer/image_io.h"
+#include "tests/tools/kinray_process.h"
+
+namespace kinray {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ShutterCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    m_dir = fs::temp_directory_path() /
+            ("kinray_shutter_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(m_dir);
+    fs::create_directories(m_dir);
+  }
+  void TearDown() override { fs::remove_all(m_dir); }
+  [[nodiscard]] test::CommandRun kinray(const std::string& args) const {
+    return test::run_kinray(args, m_dir);
+  }
+  [[nodiscard]] std::string path(const std::string& name) const { return (m_dir / name).string(); }
+  fs::path m_dir;
+};
+
+constexpr const char* kScene = "wavy-sphere:triangles=600 --size 40x40 --time 1:1.1 --frames 2";
+
+TEST_F(ShutterCli, BadValuesNameTheFlagAndWriteNothing) {
+  for (const std::string& bad :
+       {"--shutter 1.5", "--shutter -1", "--shutter nan", "--shutter 0.5 --shutter-samples 0",
+        "--shutter 0.5 --shutter-order 99"}) {
+    const auto run = kinray(std::string("render ") + kScene + " " + bad + " --out " + path("out"));
+    EXPECT_EQ(run.status, 2) << bad << ": " << run.err;
+    EXPECT_EQ(run.err.find("kinray: error: --shutter"), 0u) << bad << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(fs::exists(path("out"))) << bad;
+  }
+}
+
+TEST_F(ShutterCli, BlurredFramesKeepTheSharpIds) {
+  const auto blurred = kinray(std::string("render ") + kScene +
+                              " --shutter 0.5 --aov id --audit --quiet --out " + path("b"));
+  ASSERT_EQ(blurred.status, 0) << blurred.err;
+  const auto sharp =
+      kinray(std::string("render ") + kScene + " --aov id --quiet --out " + path("s"));
+  ASSERT_EQ(sharp.status, 0) << sharp.err;
+  for (const char* name : {"id_00000.png", "id_00001.png"})
+    EXPECT_EQ(test::read_text(path("b/") + name), test::read_text(path("s/") + name)) << name;
+  EXPECT_NE(test::read_text(path("b/frame_00001.png")), test::read_text(path("s/frame_00001.png")));
+}
+
+TEST_F(ShutterCli, DiffComparesWithTheReferenceWithinTheTolerance) {
+  const auto run = kinray(std::string("diff ") + kScene +
+                          " --shutter 0.5 --reference-samples 256 --json " + path("d.json"));
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  const auto summary = nlohmann::json::parse(test::read_text(path("d.json")));
+  EXPECT_EQ(summary["reference_samples"], 256);
+  EXPECT_EQ(summary["frames_outside"], 0);
+  EXPECT_LT(summary["worst_rmse"].get<double>(), 2e-3);
+  // Four samples per pixel are far from the reference.
+  const auto coarse =
+      kinray(std::string("diff ") + kScene +
+             " --backend embree --shutter 0.5 --shutter-samples 1 --reference-samples 256 --json " +
+             path("c.json"));
+  const auto coarse_summary = nlohmann::json::parse(test::read_text(path("c.json")));
+  EXPECT_GT(coarse_summary["worst_rmse"].get<double>(), 4 * summary["worst_rmse"].get<double>());
+}
+
+TEST_F(ShutterCli, BenchWritesTheMotionBlurJson) {
+  const auto run = kinray(
+      "bench wavy-sphere:triangles=600 --size 32x32 --shutter 0.5 --blur-samples 4,16 "
+      "--reference-samples 64 --blur-frames 2 --quiet --json " +
+      path("b.json"));
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  const auto json = nlohmann::json::parse(test::read_text(path("b.json")));
+  const auto& scene = json["motion_blur"]["wavy-sphere:triangles=600"];
+  EXPECT_GT(scene["kinetic"]["ms_per_frame"].get<double>(), 0);
+  EXPECT_GE(scene["kinetic"]["rmse"].get<double>(), 0);
+  ASSERT_EQ(scene["embree"].size(), 2u);
+  EXPECT_EQ(scene["embree"][1]["samples"], 16);
+}
+
+}  // namespace
+}  // namespace kinray

@@ -1,0 +1,121 @@
+#include "tools/bench_motion_blur.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "renderer/benchmark.h"
+#include "renderer/image_io.h"
+#include "renderer/motion_blur_bench.h"
+#include "scenes/error.h"
+#include "tools/cli_options.h"
+
+namespace kinray {
+
+void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& options) {
+  const char* group = "Motion blur (with --shutter)";
+  command
+      .add_option("--shutter", options.shutter,
+                  "Compare motion blur at this shutter (fraction of the frame interval) instead of "
+                  "the sweeps")
+      ->group(group);
+  command.add_option("--blur-samples", options.samples, "Embree time samples per pixel, a list")
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_option("--reference-samples", options.reference_samples,
+                  "Time samples per pixel of the Embree reference frame")
+      ->capture_default_str()
+      ->group(group);
+  command.add_option("--blur-scenes", options.scenes, "More scenes to compare, comma-separated")
+      ->group(group);
+  command.add_option("--blur-fps", options.fps, "Frame rate of the compared frames")
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_option(
+          "--blur-frames", options.frames,
+          "Frames per scene, at the frame rate, centred in the shot (or from --time's start)")
+      ->capture_default_str()
+      ->group(group);
+}
+
+namespace {
+
+/// `frames` frames at multiples of 1/fps, from `start` (rounded up to a multiple) or centred in
+/// the shot of `params.scene`.
+RenderParams scene_params(RenderParams params, const MotionBlurBenchOptions& options) {
+  if (!(options.fps > 0) || !std::isfinite(options.fps))
+    throw InputError("--blur-fps", "must be a finite number > 0");
+  if (options.frames < 2 || options.frames > 1000)
+    throw InputError("--blur-frames", "must lie in 2..1000 (the first frame is the warm-up)");
+  double start = 0;
+  if (params.time) {
+    start = params.time->first;
+  } else {
+    RenderParams probe = params;
+    probe.frames = 2;
+    const RenderJob job(probe);
+    const double middle = (job.frame_times().front() + job.frame_times().back()) / 2;
+    start = middle - (options.frames - 1) / (2 * options.fps);
+  }
+  start = std::ceil(start * options.fps - 1e-9) / options.fps;
+  params.time = std::make_pair(start, start + (options.frames - 0.5) / options.fps);
+  params.frames.reset();
+  params.inbetweens.reset();
+  params.fps = options.fps;
+  params.shutter.shutter = options.shutter;
+  return params;
+}
+
+}  // namespace
+
+void run_motion_blur_bench_command(const RenderParams& base, const MotionBlurBenchOptions& options,
+                                   const std::string& json, const std::string& charts, bool quiet) {
+  MotionBlurBenchParams bench;
+  bench.samples = parse_int_list(options.samples, "--blur-samples");
+  bench.reference_samples = options.reference_samples;
+  std::vector<std::string> scenes = {base.scene};
+  std::stringstream in(options.scenes);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) scenes.push_back(item);
+  // Every scene and flag is checked before anything is measured.
+  std::vector<RenderParams> runs;
+  for (const std::string& scene : scenes) {
+    RenderParams params = base;
+    params.scene = scene;
+    runs.push_back(scene_params(params, options));
+    validate(runs.back());
+  }
+  std::vector<MotionBlurResult> results;
+  nlohmann::json all = nlohmann::json::object();
+  for (const RenderParams& params : runs) {
+    results.push_back(run_motion_blur_bench(params, bench, [&](const std::string& line) {
+      if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
+    }));
+    all[params.scene] = results.back().to_json();
+  }
+  std::printf("motion blur, shutter %g, %dx%d, reference %d samples per pixel\n", options.shutter,
+              base.width, base.height, bench.reference_samples);
+  std::printf("%-40s %-10s %12s %12s %12s\n", "scene", "method", "ms/frame", "rmse", "max");
+  for (const MotionBlurResult& r : results) {
+    std::printf("%-40s %-10s %12.2f %12.3g %12.3g\n", r.scene.c_str(), "kinetic",
+                r.kinetic.ms_per_frame, r.kinetic.rmse, r.kinetic.max_error);
+    for (const MotionBlurPoint& p : r.embree)
+      std::printf("%-40s embree/%-3d %12.2f %12.3g %12.3g\n", r.scene.c_str(), p.samples,
+                  p.ms_per_frame, p.rmse, p.max_error);
+    std::printf("%-40s targets %s\n", r.scene.c_str(), r.meets_targets() ? "met" : "NOT met");
+  }
+  if (!json.empty())
+    write_file_atomically(json, nlohmann::json({{"motion_blur", all}}).dump(2) + "\n");
+  if (!charts.empty()) {
+    create_folder(charts, "--charts");
+    const std::string path = (std::filesystem::path(charts) / "motion_blur.png").string();
+    write_motion_blur_chart(results, path);
+    std::printf("chart: %s\n", path.c_str());
+  }
+}
+
+}  // namespace kinray

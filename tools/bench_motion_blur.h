@@ -1,0 +1,28 @@
+#pragma once
+// `kinray bench --shutter S`: the equal-quality motion blur comparison
+// (renderer/motion_blur_bench.h) over SCENE and --blur-scenes, instead of the frame-time sweeps.
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "renderer/render_job.h"
+
+namespace kinray {
+
+struct MotionBlurBenchOptions {
+  double shutter = 0;
+  std::string samples = "4,16,64,256";
+  int reference_samples = 4096;
+  std::string scenes;  ///< more scenes, comma-separated
+  double fps = 24;
+  int frames = 4;
+};
+
+/// --shutter, --blur-samples, --reference-samples, --blur-scenes, --blur-fps, --blur-frames.
+void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& options);
+
+/// Runs the comparison on every scene (base: scene, size, threads, model flags), prints a table,
+/// writes {"motion_blur": {scene: ...}} to `json` and the error-against-time chart into `charts`.
+void run_motion_blur_bench_command(const RenderParams& base, const MotionBlurBenchOptions& options,
+                                   const std::string& json, const std::string& charts, bool quiet);
+
+}  // namespace kinray
