@@ -71,7 +71,8 @@ class KineticBackend final : public Backend {
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
     if (!m_grid)
-      m_grid = std::make_unique<FrustumGrid>(grid_input(m_scene, m_config), window.open, m_grid_config);
+      m_grid = std::make_unique<FrustumGrid>(
+          kinetic_grid_input(m_scene, m_config.width, m_config.height), window.open, m_grid_config);
     if (!m_shutter)
       m_shutter = std::make_unique<KineticShutter>(m_scene, m_config.shutter.order, m_config.threads);
     m_shutter->render(*m_grid, window, frame);
