@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "renderer/embree_shadow_tracer.h"
+
 namespace kinray {
 
 namespace {
@@ -113,16 +115,7 @@ class EmbreeShadowPeer final : public ShadowTracer {
       ctx.context.filter = &skip_origin_triangle;
       ctx.geometry = object_geometry(r.object);
       ctx.primitive = r.prim;
-      RTCRay ray{};
-      ray.org_x = float(r.origin.x());
-      ray.org_y = float(r.origin.y());
-      ray.org_z = float(r.origin.z());
-      ray.dir_x = float(r.direction.x());
-      ray.dir_y = float(r.direction.y());
-      ray.dir_z = float(r.direction.z());
-      ray.tnear = 0;
-      ray.tfar = float(r.s_max);
-      ray.mask = ~0u;
+      RTCRay ray = embree_shadow_ray(r);
       rtcOccluded1(m_rtc_scene, &ctx.context, &ray);
       blocked[i] = ray.tfar < 0 ? 1 : 0;  // Embree marks an occluded ray with tfar = -inf
     }

@@ -45,19 +45,7 @@ void EmbreeShadowTracer::occluded(std::span<const ShadowRay> rays,
   uint64_t count = 0;
   for (size_t r = 0; r < rays.size(); ++r) {
     const ShadowRay& in = rays[r];
-    RTCRay ray;
-    ray.org_x = float(in.origin.x());
-    ray.org_y = float(in.origin.y());
-    ray.org_z = float(in.origin.z());
-    ray.dir_x = float(in.direction.x());
-    ray.dir_y = float(in.direction.y());
-    ray.dir_z = float(in.direction.z());
-    ray.tnear = 0.0f;
-    ray.tfar = float(in.s_max);
-    ray.time = 0.0f;
-    ray.mask = ~0u;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = embree_shadow_ray(in);
     shadow.skip_object = in.object;
     shadow.skip_prim = in.prim;
     rtcOccluded1(m_rtc_scene, &shadow.context, &ray);

@@ -12,6 +12,21 @@
 
 namespace kinray {
 
+/// A shadow ray as Embree takes it (float, tnear 0, tfar = s_max), for rtcOccluded1.
+[[nodiscard]] inline RTCRay embree_shadow_ray(const ShadowRay& in) {
+  RTCRay ray{};
+  ray.org_x = float(in.origin.x());
+  ray.org_y = float(in.origin.y());
+  ray.org_z = float(in.origin.z());
+  ray.dir_x = float(in.direction.x());
+  ray.dir_y = float(in.direction.y());
+  ray.dir_z = float(in.direction.z());
+  ray.tnear = 0.0f;
+  ray.tfar = float(in.s_max);
+  ray.mask = ~0u;
+  return ray;
+}
+
 /// Occlusion queries on the scene an Embree backend has committed for the current frame.
 class EmbreeShadowTracer final : public ShadowTracer {
  public:

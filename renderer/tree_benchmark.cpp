@@ -10,6 +10,7 @@
 #include "renderer/embree_shadow_peer.h"
 #include "renderer/frame.h"
 #include "renderer/tree_shadow_tracer.h"
+#include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/tree_stats_json.h"
 #include "scenes/error.h"
 

@@ -8,6 +8,7 @@
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/kinetic_bvh.h"
 #include "renderer/grid_meshes.h"
+#include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/tree_stats_json.h"
 
 namespace kinray {

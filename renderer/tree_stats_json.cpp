@@ -8,20 +8,6 @@
 
 namespace kinray {
 
-std::string shadow_tree_name(ShadowTree kind) {
-  switch (kind) {
-    case ShadowTree::aabb:
-      return "aabb";
-    case ShadowTree::boxtree:
-      return "boxtree";
-    case ShadowTree::refit:
-      return "refit";
-    case ShadowTree::brute:
-      return "brute";
-  }
-  return "?";
-}
-
 void write_kinetic_tree_stats(const KineticBvh& tree, nlohmann::json& out) {
   const TreeStats s = tree.stats();
   out["events"] = {{"total", s.events.total()}, {"leaf", s.events.leaf},

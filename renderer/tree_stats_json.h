@@ -12,8 +12,6 @@ namespace kinray {
 class KineticBvh;
 class BottomUpBvh;
 
-/// "aabb", "boxtree", "refit" or "brute".
-[[nodiscard]] std::string shadow_tree_name(ShadowTree kind);
 /// Adds "events" (by kind), "quality", "certificates" and "tree" to `out`.
 void write_kinetic_tree_stats(const KineticBvh& tree, nlohmann::json& out);
 /// Adds "bv_updates", "updates" and "tree" to `out`.
