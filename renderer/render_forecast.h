@@ -14,14 +14,14 @@ class RenderJob;
 
 /// What the first frames of a kinetic render and one Embree frame measured, in seconds.
 struct ForecastInputs {
-  size_t frames_total = 0;        ///< frames the render has
-  size_t frames_done = 0;         ///< frames rendered so far (at least 2)
-  double load_s = 0;              ///< loading the scene, paid by either backend
-  double kinetic_first_s = 0;     ///< kinetic setup and first frame (builds the grid)
-  double kinetic_later_s = 0;     ///< kinetic render time of frames 2..frames_done
-  double other_per_frame_s = 0;   ///< shading and writing one frame, paid by either backend
-  double embree_setup_s = 0;      ///< creating the Embree backend
-  double embree_frame_s = 0;      ///< Embree's first frame (with its BVH build: an upper bound)
+  size_t frames_total = 0;       ///< frames the render has
+  size_t frames_done = 0;        ///< frames rendered so far (at least 2)
+  double load_s = 0;             ///< loading the scene, paid by either backend
+  double kinetic_first_s = 0;    ///< kinetic setup and first frame (builds the grid)
+  double kinetic_later_s = 0;    ///< kinetic render time of frames 2..frames_done
+  double other_per_frame_s = 0;  ///< shading and writing one frame, paid by either backend
+  double embree_setup_s = 0;     ///< creating the Embree backend
+  double embree_frame_s = 0;     ///< Embree's first frame (with its BVH build: an upper bound)
 };
 
 /// The projected time of the whole render with each backend, in seconds.
@@ -55,7 +55,7 @@ class KineticForecast {
 
  private:
   bool m_done = false;
-  double m_first_s = -1;  ///< kinetic setup + render after the first frame
+  double m_first_s = -1;      ///< kinetic setup + render after the first frame
   double m_interval_end = 0;  ///< the key time that ends the first key interval
 };
 

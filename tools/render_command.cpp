@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-#include <nlohmann/json.hpp>
 #include <system_error>
 #include <utility>
 
@@ -106,6 +106,7 @@ void run_render(const RenderParams& flags) {
     if (write_depth) write(numbered_file("depth", index, ".tiff"), write_depth_tiff, frame);
     if (video) video->write(frame);
   });
+  status.finish();  // already cleared by the bar: only marks the note as gone
   if (video) video->close();
   if (!params.stats.empty()) {
     create_folder(fs::path(params.stats).parent_path(), "--stats");

@@ -1,11 +1,11 @@
 // The kinetic-versus-Embree forecast of `kinray render`: its projections on given timings, worked
 // out by hand, and when it warns.
-#include "renderer/render_forecast.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
+
+#include "renderer/render_forecast.h"
 
 namespace kinray {
 namespace {

@@ -14,15 +14,17 @@ namespace {
 class CliRenderFeedback : public test::CommandTest {};
 
 TEST_F(CliRenderFeedback, SummaryGivesTotalTimeWithLoadingAndTheKineticEventCount) {
-  const test::CommandRun run = kinray("render wavy-sphere:triangles=600 --size 64x48 --frames 6 --out '" +
-                                      path("frames") + "' --stats '" + path("stats.json") + "'");
+  const test::CommandRun run =
+      kinray("render wavy-sphere:triangles=600 --size 64x48 --frames 6 --out '" + path("frames") +
+             "' --stats '" + path("stats.json") + "'");
   ASSERT_EQ(run.status, 0) << run.err;
   // A short quick render: no forecast warning, nothing at all on stderr (not a terminal).
   EXPECT_EQ(run.err, "");
   std::smatch match;
   ASSERT_TRUE(std::regex_search(
       run.out, match,
-      std::regex(R"(with kinetic in ([0-9.]+) s \(loading ([0-9.]+) s, ([0-9]+) kinetic events\))")))
+      std::regex(
+          R"(with kinetic in ([0-9.]+) s \(loading ([0-9.]+) s, ([0-9]+) kinetic events\))")))
       << run.out;
   const nlohmann::json stats = nlohmann::json::parse(test::read_text(path("stats.json")));
   EXPECT_EQ(std::stoull(match[3].str()), stats["events"]["total"].get<uint64_t>());
@@ -35,8 +37,10 @@ TEST_F(CliRenderFeedback, SummaryGivesTotalTimeWithLoadingAndTheKineticEventCoun
 }
 
 TEST_F(CliRenderFeedback, EmbreeSummaryHasNoKineticEvents) {
-  const test::CommandRun run = kinray("render wavy-sphere:triangles=600 --size 64x48 --frames 3 "
-                                      "--backend embree --out '" + path("frames") + "'");
+  const test::CommandRun run = kinray(
+      "render wavy-sphere:triangles=600 --size 64x48 --frames 3 "
+      "--backend embree --out '" +
+      path("frames") + "'");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("with embree in "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("(loading "), std::string::npos) << run.out;
