@@ -59,6 +59,13 @@ void Progress::update(size_t done) {
   std::fflush(stderr);
 }
 
+void Progress::note(const std::string& text) {
+  if (!m_enabled) return;
+  m_drawn = true;
+  std::fprintf(stderr, "\r%s\033[K", text.c_str());
+  std::fflush(stderr);
+}
+
 void Progress::finish() {
   if (!m_enabled || !m_drawn) return;
   std::fprintf(stderr, "\r\033[K");

@@ -19,6 +19,9 @@ class Progress {
   [[nodiscard]] static bool stderr_is_terminal();
   /// Records `done` frames finished; redraws at most every 100 ms and on the last frame.
   void update(size_t done);
+  /// Shows `text` (e.g. "loading SCENE...") in the bar's place until the bar or finish() replaces
+  /// it: a long wait before the first frame is said, not silent.
+  void note(const std::string& text);
   /// Clears the bar, so that what follows starts on a clean line.
   void finish();
   /// The bar as text, e.g. "[#####.....]  12/24 frames  1.3 s elapsed  1.3 s left" (for tests).

@@ -229,8 +229,8 @@ const RenderTimings& RenderJob::run(Backend& backend,
   Progress progress(m_slice.size(), !m_params.quiet && Progress::stderr_is_terminal());
   Frame frame;
   frame.resize(m_params.width, m_params.height);
-  progress.update(0);
-  // The kinetic backend is built at the first time it renders: the slice's first frame.
+  // The kinetic backend is built at the first time it renders: the slice's first frame. The bar
+  // is first drawn after it, so a command's note ("initialising the kinetic grid...") stays.
   for (size_t index = m_slice.begin; index < m_slice.end; ++index) {
     render_frame(backend, index, frame);
     const double start = now_s();

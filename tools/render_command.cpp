@@ -8,12 +8,16 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 #include <system_error>
 #include <utility>
 
 #include "renderer/image_io.h"
 #include "renderer/option_scope.h"
 #include "renderer/output_check.h"
+#include "renderer/progress.h"
+#include "renderer/render_forecast.h"
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
@@ -40,13 +44,31 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
   if (!params.video.empty()) check_output_file(params.video, "--video");
 }
 
+/// The summary's parenthesis after the total time: how much of it was loading, and the kinetic
+/// backend's event count.
+std::string summary_details(const RenderTimings& timings, const Backend& backend) {
+  nlohmann::json stats;
+  backend.write_stats(stats);
+  char text[128];
+  std::snprintf(text, sizeof text, " (loading %.2f s", timings.load);
+  std::string details = text;
+  if (stats.contains("events") && stats["events"].contains("total"))
+    details += ", " + std::to_string(stats["events"]["total"].get<uint64_t>()) + " kinetic events";
+  return details + ")";
+}
+
 void run_render(const RenderParams& flags) {
   check_options_apply(flags, std::array{flags.backend});
   const std::string out = output_folder(flags);
   check_output_paths(out, flags);
+  // Loading a big model and building the kinetic grid take seconds before the first frame.
+  Progress status(0, !flags.quiet && Progress::stderr_is_terminal());
+  status.note("loading " + flags.scene + "...");
   RenderJob job(flags);
   const RenderParams& params = job.params();  // with the scene's own size and frame count
   std::unique_ptr<Backend> backend = job.make_backend();
+  const bool kinetic = backend->name() == "kinetic";
+  if (kinetic) status.note("initialising the kinetic grid...");
 
   // Everything is valid: from here on files are written.
   create_folder(out, "--out");
@@ -72,12 +94,19 @@ void run_render(const RenderParams& flags) {
     writer((folder / name).string(), frame);
     written.push_back(name);
   };
+  KineticForecast forecast;
   const RenderTimings& timings = job.run(*backend, [&](size_t index, const Frame& frame) {
+    if (kinetic && !params.quiet)
+      if (const std::optional<RenderForecast> slow = forecast.frame_done(job, index)) {
+        status.finish();  // the bar's line, drawn again at the next frame
+        std::fputs(forecast_warning(*slow).c_str(), stderr);
+      }
     write(numbered_file("frame", index, ".png"), write_color_png, frame);
     if (write_id) write(numbered_file("id", index, ".png"), write_id_png, frame);
     if (write_depth) write(numbered_file("depth", index, ".tiff"), write_depth_tiff, frame);
     if (video) video->write(frame);
   });
+  status.finish();  // already cleared by the bar: only marks the note as gone
   if (video) video->close();
   if (!params.stats.empty()) {
     create_folder(fs::path(params.stats).parent_path(), "--stats");
@@ -94,9 +123,10 @@ void run_render(const RenderParams& flags) {
       whole ? remove_stale_frames(folder, written) : std::vector<std::string>{};
   if (!params.quiet) {
     const size_t n = timings.frames;
-    std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s\n", n,
+    std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s%s\n", n,
                 n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
-                params.height, backend->name().c_str(), timings.total);
+                params.height, backend->name().c_str(), timings.total,
+                summary_details(timings, *backend).c_str());
     const FrameSlice& slice = job.slice();
     const std::string last = n > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
     std::printf("frames: %s/%s%s\n", out.c_str(), numbered_file("frame", slice.begin, ".png").c_str(),
