@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "renderer/quality_measures.h"
 #include "kinetic/frustum_grid.h"
 #include "renderer/grid_meshes.h"
 #include "renderer/kinetic_shadow_tracer.h"
@@ -102,15 +103,9 @@ class KineticBackend final : public Backend {
     };
     stats["certificates_live_max"] = s.certificates_live_max;
     stats["memory_bytes_peak"] = m_grid->memory_bytes_peak();
-    const double events = double(s.events.total());
-    const double triangles = double(std::max<uint64_t>(s.triangles_present, 1));
-    stats["quality"] = {
-        {"compactness", s.certificates_live_max},
-        {"responsiveness", events > 0 ? double(s.certificates_computed) / events : 0.0},
-        {"locality", double(s.certificates_live) / triangles},
-        {"efficiency", s.events_external > 0 ? double(s.events_internal) / double(s.events_external)
-                                             : double(s.events_internal)},
-    };
+    stats["quality"] = quality_json({s.certificates_live_max, s.certificates_live,
+                                     s.certificates_computed, s.events.total(),
+                                     s.events_internal, s.events_external, s.triangles_present});
     nlohmann::json& time = stats["time_s"];
     time["init"] = timings.init;
     time["events"] = timings.events;

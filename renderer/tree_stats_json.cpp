@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "renderer/quality_measures.h"
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/kinetic_bvh.h"
 
@@ -21,15 +22,9 @@ void write_kinetic_tree_stats(const KineticBvh& tree, nlohmann::json& out) {
                          {"computed", s.certificates_computed},
                          {"decided_at_keys", s.certificates_by_keys},
                          {"scheduled", s.scheduled_events}};
-  const double events = double(s.events.total());
-  const double triangles = double(std::max<uint64_t>(s.triangles_present, 1));
-  out["quality"] = {
-      {"compactness", s.certificates_live_max},
-      {"responsiveness", events > 0 ? double(s.certificates_computed) / events : 0.0},
-      {"locality", double(s.certificates_live) / triangles},
-      {"efficiency", s.events_external > 0 ? double(s.events_internal) / double(s.events_external)
-                                           : double(s.events_internal)},
-  };
+  out["quality"] = quality_json({s.certificates_live_max, s.certificates_live,
+                                   s.certificates_computed, s.events.total(),
+                                   s.events_internal, s.events_external, s.triangles_present});
   out["tree"] = {{"shape", tree.shape() == TreeShape::aabb ? "aabb" : "boxtree"},
                  {"nodes", s.nodes},
                  {"height", s.height},
