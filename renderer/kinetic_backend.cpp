@@ -91,7 +91,9 @@ class KineticBackend final : public Backend {
                           {"front_changes", s.front_changes},
                           {"pixels_split", s.pixels_split},
                           {"shading_nodes", s.shading_nodes},
-                          {"integrate_s", s.integrate_s}};
+                          {"events_s", s.events_s},
+                          {"integrate_s", s.integrate_s},
+                          {"readout_s", s.readout_s}};
     }
     const GridStats s = m_grid->stats();
     const GridTimings& timings = m_grid->timings();

@@ -40,17 +40,10 @@ void KineticShutter::roll_to(FrustumGrid& grid, double open) {
   }
 }
 
-void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
-                               double t1, double length, ColorAverage& average) const {
-  if (!(t1 > t0)) return;
+template <class Visit>
+void KineticShutter::for_each_node(uint32_t object, double t0, double t1, double length,
+                                   Visit&& visit) const {
   const double share = (t1 - t0) / length;
-  if (front == kNoGridHit) {
-    average.add(kBackground, share);
-    return;
-  }
-  const uint32_t m = grid.mesh_of_triangle(front);
-  const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
-  const ImageGeometry image{grid.width(), grid.height()};
   // The shading is smooth between the keys of the front's object, not across them (its vertices
   // and normals turn there): each piece between keys gets its own rule.
   const std::vector<double>& keys = m_scene.objects[object].key_times;
@@ -59,22 +52,75 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
     const double b = key != keys.end() && *key < t1 ? *key++ : t1;
     const double middle = (a + b) / 2, half = (b - a) / 2;
     for (size_t k = 0; k < m_rule.nodes.size(); ++k)
-      average.add(shade_hit(m_scene, image, i, j, object, prim, middle + half * m_rule.nodes[k]),
-                  share * (half / (t1 - t0)) * m_rule.weights[k]);
+      visit(middle + half * m_rule.nodes[k], share * (half / (t1 - t0)) * m_rule.weights[k]);
     a = b;
   }
 }
 
+void KineticShutter::place_window_nodes(const ShutterWindow& window) {
+  m_window_nodes.resize(m_scene.objects.size());
+  for (uint32_t object = 0; object < m_window_nodes.size(); ++object) {
+    std::vector<WindowNode>& nodes = m_window_nodes[object];
+    nodes.clear();
+    if (!(window.close > window.open)) continue;
+    for_each_node(object, window.open, window.close, window.length(), [&](double t, double w) {
+      nodes.push_back({shading_instant(m_scene, object, t), w});
+    });
+  }
+}
+
+void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
+                               double t1, double length, ColorAverage& average) const {
+  if (!(t1 > t0)) return;
+  if (front == kNoGridHit) {
+    average.add(kBackground, (t1 - t0) / length);
+    return;
+  }
+  const uint32_t m = grid.mesh_of_triangle(front);
+  const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
+  const ImageGeometry image{grid.width(), grid.height()};
+  for_each_node(object, t0, t1, length, [&](double t, double w) {
+    average.add(shade_hit(m_scene, image, i, j, object, prim, shading_instant(m_scene, object, t)),
+                w);
+  });
+}
+
+void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
+                                      ColorAverage& average) const {
+  if (front == kNoGridHit) {
+    average.add(kBackground, 1.0);
+    return;
+  }
+  const uint32_t m = grid.mesh_of_triangle(front);
+  const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
+  const ImageGeometry image{grid.width(), grid.height()};
+  for (const WindowNode& node : m_window_nodes[object])
+    average.add(shade_hit(m_scene, image, i, j, object, prim, node.instant), node.weight);
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point& since) {
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - since).count();
+  since = now;
+  return seconds;
+}
+
+}  // namespace
+
 void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Frame& frame) {
+  auto clock = std::chrono::steady_clock::now();
   roll_to(grid, window.open);
   grid.advance_to(std::max(window.close, grid.now()));
-  const auto started = std::chrono::steady_clock::now();
+  m_stats.events_s += seconds_since(clock);
   const GridScene& scene = grid.scene();
   const int w = scene.width(), h = scene.height();
   const size_t n = size_t(w) * size_t(h);
   if (frame.width != w || frame.height != h) frame.resize(w, h);
   frame.time = window.time;
   const double length = window.length();
+  place_window_nodes(window);
 
   // Each band's log touches only its own rows' pixels, so the logs are walked in parallel: each
   // change closes the pixel's current interval and opens the next.
@@ -102,8 +148,19 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
     const int j = int(row);
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
-      integrate(scene, current[p], i, j, since[p], window.close, length, average[p]);
+      if (since[p] == window.open && window.close > window.open)
+        integrate_window(scene, current[p], i, j, average[p]);
+      else
+        integrate(scene, current[p], i, j, since[p], window.close, length, average[p]);
       frame.color[p] = average[p].result();
+    }
+  });
+  m_stats.integrate_s += seconds_since(clock);
+  // The id and depth buffers: the front at the frame time, as the sharp frame has it.
+  parallel_for(size_t(h), m_threads, [&](size_t row) {
+    const int j = int(row);
+    for (int i = 0; i < w; ++i) {
+      const size_t p = size_t(j) * size_t(w) + size_t(i);
       const uint32_t front = at_time[p];
       if (front == kNoGridHit) {
         frame.object[p] = frame.prim[p] = kNoHit;
@@ -122,8 +179,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   m_stats.front_changes += changes.load();
   m_stats.pixels_split += split_count;
   m_stats.shading_nodes += (n + changes.load()) * m_rule.nodes.size();
-  m_stats.integrate_s +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  m_stats.readout_s += seconds_since(clock);
 }
 
 }  // namespace kinray

@@ -13,6 +13,7 @@
 
 #include "kinetic/frustum_grid.h"
 #include "renderer/frame.h"
+#include "renderer/shading.h"
 #include "renderer/shutter.h"
 #include "scenes/camera_space.h"
 
@@ -23,7 +24,9 @@ struct KineticShutterStats {
   uint64_t front_changes = 0;  ///< logged changes inside the windows
   uint64_t pixels_split = 0;   ///< pixels whose window has more than one interval, summed
   uint64_t shading_nodes = 0;  ///< shade_hit calls
-  double integrate_s = 0;      ///< seconds spent integrating (the events are the grid's)
+  double events_s = 0;         ///< seconds advancing the grid through the windows (and gaps)
+  double integrate_s = 0;      ///< seconds walking the logs and integrating the shading
+  double readout_s = 0;        ///< seconds reading the ids and depths at the frame times
 };
 
 class KineticShutter {
@@ -42,15 +45,30 @@ class KineticShutter {
  private:
   /// Brings the fronts to time `open`: applies and drops the logged changes up to it.
   void roll_to(FrustumGrid& grid, double open);
+  /// Calls visit(t, weight) for each quadrature node of `object` over [t0, t1], the weights
+  /// shares of a window of length `length`.
+  template <class Visit>
+  void for_each_node(uint32_t object, double t0, double t1, double length, Visit&& visit) const;
+  /// The nodes of each object over the whole window, shared by every pixel whose front stays.
+  void place_window_nodes(const ShutterWindow& window);
   /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`.
   void integrate(const GridScene& grid, uint32_t front, int i, int j, double t0, double t1,
                  double length, ColorAverage& average) const;
+  /// Adds the front's shading over the whole window (the nodes of place_window_nodes).
+  void integrate_window(const GridScene& grid, uint32_t front, int i, int j,
+                        ColorAverage& average) const;
 
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
   int m_threads;
   bool m_started = false;
   std::vector<uint32_t> m_open_front;  ///< per pixel, global triangle id at the last open time
+  /// A quadrature node over the whole window: the shading instant and its weight.
+  struct WindowNode {
+    ShadingInstant instant;
+    double weight = 0;
+  };
+  std::vector<std::vector<WindowNode>> m_window_nodes;  ///< per object, for the current window
   KineticShutterStats m_stats;
 };
 

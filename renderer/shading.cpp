@@ -7,16 +7,26 @@
 
 namespace kinray {
 
+ShadingInstant shading_instant(const CameraSpaceScene& scene, uint32_t object, double t) {
+  return {locate(scene.objects[object].key_times, t), scene.tan_half_fov(t)};
+}
+
 SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
                            uint32_t object, uint32_t prim, double t) {
+  return surface_point(scene, image, i, j, object, prim, shading_instant(scene, object, t));
+}
+
+SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+                           uint32_t object, uint32_t prim, const ShadingInstant& instant) {
+  const KeySegment& at = instant.segment;
   const CameraSpaceObject& cs = scene.objects[object];
   const Object& source = scene.scene->objects[object];
   const Triangle& tri = source.triangles[prim];
   SurfacePoint surface;
   const Vec3 d = surface.ray = image.direction(i, j);
-  const Vec3 p0 = surface.p0 = cs.position(tri[0], t);
-  const Vec3 p1 = surface.p1 = cs.position(tri[1], t);
-  const Vec3 p2 = surface.p2 = cs.position(tri[2], t);
+  const Vec3 p0 = surface.p0 = cs.position(tri[0], at);
+  const Vec3 p1 = surface.p1 = cs.position(tri[1], at);
+  const Vec3 p2 = surface.p2 = cs.position(tri[2], at);
   // Barycentrics of the ray's hit on the triangle's plane (Moller-Trumbore without the bounds
   // test: the backend has decided the hit; the fov folding is linear so they equal the true ones).
   const Vec3 e1 = p1 - p0, e2 = p2 - p0;
@@ -31,10 +41,10 @@ SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& i
   }
   const float w0 = float(1.0 - u - v), w1 = float(u), w2 = float(v);
   Eigen::Vector3f n =
-      w0 * cs.normal(tri[0], t) + w1 * cs.normal(tri[1], t) + w2 * cs.normal(tri[2], t);
+      w0 * cs.normal(tri[0], at) + w1 * cs.normal(tri[1], at) + w2 * cs.normal(tri[2], at);
   const float length = n.norm();
   surface.normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
-  surface.tan_half_fov = scene.tan_half_fov(t);
+  surface.tan_half_fov = instant.tan_half_fov;
   surface.view = unfold(d, surface.tan_half_fov).normalized().cast<float>();
 
   const Material& material = scene.scene->materials[source.material];
@@ -49,7 +59,12 @@ SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& i
 
 Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
                 uint32_t object, uint32_t prim, double t) {
-  const SurfacePoint surface = surface_point(scene, image, i, j, object, prim, t);
+  return shade_hit(scene, image, i, j, object, prim, shading_instant(scene, object, t));
+}
+
+Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+                uint32_t object, uint32_t prim, const ShadingInstant& instant) {
+  const SurfacePoint surface = surface_point(scene, image, i, j, object, prim, instant);
   const float lambert = std::abs(surface.normal.dot(surface.view));
   return surface.base * (kAmbient + kDiffuse * lambert);
 }

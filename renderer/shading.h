@@ -25,6 +25,23 @@ struct SurfacePoint {
   Color base = Color::Zero();                       ///< base colour times texture
 };
 
+/// What every pixel's shading on one object at one time shares: where the time falls on the
+/// object's keys and the camera's field of view. Motion blur shades many pixels at the same
+/// quadrature nodes and computes this once per node.
+struct ShadingInstant {
+  KeySegment segment;       ///< the time on the object's key_times
+  double tan_half_fov = 1;  ///< CameraSpaceScene::tan_half_fov at the time
+};
+
+/// The ShadingInstant of `object` at time t.
+[[nodiscard]] ShadingInstant shading_instant(const CameraSpaceScene& scene, uint32_t object,
+                                             double t);
+
+/// The SurfacePoint of pixel (i, j) hitting (object, prim) at `instant`.
+[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image,
+                                         int i, int j, uint32_t object, uint32_t prim,
+                                         const ShadingInstant& instant);
+
 /// The SurfacePoint of pixel (i, j) hitting (object, prim) at time t.
 [[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image,
                                          int i, int j, uint32_t object, uint32_t prim, double t);
@@ -33,6 +50,10 @@ struct SurfacePoint {
 /// interpolated at the exact hit of pixel (i, j) on (object, prim) at time t.
 [[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i,
                               int j, uint32_t object, uint32_t prim, double t);
+
+/// shade_hit at `instant` (the same colour as at its time, bit for bit).
+[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i,
+                              int j, uint32_t object, uint32_t prim, const ShadingInstant& instant);
 
 /// Fills frame.color from frame.object / frame.prim (all cores).
 void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads = 0);

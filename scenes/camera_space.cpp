@@ -17,7 +17,11 @@ KeySegment locate(std::span<const double> key_times, double t) {
 
 Vec3 CameraSpaceObject::position(uint32_t v, double t) const {
   if (key_times.size() < 2) return positions[v];
-  const KeySegment s = locate(key_times, t);
+  return position(v, locate(key_times, t));
+}
+
+Vec3 CameraSpaceObject::position(uint32_t v, const KeySegment& s) const {
+  if (key_times.size() < 2) return positions[v];
   const Vec3& a = positions[s.k * vertex_count + v];
   const Vec3& b = positions[(s.k + 1) * vertex_count + v];
   return a + s.alpha * (b - a);
@@ -25,7 +29,11 @@ Vec3 CameraSpaceObject::position(uint32_t v, double t) const {
 
 Eigen::Vector3f CameraSpaceObject::normal(uint32_t v, double t) const {
   if (key_times.size() < 2) return normals[v];
-  const KeySegment s = locate(key_times, t);
+  return normal(v, locate(key_times, t));
+}
+
+Eigen::Vector3f CameraSpaceObject::normal(uint32_t v, const KeySegment& s) const {
+  if (key_times.size() < 2) return normals[v];
   const Eigen::Vector3f& a = normals[s.k * vertex_count + v];
   const Eigen::Vector3f& b = normals[(s.k + 1) * vertex_count + v];
   return a + float(s.alpha) * (b - a);
@@ -111,11 +119,22 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene) {
     });
     cs.is_static = nk == 1;
   }
+  for (const CameraKey& key : scene.camera.keys) {
+    result.camera_key_times.push_back(key.time);
+    result.camera_fov_y.push_back(key.fov_y_degrees);
+  }
   return result;
 }
 
 double CameraSpaceScene::tan_half_fov(double t) const {
-  return std::tan(scene->camera.at(t).fov_y_degrees * M_PI / 360.0);
+  // Camera::at's interpolation of the fov, without building the whole key.
+  if (camera_fov_y.empty()) return std::tan(scene->camera.at(t).fov_y_degrees * M_PI / 360.0);
+  double fov_y = camera_fov_y.front();
+  if (camera_fov_y.size() >= 2) {
+    const KeySegment s = locate(camera_key_times, t);
+    fov_y = camera_fov_y[s.k] + s.alpha * (camera_fov_y[s.k + 1] - camera_fov_y[s.k]);
+  }
+  return std::tan(fov_y * M_PI / 360.0);
 }
 
 size_t CameraSpaceScene::triangle_count() const { return scene->triangle_count(); }

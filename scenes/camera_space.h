@@ -48,6 +48,9 @@ struct CameraSpaceObject {
   [[nodiscard]] bool visible(double t) const { return t >= appear && t < disappear; }
   [[nodiscard]] Vec3 position(uint32_t v, double t) const;
   [[nodiscard]] Eigen::Vector3f normal(uint32_t v, double t) const;
+  /// The same at a time already located on key_times (one search for many vertices).
+  [[nodiscard]] Vec3 position(uint32_t v, const KeySegment& s) const;
+  [[nodiscard]] Eigen::Vector3f normal(uint32_t v, const KeySegment& s) const;
   /// All positions at t, into `out` (resized).
   void positions_at(double t, std::vector<Vec3>& out) const;
 };
@@ -58,9 +61,13 @@ struct CameraSpaceScene {
   const Scene* scene = nullptr;
   std::vector<CameraSpaceObject> objects;  ///< one per Scene::objects entry, same order
 
+  std::vector<double> camera_key_times;  ///< the camera's key times, for tan_half_fov
+  std::vector<double> camera_fov_y;      ///< the camera's fov_y_degrees at its keys
+
   /// Builds camera-space flightplans from `scene`, which must outlive the result.
   static CameraSpaceScene build(const Scene& scene);
-  /// tan(fov_y / 2) of the camera at t: undoes the fov folding for shading.
+  /// tan(fov_y / 2) of the camera at t: undoes the fov folding for shading (the fov of
+  /// Camera::at(t), bit for bit, without its allocation and slerp: shading calls it per sample).
   [[nodiscard]] double tan_half_fov(double t) const;
   [[nodiscard]] size_t triangle_count() const;
   [[nodiscard]] const std::vector<Triangle>& triangles(size_t object) const {
