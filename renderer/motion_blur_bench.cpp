@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "renderer/bench_support.h"
 #include "renderer/chart.h"
 #include "renderer/image_diff.h"
 #include "scenes/error.h"
@@ -23,20 +24,22 @@ MotionBlurPoint measure(RenderJob& job, Backend& backend, const std::vector<Fram
   MotionBlurPoint point;
   point.samples = samples;
   Frame frame;
-  double squared = 0, later_ms = 0;
+  double squared = 0;
+  std::vector<double> later_ms;
   for (size_t index = 0; index < job.frame_times().size(); ++index) {
     const double start = now_ms();
     job.render_frame(backend, index, frame);
     const double ms = now_ms() - start;
     if (index == 0 && first_ms) *first_ms = ms;
-    if (index > 0 || job.frame_times().size() == 1) later_ms += ms;
+    if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
     const ColorError error = compare_colors(frame, reference[index]);
     squared += error.mse;
     point.max_error = std::max(point.max_error, error.max_error);
   }
-  const size_t frames = job.frame_times().size();
-  point.ms_per_frame = later_ms / double(frames > 1 ? frames - 1 : 1);
-  point.rmse = std::sqrt(squared / double(frames));
+  // The median, not the mean: the machine is shared, and one frame slowed by another process
+  // should not move the ratio.
+  point.ms_per_frame = median(later_ms);
+  point.rmse = std::sqrt(squared / double(job.frame_times().size()));
   return point;
 }
 
