@@ -18,9 +18,22 @@ double now_ms() {
       .count();
 }
 
+/// The backend's --stats "shutter" seconds (zeros when it has none).
+struct ShutterSeconds {
+  double events = 0, integrate = 0, readout = 0;
+};
+ShutterSeconds shutter_seconds(const Backend& backend) {
+  nlohmann::json stats = nlohmann::json::object();
+  backend.write_stats(stats);
+  if (!stats.contains("shutter")) return {};
+  const nlohmann::json& s = stats["shutter"];
+  return {s.value("events_s", 0.0), s.value("integrate_s", 0.0), s.value("readout_s", 0.0)};
+}
+
 /// Renders every frame of `job` with `backend`, timing each, and measures it against `reference`.
+/// `split`, when given, gets the backend's ShutterSeconds of the frames after the first.
 MotionBlurPoint measure(RenderJob& job, Backend& backend, const std::vector<Frame>& reference,
-                        int samples, double* first_ms) {
+                        int samples, double* first_ms, ShutterSeconds* split = nullptr) {
   MotionBlurPoint point;
   point.samples = samples;
   Frame frame;
@@ -31,6 +44,7 @@ MotionBlurPoint measure(RenderJob& job, Backend& backend, const std::vector<Fram
     job.render_frame(backend, index, frame);
     const double ms = now_ms() - start;
     if (index == 0 && first_ms) *first_ms = ms;
+    if (index == 0 && split) *split = shutter_seconds(backend);
     if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
     const ColorError error = compare_colors(frame, reference[index]);
     squared += error.mse;
@@ -39,6 +53,12 @@ MotionBlurPoint measure(RenderJob& job, Backend& backend, const std::vector<Fram
   // The median, not the mean: the machine is shared, and one frame slowed by another process
   // should not move the ratio.
   point.ms_per_frame = median(later_ms);
+  if (split && job.frame_times().size() > 1) {
+    const ShutterSeconds all = shutter_seconds(backend);
+    const double timed = double(job.frame_times().size() - 1);
+    *split = {(all.events - split->events) / timed, (all.integrate - split->integrate) / timed,
+              (all.readout - split->readout) / timed};
+  }
   point.rmse = std::sqrt(squared / double(job.frame_times().size()));
   return point;
 }
@@ -63,6 +83,9 @@ nlohmann::json MotionBlurResult::to_json() const {
             {"rmse", kinetic.rmse},
             {"max_error", kinetic.max_error},
             {"init_ms", kinetic_init_ms},
+            {"events_ms", kinetic_events_ms},
+            {"integrate_ms", kinetic_integrate_ms},
+            {"readout_ms", kinetic_readout_ms},
             {"order", order}}},
           {"embree", embree_points},
           {"meets_targets", meets_targets()}};
@@ -97,7 +120,7 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
   result.reference_samples = bench.reference_samples;
   result.frames = job.frame_times().size();
   result.triangles = job.scene().triangle_count();
-  char line[256];
+  char line[512];
 
   // The reference frames first, kept for every method.
   std::vector<Frame> reference(job.frame_times().size());
@@ -116,12 +139,18 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
   {
     std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
     double first_ms = 0;
-    result.kinetic = measure(job, *kinetic, reference, 0, &first_ms);
+    ShutterSeconds split;
+    result.kinetic = measure(job, *kinetic, reference, 0, &first_ms, &split);
+    result.kinetic_events_ms = split.events * 1000;
+    result.kinetic_integrate_ms = split.integrate * 1000;
+    result.kinetic_readout_ms = split.readout * 1000;
     result.kinetic_init_ms = std::max(0.0, first_ms - result.kinetic.ms_per_frame);
     result.order = params.shutter.order > 0 ? params.shutter.order : kDefaultShutterOrder;
     std::snprintf(line, sizeof line,
-                  "%s: kinetic: %.2f ms per frame (init %.0f ms), rmse %.3g, max %.3g",
+                  "%s: kinetic: %.2f ms per frame (init %.0f ms; mean events %.0f ms, integration "
+                  "%.0f ms, read-out %.0f ms), rmse %.3g, max %.3g",
                   params.scene.c_str(), result.kinetic.ms_per_frame, result.kinetic_init_ms,
+                  result.kinetic_events_ms, result.kinetic_integrate_ms, result.kinetic_readout_ms,
                   result.kinetic.rmse, result.kinetic.max_error);
     log(line);
   }

@@ -3,8 +3,9 @@
 // the kinetic backend's exact blur and Embree's stratified time sampling at several sample counts,
 // each timed per frame and measured against a reference frame (Embree with very many samples).
 // Error is the RMSE (and max) over every channel of every pixel, in linear RGB, pooled over the
-// frames; time per frame is the mean wall time of the frames after the first (the first holds the
-// kinetic grid's scan conversion and each backend's warm-up; the kinetic init is reported apart).
+// frames; time per frame is the median wall time of the frames after the first (the first holds
+// the kinetic grid's scan conversion and each backend's warm-up; the kinetic init is reported
+// apart).
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -30,6 +31,10 @@ struct MotionBlurResult {
   double shutter = 0, kinetic_init_ms = 0;
   size_t frames = 0, triangles = 0;
   MotionBlurPoint kinetic;
+  /// Where a kinetic frame's time goes, means over the frames after the first: the grid's
+  /// events (windows and the gaps between them), the log walks and quadrature, the id and depth
+  /// read-out (KineticShutterStats).
+  double kinetic_events_ms = 0, kinetic_integrate_ms = 0, kinetic_readout_ms = 0;
   std::vector<MotionBlurPoint> embree;
   /// {"kinetic": {"ms_per_frame", "rmse", ...}, "embree": [{"samples", "ms_per_frame", "rmse"}...]}
   [[nodiscard]] nlohmann::json to_json() const;

@@ -87,6 +87,14 @@ TEST_F(ShutterCli, BenchWritesTheMotionBlurJson) {
   const auto& scene = json["motion_blur"]["wavy-sphere:triangles=600"];
   EXPECT_GT(scene["kinetic"]["ms_per_frame"].get<double>(), 0);
   EXPECT_GE(scene["kinetic"]["rmse"].get<double>(), 0);
+  // The time split of the one timed frame lies inside its wall time.
+  const auto& kinetic = scene["kinetic"];
+  const double events = kinetic["events_ms"], integrate = kinetic["integrate_ms"],
+               readout = kinetic["readout_ms"];
+  EXPECT_GT(events, 0);
+  EXPECT_GT(integrate, 0);
+  EXPECT_GE(readout, 0);
+  EXPECT_LE(events + integrate + readout, kinetic["ms_per_frame"].get<double>());
   ASSERT_EQ(scene["embree"].size(), 2u);
   EXPECT_EQ(scene["embree"][1]["samples"], 16);
 }
