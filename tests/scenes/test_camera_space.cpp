@@ -106,6 +106,27 @@ TEST(CameraSpace, AnimatedCameraIsLinearInCameraSpaceBetweenKeys) {
   expect_near(all[0], object.position(0, 0.5));
 }
 
+TEST(CameraSpace, ShortcutsForShadingAgreeBitForBitWithTheFullEvaluation) {
+  // Motion blur shades at many times: tan_half_fov interpolates the fov without Camera::at, and
+  // a ShadingInstant locates a time once for all vertices. Both must give the same bits.
+  Camera camera;
+  camera.keys = {Camera::look_at(0, Vec3(0, 0, 5), Vec3::Zero(), Vec3::UnitY(), 60),
+                 Camera::look_at(0.7, Vec3(5, 0, 0), Vec3::Zero(), Vec3::UnitY(), 90),
+                 Camera::look_at(1.3, Vec3(0, 3, 4), Vec3::Zero(), Vec3::UnitY(), 35)};
+  const Scene scene = triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), camera);
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const CameraSpaceObject& object = cs.objects[0];
+  for (double t : {-1.0, 0.0, 0.1, 0.35, 0.7, 0.71, 1.0, 1.3, 2.0}) {
+    EXPECT_EQ(cs.tan_half_fov(t), std::tan(camera.at(t).fov_y_degrees * M_PI / 360.0)) << t;
+    const KeySegment at = locate(object.key_times, t);
+    for (uint32_t v = 0; v < 3; ++v) {
+      EXPECT_EQ(object.position(v, at), object.position(v, t)) << t;
+      EXPECT_EQ(object.normal(v, at), object.normal(v, t)) << t;
+    }
+  }
+  EXPECT_NE(cs.tan_half_fov(0.35), cs.tan_half_fov(1.0));  // the fov does move
+}
+
 TEST(CameraSpace, KeyGridIsTheUnionOfObjectAndCameraKeys) {
   Scene scene;
   Object moving;
