@@ -29,6 +29,7 @@
 
 #include "kinetic/check.h"
 #include "kinetic/event_queue.h"
+#include "kinetic/exact_certificate.h"
 #include "kinetic/polynomial.h"
 #include "kinetic/root_finding.h"
 
@@ -40,6 +41,15 @@ struct OrderCertificate {
   Polynomial f;
   double origin = 0;
   double end = std::numeric_limits<double>::infinity();
+  /// When set, the exact polynomial that f rounds, too close to call in double near its roots:
+  /// signs and failure times are then decided on it (kinetic/exact_certificate.h).
+  std::shared_ptr<const ExactPolynomial> exact;
+
+  /// The certificate of the swapped pair: -f (exactly, as the keys contract requires).
+  void negate() {
+    f = -f;
+    if (exact) exact = exact_negated(*exact);
+  }
 };
 
 template <class K>
@@ -101,6 +111,9 @@ concept KineticSort =
     };
 
 namespace detail {
+
+/// Sign of c's polynomial just after local time s (exact when c carries its exact polynomial).
+[[nodiscard]] int certificate_sign_after(const OrderCertificate& c, double s);
 
 /// Sign of "a before b" just after `now` for certificate c of (a, b): +1, -1, or by the id rule
 /// when f is the zero polynomial.
