@@ -256,10 +256,15 @@ Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
 }
 
 bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now, double s_end) {
-  const std::optional<double> low = first_failure(with_error(f, error, -1), s_now, s_end);
-  if (!low) return true;
-  const std::optional<double> high = first_failure(with_error(f, error, 1), s_now, s_end);
-  return high && *high == *low;
+  // Both ways: a structure that swaps the pair schedules -f, computed from the same call.
+  const Polynomial lower = with_error(f, error, -1), upper = with_error(f, error, 1);
+  auto decided = [&](const Polynomial& below, const Polynomial& above) {
+    const std::optional<double> low = first_failure(below, s_now, s_end);
+    if (!low) return true;
+    const std::optional<double> high = first_failure(above, s_now, s_end);
+    return high && *high == *low;
+  };
+  return decided(lower, upper) && decided(-upper, -lower);
 }
 
 }  // namespace kinray

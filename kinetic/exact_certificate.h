@@ -53,10 +53,11 @@ struct ExactPolynomial {
 [[nodiscard]] Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
                                                   const Polynomial& p2, const Polynomial& q2);
 
-/// Does the rounded certificate f decide its failure in (s_now, s_end] (s_now >= 0) whatever
-/// the exact polynomial within `error` (coefficient-wise) of it? True when f - error holds
-/// throughout, or f - error and f + error fail at the same double: the exact polynomial, lying
-/// between them for s >= 0, then fails there too.
+/// Does the rounded certificate f decide its failure in (s_now, s_end] (s_now >= 0), and that of
+/// -f, whatever the exact polynomial within `error` (coefficient-wise) of it? One way, true when
+/// f - error holds throughout, or f - error and f + error fail at the same double: the exact
+/// polynomial, lying between them for s >= 0, then fails there too. Both ways, since a swap
+/// schedules the negation without recomputing it.
 [[nodiscard]] bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
                                    double s_end);
 

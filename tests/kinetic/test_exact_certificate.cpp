@@ -152,8 +152,14 @@ TEST(ExactCertificate, FailuresMatchExactIsolationOnNearlyCancellingProducts) {
       const RationalPolynomial ref = reference(p1, q1, p2, q2, sign);
       if (ref.is_zero()) continue;
       const Polynomial rounded = sign * (p1 * q1 - p2 * q2);
-      undecided +=
-          !decided_despite(rounded, product_difference_error(p1, q1, p2, q2), s_now, s_end);
+      const bool decided =
+          decided_despite(rounded, product_difference_error(p1, q1, p2, q2), s_now, s_end);
+      undecided += !decided;
+      if (decided) {  // then the double answers are the exact ones, for f and for -f
+        EXPECT_EQ(first_failure(rounded, s_now, s_end), reference_failure(ref, s_now, s_end));
+        EXPECT_EQ(first_failure(-rounded, s_now, s_end),
+                  reference_failure(RationalPolynomial{} - ref, s_now, s_end));
+      }
       const std::optional<double> r = exact_first_failure(*exact, s_now, s_end);
       ASSERT_EQ(r, reference_failure(ref, s_now, s_end)) << i << " sign " << sign;
       failures += r.has_value();
