@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kinetic/collision/rational_polynomial.h"
+#include "kinetic/double_steps.h"
 #include "kinetic/root_finding.h"
 
 namespace kinray {
@@ -201,39 +202,40 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   const Polynomial rising = with_error(F.close.derivative(), F.close_error.derivative(), -2);
   const Polynomial falling = -with_error(F.close.derivative(), F.close_error.derivative(), 2);
   double from = s_now;
+  auto negative = [&](double t) { return exact_sign_after(F, t) < 0; };
   for (int round = 0; round < 8; ++round) {
     // F > 0 at every double of (from, low); F < 0 just after `high`.
     const std::optional<double> low = first_failure(lower, from, s_end);
     if (!low) return std::nullopt;
     const std::optional<double> high = first_failure(upper, from, s_end);
     if (high && *high == *low) return low;
-    // Where the lower envelope holds again after low (F > 0 there).
-    const std::optional<double> back = first_failure(-lower, *low, s_end);
-    const double hi = std::min(high ? *high : kInf, back ? *back : s_end);
+    // Without `high`: up to where the lower envelope holds again (F > 0 there).
+    const std::optional<double> back = high ? high : first_failure(-lower, *low, s_end);
+    const double hi = back ? *back : s_end;
     if (!std::isfinite(hi) || hi < *low) break;
-    const bool increasing = sign_after(rising, *low) > 0 && !first_failure(rising, *low, hi);
-    if (increasing) {  // F > 0 at low's predecessor (or just after from) and rising
-      if (!back || hi != *back) break;
-      from = hi;
-      continue;
+    if (sign_after(falling, *low) > 0 && !first_failure(falling, *low, hi)) {
+      // F decreasing on [low, hi]: one crossing at most, pinned down by the exact sign from
+      // the close polynomial's own failure.
+      ++t_stats.bisections;
+      if (negative(*low)) return low;
+      if (!negative(hi)) {
+        if (high) break;
+        if (!back) return std::nullopt;  // F > 0 up to s_end
+        from = hi;
+        continue;
+      }
+      const double guess = std::clamp(first_failure(F.close, *low, hi).value_or(hi),
+                                      std::nextafter(*low, kInf), hi);
+      const double step = std::max(std::abs(guess), 1e-300) * 0x1p-52;
+      const std::optional<double> r = detail::first_negative_near(
+          negative, guess, *low, hi, step, std::numeric_limits<int>::max());
+      if (r) return r;
+      break;
     }
-    const bool decreasing = sign_after(falling, *low) > 0 && !first_failure(falling, *low, hi);
-    if (!decreasing) break;
-    // One crossing at most on [low, hi]: bisection on the exact sign.
-    ++t_stats.bisections;
-    if (exact_sign_after(F, *low) < 0) return low;
-    if (exact_sign_after(F, hi) > 0) {
-      if (!back || hi != *back) break;
-      from = hi;
-      continue;
-    }
-    double good = *low, bad = hi;
-    while (std::nextafter(good, kInf) < bad) {
-      double m = good + 0.5 * (bad - good);
-      if (!(m > good && m < bad)) m = std::nextafter(good, kInf);
-      (exact_sign_after(F, m) < 0 ? bad : good) = m;
-    }
-    return bad;
+    // F increasing on [low, hi]: positive there (it is just before low, or after from).
+    if (high || !(sign_after(rising, *low) > 0 && !first_failure(rising, *low, hi))) break;
+    if (!back) return std::nullopt;  // F > 0 up to s_end
+    from = hi;
   }
   return isolated_failure(F, s_now, s_end);
 }
