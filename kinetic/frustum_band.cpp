@@ -313,7 +313,7 @@ void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
   ++m_pixel_entries;
   ++m_stats.coverage_changes;
   if (refresh_front(column, row)) m_front_changed = true;
-  if (m_config.audit) p.order.audit(m_now);
+  if (m_config.audit) audit_pixel(column, row, m_now);
 }
 
 template <class Sort>
@@ -325,7 +325,7 @@ void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
   --m_pixel_entries;
   ++m_stats.coverage_changes;
   if (refresh_front(column, row)) m_front_changed = true;
-  if (m_config.audit) p.order.audit(m_now);
+  if (m_config.audit) audit_pixel(column, row, m_now);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1147,11 +1147,24 @@ void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   }
   ++m_stats.events.swap;
   ++(front_changed ? m_stats.events_external : m_stats.events_internal);
-  if (m_config.audit) p.order.audit(m_now);
+  if (m_config.audit) audit_pixel(column, row, m_now);
 }
 
 // ---------------------------------------------------------------------------------------------
 // Audit and statistics.
+
+template <class Sort>
+void FrustumBand<Sort>::audit_pixel(int column, int row, double t) const {
+  try {
+    cell(column, row).order.audit(t);
+  } catch (const KineticAuditFailure& e) {
+    std::ostringstream out;
+    out.precision(17);
+    out << "kinetic audit: band rows [" << m_row_begin << ", " << m_row_end << ") pixel ("
+        << column << ", " << row << ") at t = " << t << ": " << e.what();
+    throw KineticAuditFailure(out.str());
+  }
+}
 
 template <class Sort>
 std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const {
@@ -1306,7 +1319,7 @@ std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const 
       if (p.order.size() != expected[size_t(j - m_row_begin) * size_t(m_width) + size_t(i)])
         report("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                ") holds triangles that do not cover it");
-      p.order.audit(t);
+      audit_pixel(i, j, t);
       if (m_fronts[pixel_index(i, j)] != p.order.front().value_or(kNoFront))
         report("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                ") has a stale front in the band's front array");

@@ -252,6 +252,8 @@ class FrustumBand {
     return changed;
   }
   void pixel_insert(uint32_t tri, int column, int row);
+  /// The pixel order's audit; a failure is rethrown with the band, the pixel and the time.
+  void audit_pixel(int column, int row, double t) const;
   void pixel_erase(uint32_t tri, int column, int row);
 
   // Meshes.

@@ -107,7 +107,7 @@ class KineticHeap {
       const uint32_t pa = m_nodes[p].id, ch = m_nodes[i].id;
       set_id(p, ch);
       set_id(i, pa);
-      c.f = -c.f;
+      c.negate();
       m_core.schedule(m_nodes[i].event, c, b, a, now, m_nodes.size(), i);
       if (p > 0) schedule_edge(p, now);
       const uint32_t sibling = (i % 2 == 1) ? i + 1 : i - 1;

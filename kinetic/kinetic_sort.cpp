@@ -37,7 +37,9 @@ namespace detail {
 
 namespace {
 
-bool broken_at(const OrderCertificate& c, double t) { return sign_after(c.f, t - c.origin) < 0; }
+bool broken_at(const OrderCertificate& c, double t) {
+  return certificate_sign_after(c, t - c.origin) < 0;
+}
 
 // The smallest-found absolute time t >= from with sign_after(f, t - origin) < 0, searching up to
 // `limit`; +inf when none. The root r (local) is known to have sign_after(f, r) < 0, but
@@ -68,8 +70,12 @@ double nudge(const OrderCertificate& c, double from, double limit) {
 }
 }  // namespace
 
+int certificate_sign_after(const OrderCertificate& c, double s) {
+  return c.exact ? exact_sign_after(*c.exact, s) : sign_after(c.f, s);
+}
+
 int order_sign(const OrderCertificate& c, double now, uint32_t a, uint32_t b) {
-  const int s = sign_after(c.f, now - c.origin);
+  const int s = certificate_sign_after(c, now - c.origin);
   if (s != 0) return s;
   return a < b ? 1 : (a > b ? -1 : 1);
 }
@@ -77,7 +83,7 @@ int order_sign(const OrderCertificate& c, double now, uint32_t a, uint32_t b) {
 Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a, uint32_t b) {
   Schedule s;
   const double s_now = now - c.origin;
-  if (c.f.is_zero()) {
+  if (c.f.is_zero() && (!c.exact || exact_sign_after(*c.exact, s_now) == 0)) {
     if (a > b) {
       s.time = now;
       s.failure = true;
@@ -86,7 +92,8 @@ Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
     }
     return s;
   }
-  const auto r = first_failure(c.f, s_now, c.end - c.origin);
+  const auto r = c.exact ? exact_first_failure(*c.exact, s_now, c.end - c.origin)
+                         : first_failure(c.f, s_now, c.end - c.origin);
   if (!r) {
     // Renewal at the end of validity. A certificate that ends at (or before) now is stale: the
     // keys have not switched to the next motion yet, and renewing at now would loop; the owner

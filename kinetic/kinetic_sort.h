@@ -25,10 +25,13 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "kinetic/audit_failure.h"
 #include "kinetic/check.h"
 #include "kinetic/event_queue.h"
+#include "kinetic/exact_certificate.h"
 #include "kinetic/polynomial.h"
 #include "kinetic/root_finding.h"
 
@@ -40,6 +43,15 @@ struct OrderCertificate {
   Polynomial f;
   double origin = 0;
   double end = std::numeric_limits<double>::infinity();
+  /// When set, the exact polynomial that f rounds, too close to call in double near its roots:
+  /// signs and failure times are then decided on it (kinetic/exact_certificate.h).
+  std::shared_ptr<const ExactPolynomial> exact;
+
+  /// The certificate of the swapped pair: -f (exactly, as the keys contract requires).
+  void negate() {
+    f = -f;
+    if (exact) exact = exact_negated(*exact);
+  }
 };
 
 template <class K>
@@ -101,6 +113,9 @@ concept KineticSort =
     };
 
 namespace detail {
+
+/// Sign of c's polynomial just after local time s (exact when c carries its exact polynomial).
+[[nodiscard]] int certificate_sign_after(const OrderCertificate& c, double s);
 
 /// Sign of "a before b" just after `now` for certificate c of (a, b): +1, -1, or by the id rule
 /// when f is the zero polynomial.
@@ -270,7 +285,8 @@ class SortCore {
     }
   }
 
-  /// Audit of one certificate of (a, b) whose event is `handle`, at time t (KINRAY_CHECK).
+  /// Audit of one certificate of (a, b) whose event is `handle`, at time t; throws
+  /// KineticAuditFailure with the pair, the key values and the certificate.
   void audit_pair(uint32_t a, uint32_t b, EventHandle handle, double t) const {
     const OrderCertificate c = m_keys->order_certificate(a, b, t);
     const bool pending = handle != kNoEvent;
@@ -293,13 +309,20 @@ class SortCore {
         problem = "certificate failure scheduled too late";
     }
     if (problem) {
-      std::fprintf(stderr,
-                   "kinetic sort audit (owner %u) at t = %.17g: pair (%u, %u): %s; scheduled %.17g, "
-                   "recomputed %.17g, origin %.17g, end %.17g, f degree %d:",
-                   m_owner, t, a, b, problem, at, s.time, c.origin, c.end, c.f.degree);
-      for (int k = 0; k <= c.f.degree; ++k) std::fprintf(stderr, " %.17g", c.f.c[k]);
-      std::fprintf(stderr, "\n");
-      KINRAY_CHECK_MSG(false, problem);
+      char text[512];
+      int n = std::snprintf(text, sizeof text,
+                            "kinetic sort audit (owner %u) at t = %.17g: pair (%u, %u): %s; key "
+                            "values %.17g, %.17g; scheduled %.17g, recomputed %.17g, origin %.17g, "
+                            "end %.17g, f degree %d:",
+                            m_owner, t, a, b, problem, m_keys->value(a, t), m_keys->value(b, t), at,
+                            s.time, c.origin, c.end, c.f.degree);
+      std::string message(text, size_t(std::clamp(n, 0, int(sizeof text) - 1)));
+      for (int k = 0; k <= c.f.degree; ++k) {
+        n = std::snprintf(text, sizeof text, " %.17g", c.f.c[size_t(k)]);
+        message.append(text, size_t(std::clamp(n, 0, int(sizeof text) - 1)));
+      }
+      if (c.exact) message += " (decided exactly)";
+      throw KineticAuditFailure(message);
     }
   }
 

@@ -107,7 +107,7 @@ class KineticSortedList {
       m_core.schedule(m_entries[i].event, c, a, b, now, m_entries.size(), i);
     } else {
       std::swap(m_entries[i].id, m_entries[i + 1].id);
-      c.f = -c.f;
+      c.negate();
       m_core.schedule(m_entries[i].event, c, b, a, now, m_entries.size(), i);
       if (i > 0) schedule(i - 1, now);
       if (i + 2 < m_entries.size()) schedule(i + 1, now);

@@ -189,7 +189,7 @@ class KineticTournament {
         m_core.schedule(node.event, c, l, r, now, m_size, k);
       } else {
         node.winner = r;
-        c.f = -c.f;
+        c.negate();
         m_core.schedule(node.event, c, r, l, now, m_size, k);
       }
     }

@@ -113,6 +113,14 @@ class PixelDepthKeys {
     const int sigma = sign_after(da, s) * sign_after(db, s);
     if (sigma == 0) return c;  // D vanishes only for a triangle that covers nothing: by id
     c.f = sigma < 0 ? -f : f;
+    // Near a cluster of roots (both triangles nearly edge-on with the ray nearly in both planes)
+    // the two products cancel below their rounding: decide on the exact difference there.
+    if (n == 0) {
+      const Polynomial& na = pa.numerator;
+      const Polynomial& nb = pb.numerator;
+      if (!decided_despite(c.f, product_difference_error(nb, da, na, db), s, c.end - c.origin))
+        c.exact = exact_product_difference(nb, da, na, db, sigma);
+    }
     return c;
   }
 

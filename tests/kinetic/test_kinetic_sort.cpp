@@ -457,5 +457,29 @@ TEST(KineticSortLinear, SortedListWithLinearMotionKeys) {
   EXPECT_GT(list.stats().events(), 1000u);
 }
 
+// A broken order is reported as an exception naming the pair, the key values and the
+// certificate (the grid adds the band, pixel and time), not an abort.
+TEST(KineticSortAudit, FailureIsAnExceptionWithThePairAndTheKeyValues) {
+  PolynomialKeys keys;
+  const uint32_t a = keys.add(Polynomial{0.0, 1.0});  // key t
+  const uint32_t b = keys.add(Polynomial{1.0});       // key 1: a before b until t = 1
+  Simulator sim;
+  KineticSortedList<PolynomialKeys> list(keys, sim.queue(), kOwner,
+                                         KineticSortConfig{kKind, false});
+  list.insert(a, 0);
+  list.insert(b, 0);
+  EXPECT_NO_THROW(list.audit(0.5));
+  keys.set_motion(b, Polynomial{-1.0}, 0);  // moved without replace_motion: the order is stale
+  try {
+    list.audit(0.5);
+    FAIL() << "the audit accepted a broken order";
+  } catch (const KineticAuditFailure& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("pair (0, 1)"), std::string::npos) << what;
+    EXPECT_NE(what.find("certificate broken"), std::string::npos) << what;
+    EXPECT_NE(what.find("key values 0.5, -1"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace kinray

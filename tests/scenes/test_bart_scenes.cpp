@@ -1,6 +1,6 @@
 // BART's kitchen and robots (../shared/data/bart) load whole: triangles (the sum of the
 // `triangles N` counts over every included file), bounds, the camera's keys, the animation range
-// and BART's resolution; and the kinetic backend (audit on for the kitchen) agrees with Embree on a
+// and BART's resolution; and the kinetic backend (audit on) agrees with Embree on a
 // few frames (0 real mismatches). Sampled at 1 key per second to keep memory and time small.
 #include <gtest/gtest.h>
 
@@ -77,9 +77,9 @@ TEST(BartScenes, Robots) {
   check_scene(
       {"robots/Robot.aff", 71708, 50,
        Eigen::AlignedBox3d(Vec3(-164.148, -0.651981, -435.355), Vec3(164.148, 535.355, 250.097))},
-      // The audit aborts here (kinetic_sort.h, a degree-5 certificate at t = 1.4997): a
-      // known kinetic-core issue, reported; the frames are still checked against Embree.
-      false);
+      // Audited: at t = 1.4997 two nearly edge-on triangles sharing an edge have a depth
+      // certificate whose products cancel below their rounding (kinetic/exact_certificate.h).
+      true);
 }
 
 }  // namespace
