@@ -3,6 +3,7 @@
 // bad value.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -232,6 +233,29 @@ TEST_F(CameraFlags, InfoListsTheAnimationsAndWhereTheCameraComesFrom) {
   EXPECT_EQ(info["camera_source"]["kind"], "command line");
   EXPECT_EQ(info["camera_keys"][0]["position"], nlohmann::json({0, 0, 9}));
   EXPECT_EQ(info["camera_keys"][0]["fov_y_degrees"], 30);
+  // --fov alone changes the field of view of whichever camera is used; automatic framing is
+  // placed again for it, farther away for a narrower view.
+  run = kinray("info flythrough:triangles=2000 --fov 20 --json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  info = nlohmann::json::parse(run.out);
+  EXPECT_EQ(info["camera_source"]["kind"], "scene");
+  ASSERT_GT(info["camera_keys"].size(), 1u);
+  for (const auto& key : info["camera_keys"]) EXPECT_EQ(key["fov_y_degrees"], 20);
+  const auto eye_distance = [&](const std::string& flags) {
+    const test::CommandRun framed = kinray("info " + wuson + " --json " + flags);
+    EXPECT_EQ(framed.status, 0) << framed.err;
+    const nlohmann::json keys = nlohmann::json::parse(framed.out)["camera_keys"];
+    EXPECT_EQ(keys.size(), 1u);
+    const nlohmann::json p = keys[0]["position"];
+    return std::make_pair(keys[0]["fov_y_degrees"].get<double>(),
+                          std::hypot(p[0].get<double>(), p[1].get<double>(), p[2].get<double>()));
+  };
+  const auto [wide_fov, wide] = eye_distance("");
+  const auto [narrow_fov, narrow] = eye_distance("--fov 22.5");
+  EXPECT_EQ(wide_fov, 45);
+  EXPECT_EQ(narrow_fov, 22.5);
+  EXPECT_GT(narrow, 1.8 * wide);  // sin(22.5 / 2) against sin(45 / 2): about twice as far
+
   run = kinray("info wavy-sphere:triangles=600 --camera auto");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("camera      automatic framing, still (--camera auto)"), std::string::npos)
