@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <tuple>
 
 #include "renderer/vector_flag.h"
 #include "scenes/automatic_camera.h"
@@ -83,7 +84,8 @@ ModelCamera model_camera_choice(const CameraParams& params) {
   return ModelCamera::own_if_usable;
 }
 
-void apply_camera_params(const CameraParams& params, Scene& scene) {
+void apply_camera_params(const CameraParams& params, Scene& scene,
+                         std::optional<std::pair<double, double>> shot) {
   const CameraChoice choice = parse_camera_params(params);
   if (choice.mode == CameraChoice::Mode::view) {
     scene.camera.keys = {Camera::look_at(scene.time_begin, choice.eye, choice.target, Vec3::UnitY(),
@@ -92,11 +94,13 @@ void apply_camera_params(const CameraParams& params, Scene& scene) {
     return;
   }
   const bool framed = scene.camera_source.kind == CameraSource::Kind::automatic;
-  if (choice.mode == CameraChoice::Mode::automatic || (framed && choice.fov_y_degrees)) {
-    if (framed && !choice.fov_y_degrees) return;  // the model import framed it already
-    // Automatic framing places the camera for its field of view: --fov frames again.
+  if (choice.mode == CameraChoice::Mode::automatic || framed) {
+    // Automatic framing is placed for its field of view and for what the frames show: a model
+    // import framed the whole shot at 45 degrees, so --fov and --time frame it again.
+    if (framed && !choice.fov_y_degrees && !shot) return;
     FramingConfig config;
     if (choice.fov_y_degrees) config.fov_y_degrees = *choice.fov_y_degrees;
+    if (shot) std::tie(config.begin, config.end) = *shot;
     frame_automatically(scene, framed ? scene.camera_source.reason : "--camera auto", config);
     return;
   }

@@ -5,6 +5,7 @@
 // field of view of whichever camera is used.
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "scenes/model_import.h"
 #include "scenes/scene.h"
@@ -41,7 +42,9 @@ inline constexpr double kExplicitFovDegrees = 45;
 [[nodiscard]] ModelCamera model_camera_choice(const CameraParams& params);
 
 /// Gives the loaded `scene` the camera the flags ask for (models already have theirs from
-/// model_camera_choice) and records where it came from in scene.camera_source.
-void apply_camera_params(const CameraParams& params, Scene& scene);
+/// model_camera_choice) and records where it came from in scene.camera_source. An automatic
+/// camera frames what is shown in `shot` (--time A:B) when given, else in the whole shot.
+void apply_camera_params(const CameraParams& params, Scene& scene,
+                         std::optional<std::pair<double, double>> shot = std::nullopt);
 
 }  // namespace kinray

@@ -161,7 +161,7 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   validate(m_params);
   check_render_memory(m_params, nullptr);  // a built-in that cannot fit is not built
   m_scene = load_scene(m_params.scene, model_options(m_params));
-  apply_camera_params(m_params.camera, m_scene);
+  apply_camera_params(m_params.camera, m_scene, m_params.time);
   m_scene.validate(m_params.scene);
   if (!m_params.lights.empty()) {
     m_scene.lights.clear();

@@ -23,13 +23,15 @@ CameraKey look_from_framing_direction(const FramingConfig& config, const Vec3& c
                          config.fov_y_degrees);
 }
 
-/// Key times of the moving objects inside the shot, and the shot's ends.
-std::vector<double> object_key_times(const Scene& scene) {
-  std::vector<double> times = {scene.time_begin, scene.time_end};
+/// Key times of the moving objects inside [begin, end] clipped to the shot, and its ends.
+std::vector<double> object_key_times(const Scene& scene, double begin, double end) {
+  double first = std::max(scene.time_begin, begin), last = std::min(scene.time_end, end);
+  if (!(first <= last)) first = scene.time_begin, last = scene.time_end;
+  std::vector<double> times = {first, last};
   for (const Object& object : scene.objects)
     if (object.key_count() > 1 && !object.is_static())
       for (double t : object.key_times)
-        if (t > scene.time_begin && t < scene.time_end) times.push_back(t);
+        if (t > first && t < last) times.push_back(t);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   return times;
@@ -63,8 +65,8 @@ std::vector<Vec3> smoothed_path(std::span<const double> times, std::span<const V
 
 }  // namespace
 
-std::vector<FramedKey> framed_keys(const Scene& scene) {
-  const std::vector<double> times = object_key_times(scene);
+std::vector<FramedKey> framed_keys(const Scene& scene, double begin, double end) {
+  const std::vector<double> times = object_key_times(scene, begin, end);
   std::vector<FramedKey> keys(times.size());
   parallel_for(times.size(), 0, [&](size_t k) {
     const double before = times[k == 0 ? 0 : k - 1],
@@ -87,7 +89,7 @@ std::vector<FramedKey> framed_keys(const Scene& scene) {
 }
 
 Camera automatic_camera(const Scene& scene, const FramingConfig& config) {
-  const std::vector<FramedKey> keys = framed_keys(scene);
+  const std::vector<FramedKey> keys = framed_keys(scene, config.begin, config.end);
   Eigen::AlignedBox3d shown;
   bool every_key_shows_something = true;
   for (const FramedKey& key : keys) {
@@ -97,7 +99,7 @@ Camera automatic_camera(const Scene& scene, const FramingConfig& config) {
   const Vec3 shown_centre = shown.isEmpty() ? Vec3(Vec3::Zero()) : Vec3(shown.center());
   const double still_radius = shown.isEmpty() ? 0.0 : 0.5 * shown.diagonal().norm();
   Camera still;
-  still.keys = {look_from_framing_direction(config, shown_centre, still_radius, scene.time_begin)};
+  still.keys = {look_from_framing_direction(config, shown_centre, still_radius, keys.front().time)};
   if (keys.size() < 2 || !every_key_shows_something) return still;
 
   std::vector<double> times(keys.size());

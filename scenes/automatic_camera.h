@@ -26,6 +26,8 @@ struct FramingConfig {
   double smoothing_seconds =
       1.0;  ///< the followed path is the subject's centre averaged over this window
   double follow_gain = 1.5;  ///< follow only when the subject then looks this much larger
+  /// Frame only what is shown in [begin, end] (`--time A:B`); by default the whole shot.
+  double begin = -kInfinity, end = kInfinity;
 };
 
 /// The subject at one key time: bounds of the objects visible around it (on the key intervals on
@@ -36,8 +38,10 @@ struct FramedKey {
 };
 
 /// The bounds of what is visible around each key of the scene's object key grid (the key times of
-/// its moving objects inside the shot, and the shot's ends; the camera's keys do not count).
-[[nodiscard]] std::vector<FramedKey> framed_keys(const Scene& scene);
+/// its moving objects inside the shot, and the shot's ends; the camera's keys do not count),
+/// restricted to [begin, end] (and those two times) when that lies in the shot.
+[[nodiscard]] std::vector<FramedKey> framed_keys(const Scene& scene, double begin = -kInfinity,
+                                                 double end = kInfinity);
 
 /// The camera that frames `scene` automatically: still, framing the bounds of everything shown
 /// over the shot when that is nearly as tight as following (`follow_gain`); otherwise keyed at
