@@ -1,9 +1,6 @@
 #include "renderer/light_flag.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-
+#include "renderer/vector_flag.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -12,24 +9,6 @@ namespace {
 [[noreturn]] void fail(const std::string& text, const std::string& problem) {
   throw InputError("--light", problem + " in '" + text +
                                   "' (expected point:X,Y,Z[:R,G,B] or dir:X,Y,Z[:R,G,B])");
-}
-
-/// Three finite numbers separated by commas.
-bool parse_triple(const std::string& field, Vec3& out) {
-  size_t start = 0;
-  for (int c = 0; c < 3; ++c) {
-    const size_t comma = c < 2 ? field.find(',', start) : field.size();
-    if (comma == std::string::npos) return false;
-    const std::string item = field.substr(start, comma - start);
-    if (item.empty() || std::isspace(static_cast<unsigned char>(item.front()))) return false;
-    char* end = nullptr;
-    errno = 0;
-    const double x = std::strtod(item.c_str(), &end);
-    if (errno != 0 || end != item.c_str() + item.size() || !std::isfinite(x)) return false;
-    out[c] = x;
-    start = comma + 1;
-  }
-  return true;
 }
 
 }  // namespace
@@ -48,21 +27,21 @@ Light parse_light_flag(const std::string& text) {
   const size_t second = text.find(':', first + 1);
   const std::string where =
       text.substr(first + 1, second == std::string::npos ? std::string::npos : second - first - 1);
-  Vec3 xyz;
-  if (!parse_triple(where, xyz))
+  const std::optional<Vec3> xyz = parse_vector3(where);
+  if (!xyz)
     fail(text, std::string(light.kind == Light::Kind::point ? "the position" : "the direction") +
                    " must be three finite numbers X,Y,Z");
   if (light.kind == Light::Kind::point) {
-    light.position = xyz;
+    light.position = *xyz;
   } else {
-    if (!(xyz.norm() > 0)) fail(text, "the direction must not be zero");
-    light.direction = xyz.normalized();
+    if (!(xyz->norm() > 0)) fail(text, "the direction must not be zero");
+    light.direction = xyz->normalized();
   }
   if (second != std::string::npos) {
-    Vec3 rgb;
-    if (!parse_triple(text.substr(second + 1), rgb) || (rgb.array() < 0).any())
+    const std::optional<Vec3> rgb = parse_vector3(text.substr(second + 1));
+    if (!rgb || (rgb->array() < 0).any())
       fail(text, "the colour must be three finite numbers R,G,B >= 0");
-    light.color = rgb.cast<float>();
+    light.color = rgb->cast<float>();
   }
   return light;
 }

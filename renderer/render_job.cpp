@@ -107,6 +107,7 @@ void validate(const RenderParams& params) {
   if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
   if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
   validate(params.shutter);
+  (void)parse_camera_params(params.camera);
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -136,6 +137,7 @@ ModelOptions model_options(const RenderParams& params) {
   ModelOptions options;
   options.animation = params.animation;
   options.keyrate = params.keyrate;
+  options.camera = model_camera_choice(params.camera);
   return options;
 }
 
@@ -159,6 +161,7 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   validate(m_params);
   check_render_memory(m_params, nullptr);  // a built-in that cannot fit is not built
   m_scene = load_scene(m_params.scene, model_options(m_params));
+  apply_camera_params(m_params.camera, m_scene, m_params.time);
   m_scene.validate(m_params.scene);
   if (!m_params.lights.empty()) {
     m_scene.lights.clear();

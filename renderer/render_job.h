@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/backend.h"
+#include "renderer/camera_flags.h"
 #include "renderer/frame.h"
 #include "renderer/frame_schedule.h"
 #include "renderer/frame_slice.h"
@@ -49,6 +50,7 @@ struct RenderParams {
   std::string chunk;        ///< --chunk I/N: render only the I-th of N slices of the schedule
   std::string frame_range;  ///< --frame-range A:B: render only frames A..B of the schedule
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
+  CameraParams camera;    ///< --camera, --eye, --target, --fov
 };
 
 inline constexpr int kMaxImageSide = 16384;

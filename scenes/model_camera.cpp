@@ -9,9 +9,10 @@
 
 namespace kinray {
 
-std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
-                                   std::span<const double> key_seconds,
-                                   std::span<const double> key_ticks, const std::string& where) {
+std::optional<NamedCamera> model_camera(const aiScene& scene, const NodeGraph& graph,
+                                        std::span<const double> key_seconds,
+                                        std::span<const double> key_ticks,
+                                        const std::string& where) {
   for (unsigned c = 0; c < scene.mNumCameras && scene.mCameras != nullptr; ++c) {
     const aiCamera* camera = scene.mCameras[c];
     if (camera == nullptr) continue;
@@ -40,8 +41,8 @@ std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
     const double fov_y =
         std::clamp(2 * std::atan(std::tan(horizontal / 2) / aspect) * 180 / M_PI, 1.0, 179.0);
 
-    Camera result;
-    result.keys.clear();
+    NamedCamera result{name, {}};
+    result.camera.keys.clear();
     const size_t count = graph.moves(node) ? key_seconds.size() : 1;
     std::vector<Mat4> globals;
     for (size_t k = 0; k < count; ++k) {
@@ -52,7 +53,7 @@ std::optional<Camera> model_camera(const aiScene& scene, const NodeGraph& graph,
       const Vec3 forward = linear * look, world_up = linear * up;
       if (!eye.allFinite() || !forward.allFinite() || forward.norm() < 1e-300)
         throw InputError(camera_where, "its node places it at a NaN or degenerate position");
-      result.keys.push_back(
+      result.camera.keys.push_back(
           Camera::look_at(key_seconds[k], eye, eye + forward.normalized(), world_up, fov_y));
     }
     return result;
@@ -74,20 +75,6 @@ bool camera_sees(const Camera& camera, const Scene& scene) {
       }
   }
   return false;
-}
-
-Camera frame_bounds(const Eigen::AlignedBox3d& bounds, double time) {
-  const Vec3 center = bounds.isEmpty() ? Vec3(Vec3::Zero()) : Vec3(bounds.center());
-  double radius = bounds.isEmpty() ? 0.0 : 0.5 * bounds.diagonal().norm();
-  if (!(radius > 0)) radius = 1;  // a point (or nothing) is shown from a unit distance
-  const double half_fov = kFramingFovDegrees * M_PI / 360;
-  const double distance = 1.05 * radius / std::sin(half_fov);
-  const double elevation = 20 * M_PI / 180;
-  const Vec3 direction(0, std::sin(elevation), std::cos(elevation));
-  Camera camera;
-  camera.keys = {Camera::look_at(time, center + distance * direction, center, Vec3::UnitY(),
-                                 kFramingFovDegrees)};
-  return camera;
 }
 
 }  // namespace kinray

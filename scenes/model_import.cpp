@@ -13,6 +13,7 @@
 #include <mutex>
 
 #include "kinetic/parallel.h"
+#include "scenes/automatic_camera.h"
 #include "scenes/error.h"
 #include "scenes/model_animation.h"
 #include "scenes/model_camera.h"
@@ -132,6 +133,40 @@ std::vector<double> key_grid(const NodeGraph& graph,
     for (double t : seconds) ticks.push_back(t * clip.ticks_per_second);
   }
   return ticks;
+}
+
+/// Gives `scene` the model's own camera or automatic framing, as `choice` asks, and says which in
+/// scene.camera_source.
+void choose_camera(const aiScene& model, const NodeGraph& graph, std::span<const double> seconds,
+                   std::span<const double> ticks, const std::string& source, ModelCamera choice,
+                   Scene& scene) {
+  std::optional<NamedCamera> own;
+  if (choice != ModelCamera::automatic) own = model_camera(model, graph, seconds, ticks, source);
+  if (!own && choice == ModelCamera::own)
+    throw InputError("--camera", "model: '" + source +
+                                     "' has no perspective camera of its own (--camera auto "
+                                     "frames it automatically)");
+  if (own && !camera_sees(own->camera, scene)) {
+    if (choice == ModelCamera::own) {
+      warn_repair(source, "the model's own camera '" + own->name +
+                              "' sees none of the model; kept, as --camera model asks");
+    } else {
+      warn_repair(source,
+                  "the model's own camera sees none of the model; framing it "
+                  "automatically instead");
+      scene.camera_source.reason = "the model's camera '" + own->name + "' sees none of the model";
+      own.reset();
+    }
+  }
+  if (own) {
+    scene.camera = std::move(own->camera);
+    scene.camera_source = {CameraSource::Kind::model, own->name, ""};
+    return;
+  }
+  std::string reason = scene.camera_source.reason;
+  if (reason.empty())
+    reason = choice == ModelCamera::automatic ? "--camera auto" : "the model has no camera";
+  frame_automatically(scene, reason);
 }
 
 }  // namespace
@@ -351,19 +386,12 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
 
   scene.time_begin = seconds.front();
   scene.time_end = seconds.size() > 1 ? seconds.back() : seconds.front() + 1.0;
-  std::optional<Camera> camera;
-  if (options.load_camera) camera = model_camera(model, graph, seconds, ticks, source);
-  if (camera && !camera_sees(*camera, scene)) {
-    warn_repair(source,
-                "the model's own camera sees none of the model; framing it automatically instead");
-    camera.reset();
-  }
-  scene.camera = camera ? *camera : frame_bounds(scene.bounds(), seconds.front());
+  choose_camera(model, graph, seconds, ticks, source, options.camera, scene);
   scene.lights = model_lights(model, graph, ticks.front(), source);
   return scene;
 }
 
-Scene load_model(const std::string& path, const ModelOptions& options) {
+Scene load_model(const std::string& path, const ModelOptions& options, ModelCatalog* catalog) {
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (!std::filesystem::exists(status)) throw InputError(path, "no such file");
@@ -398,6 +426,11 @@ Scene load_model(const std::string& path, const ModelOptions& options) {
   }
   Scene scene = convert_model(*model, path, options);
   scene.validate(path);
+  if (catalog != nullptr) {
+    *catalog = model_catalog(*model);
+    catalog->file = path;
+    catalog->played = select_animation(*model, options.animation, path).index;
+  }
   return scene;
 }
 

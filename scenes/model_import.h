@@ -4,16 +4,24 @@
 // flightplans of the scene model, so every backend renders the same motion.
 #include <string>
 
+#include "scenes/model_catalog.h"
 #include "scenes/scene.h"
 
 struct aiScene;
 
 namespace kinray {
 
+/// Which camera a model is shown with (`--camera`).
+enum class ModelCamera {
+  own_if_usable,  ///< the default: the model's own camera when it sees the model, else automatic
+  own,            ///< --camera model: the model's own camera; InputError naming --camera if none
+  automatic,      ///< --camera auto: automatic framing (scenes/automatic_camera.h)
+};
+
 struct ModelOptions {
   std::string animation;  ///< name or index; empty = the first animation
   double keyrate = 0;     ///< > 0: resample at this many keys per second; 0: union of the key times
-  bool load_camera = true;  ///< use the model's own camera if it has one, else frame automatically
+  ModelCamera camera = ModelCamera::own_if_usable;  ///< which camera the scene gets
   bool isolate_import = true;   ///< read the file in a child process first (see model_guard.h)
   double import_timeout = 300;  ///< seconds that child may take before the file counts as hostile
 };
@@ -21,9 +29,11 @@ struct ModelOptions {
 /// True when `path` has an extension assimp can import.
 [[nodiscard]] bool is_model_file(const std::string& path);
 
-/// Loads `path` as a scene of its own (objects, materials, textures, camera, shot = the animation).
+/// Loads `path` as a scene of its own (objects, materials, textures, camera, shot = the animation);
+/// fills `catalog`, when given, with the model's animations and cameras.
 /// Throws InputError naming the file and the problem.
-[[nodiscard]] Scene load_model(const std::string& path, const ModelOptions& options = {});
+[[nodiscard]] Scene load_model(const std::string& path, const ModelOptions& options = {},
+                               ModelCatalog* catalog = nullptr);
 
 /// The assimp post-processing flags load_model reads files with: triangulate, join identical
 /// vertices, validate the data structure; never pre-transform vertices (that loses animation).

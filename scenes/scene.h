@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "scenes/camera_source.h"
+
 namespace kinray {
 
 using Vec3 = Eigen::Vector3d;
@@ -97,6 +99,7 @@ struct Scene {
   std::vector<Material> materials = {Material{}};
   std::vector<Texture> textures;
   Camera camera;
+  CameraSource camera_source;  ///< where `camera` comes from (info, --camera model)
   /// Lights of the scene; empty means the renderer's headlight (a light at the eye, no shadows).
   std::vector<Light> lights;
   double time_begin = 0;  ///< the shot, in seconds

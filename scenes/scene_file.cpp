@@ -709,6 +709,7 @@ struct Reader {
             "missing key 'camera' (only a file with a builtin or model object may leave it out, "
             "and take theirs)");
       scene.camera = first_provided->camera;
+      scene.camera_source = first_provided->camera_source;
       return;
     }
     camera->expect_object({"keys", "keyrate"});

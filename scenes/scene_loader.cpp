@@ -54,7 +54,8 @@ std::optional<ProceduralParams> builtin_scene_params(const std::string& spec) {
                                         : parse_parameters(spec, spec.substr(colon + 1)));
 }
 
-Scene load_scene(const std::string& spec, const ModelOptions& model_options) {
+Scene load_scene(const std::string& spec, const ModelOptions& model_options,
+                 ModelCatalog* catalog) {
   if (spec.empty())
     throw InputError("scene ''", "empty scene name; " + describe_scene_spec_syntax());
   const std::string name = spec.substr(0, spec.find(':'));
@@ -69,7 +70,7 @@ Scene load_scene(const std::string& spec, const ModelOptions& model_options) {
   if (std::filesystem::is_regular_file(spec, error)) {
     if (is_aff_file(spec)) return load_aff(spec, model_options.keyrate);
     if (is_model_file(spec)) {
-      Scene scene = load_model(spec, model_options);
+      Scene scene = load_model(spec, model_options, catalog);
       scene.validate(spec);
       return scene;
     }

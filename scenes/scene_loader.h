@@ -12,8 +12,10 @@ namespace kinray {
 
 /// Loads the scene named by `spec`: a built-in name (optionally followed by
 /// ":key=value,key=value"), a path ending in .json (a scene file), or a path to a file assimp can
-/// import (loaded with `model_options`). Throws InputError naming the spec or file and the problem.
-[[nodiscard]] Scene load_scene(const std::string& spec, const ModelOptions& model_options = {});
+/// import (loaded with `model_options`; `catalog`, when given, gets the model's animations and
+/// cameras). Throws InputError naming the spec or file and the problem.
+[[nodiscard]] Scene load_scene(const std::string& spec, const ModelOptions& model_options = {},
+                               ModelCatalog* catalog = nullptr);
 
 /// The checked parameters of a built-in scene spec, without building it; nullopt when `spec` does
 /// not name a built-in. Throws InputError for bad parameters, as load_scene does.

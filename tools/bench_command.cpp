@@ -150,6 +150,7 @@ void register_bench_command(CLI::App& app) {
       "bench", "Time per frame of the kinetic backend against every Embree mode, side by side, with sweeps");
   auto options = std::make_shared<BenchOptions>();
   add_scene_options(*command, options->render);
+  add_camera_options(*command, options->render.params.camera);
   command->add_option("--size", options->render.size, "Base image size WxH")->capture_default_str();
   options->render.time_option =
       command->add_option("--time", options->render.time, "Restrict the shot to [A, B] (seconds), as A:B");

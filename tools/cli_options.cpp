@@ -122,6 +122,25 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
       ->group(group);
 }
 
+void add_camera_options(CLI::App& command, CameraParams& camera) {
+  const char* group = "Camera";
+  command
+      .add_option("--camera", camera.camera,
+                  "auto: frame the scene automatically; model: the scene's own camera (a model "
+                  "file's, an error if it has none). Default: the scene's own, else auto")
+      ->group(group);
+  command.add_option("--eye", camera.eye, "An explicit still camera at X,Y,Z (with --target)")
+      ->group(group);
+  command
+      .add_option("--target", camera.target, "The point X,Y,Z the --eye camera looks at (up: +y)")
+      ->group(group);
+  command
+      .add_option("--fov", camera.fov,
+                  "Vertical field of view in degrees, in (0.5, 179.5), of the camera used "
+                  "(default: the camera's own; 45 for --eye and automatic framing)")
+      ->group(group);
+}
+
 CLI::Option* output_path(CLI::Option* option) {
   return option->check(CLI::Validator(
       [](const std::string& value) {
@@ -155,6 +174,7 @@ void add_render_options(CLI::App& command, RenderOptions& options) {
   add_scene_options(command, options);
   add_frame_options(command, options);
   add_backend_options(command, options);
+  add_camera_options(command, options.params.camera);
   add_output_options(command, options);
 }
 

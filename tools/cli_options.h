@@ -33,6 +33,8 @@ void add_scene_options(CLI::App& command, RenderOptions& options);
 void add_frame_options(CLI::App& command, RenderOptions& options);
 /// --backend, --embree-mode, --packet, --sort, --light, --shadow-tree, --audit.
 void add_backend_options(CLI::App& command, RenderOptions& options);
+/// --camera, --eye, --target, --fov (renderer/camera_flags.h).
+void add_camera_options(CLI::App& command, CameraParams& camera);
 /// --out, --video, --aov, --stats, --quiet.
 void add_output_options(CLI::App& command, RenderOptions& options);
 /// All of the above: the flags of `kinray render`.

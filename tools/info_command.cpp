@@ -7,8 +7,10 @@
 #include <sstream>
 #include <string>
 
+#include "renderer/camera_flags.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "tools/cli_options.h"
 #include "tools/commands.h"
 
 namespace kinray {
@@ -18,6 +20,7 @@ struct InfoOptions {
   std::string scene;
   std::string animation;
   double keyrate = 0;
+  CameraParams camera;
   bool json = false;
 };
 
@@ -31,6 +34,31 @@ std::string text(const Vec3& v) {
   std::ostringstream out;
   out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
   return out.str();
+}
+
+nlohmann::json describe_camera_source(const CameraSource& source) {
+  nlohmann::json json = {{"kind", kind_name(source.kind)}};
+  if (!source.name.empty()) json["name"] = source.name;
+  if (!source.reason.empty()) json["reason"] = source.reason;
+  return json;
+}
+
+nlohmann::json describe_animations(const ModelCatalog& catalog) {
+  nlohmann::json animations = nlohmann::json::array();
+  for (const AnimationSummary& animation : catalog.animations)
+    animations.push_back({{"index", animation.index},
+                          {"name", animation.name},
+                          {"duration", animation.duration()},
+                          {"first_key", animation.first_key},
+                          {"last_key", animation.last_key},
+                          {"ticks_per_second", animation.ticks_per_second},
+                          {"assimp_duration", animation.assimp_duration},
+                          {"node_channels", animation.node_channels},
+                          {"morph_channels", animation.morph_channels},
+                          {"mesh_channels", animation.mesh_channels},
+                          {"default", animation.index == 0},
+                          {"played", animation.index == catalog.played}});
+  return animations;
 }
 
 nlohmann::json describe(const std::string& spec, const Scene& scene) {
@@ -84,9 +112,77 @@ nlohmann::json describe(const std::string& spec, const Scene& scene) {
           {"bounds", bounds.isEmpty()
                          ? nlohmann::json(nullptr)
                          : nlohmann::json{{"min", vec(bounds.min())}, {"max", vec(bounds.max())}}},
+          {"camera_source", describe_camera_source(scene.camera_source)},
           {"camera_keys", camera},
           {"lights", lights},
           {"object_list", objects}};
+}
+
+/// Where the camera comes from, then its keys (the first kListedObjects).
+void print_camera(const Scene& scene, const nlohmann::json& info) {
+  const CameraSource& source = scene.camera_source;
+  std::string origin;
+  switch (source.kind) {
+    case CameraSource::Kind::scene:
+      origin = "the scene's own";
+      break;
+    case CameraSource::Kind::model:
+      origin = "the model's own camera '" + source.name + "'";
+      break;
+    case CameraSource::Kind::automatic:
+      origin = std::string("automatic framing, ") +
+               (scene.camera.keys.size() > 1 ? "following the subject" : "still") + " (" +
+               source.reason + ")";
+      break;
+    case CameraSource::Kind::command_line:
+      origin = "from the command line (--eye, --target)";
+      break;
+  }
+  std::printf("camera      %s; %zu key%s\n", origin.c_str(), scene.camera.keys.size(),
+              scene.camera.keys.size() == 1 ? "" : "s");
+  size_t listed = 0;
+  for (const auto& key : info["camera_keys"]) {
+    if (listed++ == kListedObjects) {
+      std::printf("  ... and %zu more keys\n", scene.camera.keys.size() - kListedObjects);
+      break;
+    }
+    const auto p = key["position"], d = key["direction"];
+    std::printf("  t=%-8g position (%g, %g, %g)  looking (%g, %g, %g)  fov_y %g deg\n",
+                key["time"].get<double>(), p[0].get<double>(), p[1].get<double>(),
+                p[2].get<double>(), d[0].get<double>(), d[1].get<double>(), d[2].get<double>(),
+                key["fov_y_degrees"].get<double>());
+  }
+}
+
+/// A model's animations, one line each, marking the one render plays by default and the one shown.
+void print_animations(const nlohmann::json& info) {
+  if (!info.contains("animations")) return;
+  const nlohmann::json& animations = info["animations"];
+  if (animations.empty()) {
+    std::printf("animations  none (the model is shown still)\n");
+    return;
+  }
+  std::printf(
+      "animations  %zu (render plays %s by default; --animation NAME|INDEX picks another)\n",
+      animations.size(), animations[0]["index"].dump().c_str());
+  for (const auto& animation : animations) {
+    const auto count = [&](const char* key, const std::string& what) {
+      const size_t n = animation[key].get<size_t>();
+      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    std::string channels = count("node_channels", "node channel");
+    if (animation["morph_channels"].get<size_t>() > 0)
+      channels += ", " + count("morph_channels", "morph channel");
+    if (animation["mesh_channels"].get<size_t>() > 0)
+      channels += ", " + count("mesh_channels", "vertex channel") + " (ignored)";
+    std::string marks;
+    if (animation["default"].get<bool>()) marks += "  default";
+    if (animation["played"].get<bool>()) marks += "  shown here";
+    std::printf("  %-3zu %-24s %8g s  (keys %g..%g s)  %s%s\n", animation["index"].get<size_t>(),
+                ("'" + animation["name"].get<std::string>() + "'").c_str(),
+                animation["duration"].get<double>(), animation["first_key"].get<double>(),
+                animation["last_key"].get<double>(), channels.c_str(), marks.c_str());
+  }
 }
 
 void print_text(const Scene& scene, const nlohmann::json& info) {
@@ -108,15 +204,8 @@ void print_text(const Scene& scene, const nlohmann::json& info) {
   else
     std::printf("bounds      min %s  max %s\n", text(bounds.min()).c_str(),
                 text(bounds.max()).c_str());
-  std::printf("camera      %zu key%s\n", scene.camera.keys.size(),
-              scene.camera.keys.size() == 1 ? "" : "s");
-  for (const auto& key : info["camera_keys"]) {
-    const auto p = key["position"], d = key["direction"];
-    std::printf("  t=%-8g position (%g, %g, %g)  looking (%g, %g, %g)  fov_y %g deg\n",
-                key["time"].get<double>(), p[0].get<double>(), p[1].get<double>(),
-                p[2].get<double>(), d[0].get<double>(), d[1].get<double>(), d[2].get<double>(),
-                key["fov_y_degrees"].get<double>());
-  }
+  print_animations(info);
+  print_camera(scene, info);
   std::printf("lights      %zu%s\n", scene.lights.size(),
               scene.lights.empty() ? " (the headlight)" : "");
   for (const auto& light : info["lights"]) {
@@ -150,7 +239,8 @@ void print_text(const Scene& scene, const nlohmann::json& info) {
 void register_info_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("info",
                                          "Print what a scene holds: triangles, vertices, objects, "
-                                         "keyframes, duration, bounds, camera keys");
+                                         "keyframes, duration, bounds, a model's animations, "
+                                         "the camera and where it comes from");
   auto options = std::make_shared<InfoOptions>();
   command
       ->add_option("SCENE", options->scene,
@@ -161,6 +251,7 @@ void register_info_command(CLI::App& app) {
                       "Model files: the animation to play (name or index)");
   command->add_option("--keyrate", options->keyrate,
                       "Model files: resample at this many keys per second");
+  add_camera_options(*command, options->camera);
   command->add_flag("--json", options->json, "Print JSON instead of text");
   command->footer(describe_scene_spec_syntax());
   command->callback([options] {
@@ -169,9 +260,16 @@ void register_info_command(CLI::App& app) {
     ModelOptions model;
     model.animation = options->animation;
     model.keyrate = options->keyrate;
-    const Scene scene = load_scene(options->scene, model);
+    model.camera = model_camera_choice(options->camera);
+    ModelCatalog catalog;
+    Scene scene = load_scene(options->scene, model, &catalog);
+    apply_camera_params(options->camera, scene);
     scene.validate(options->scene);
-    const nlohmann::json info = describe(options->scene, scene);
+    nlohmann::json info = describe(options->scene, scene);
+    if (!catalog.file.empty()) {
+      info["animations"] = describe_animations(catalog);
+      info["model_cameras"] = catalog.cameras;
+    }
     if (options->json)
       std::printf("%s\n", info.dump(2).c_str());
     else

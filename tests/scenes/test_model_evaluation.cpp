@@ -427,7 +427,7 @@ TEST(ModelCamera, OwnCameraFollowsItsAnimatedNode) {
   EXPECT_GT(testing::fraction_in_view(scene, 0), 0.99);
 
   ModelOptions options;
-  options.load_camera = false;
+  options.camera = ModelCamera::automatic;
   const Scene framed = convert_model(*model, "camera", options);
   EXPECT_EQ(framed.camera.keys.size(), 1u);
   EXPECT_TRUE(testing::bounds_in_view(framed, 0));

@@ -185,7 +185,7 @@ TEST_F(CliOutputs, ParseErrorsAreKinraysOwnAndNameTheFlag) {
   const std::string render = std::string("render ") + kTiny + " --out " + path("base") + " ";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {render + "--frames many", "kinray: error: --frames: expected a whole number, got 'many'"},
-      {render + "--camera 1", "kinray: error: --camera: no such flag for 'render'"},
+      {render + "--zoom 1", "kinray: error: --zoom: no such flag for 'render'"},
       {render + "--frames 2 --frames 3", "kinray: error: --frames: given more than once"},
       {render + "--frames 2 --fps 3",
        "kinray: error: --frames: cannot be given together with --fps"},
