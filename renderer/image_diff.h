@@ -3,13 +3,14 @@
 // Every pixel whose (object, prim) differ is classified from the exact geometry, recomputed in
 // double from the camera-space positions at t (the backends' float depths are not trusted):
 //
-//  - a *tie* when the disagreement is within the precision of the backends: both triangles are
-//    hit at the same depth within a few float ulps, or the ray passes within epsilon of an edge
-//    or vertex of the triangle that decides (the nearer of the two, or the only one when the other
-//    side is background) -- unless the surface is closed across that edge (see below);
-//  - a *real* mismatch otherwise: the farther triangle (or background) was reported although a
-//    nearer triangle covers the ray robustly, a backend reported a triangle the ray does not
-//    pierce, or the surface is closed across the edge the ray passes near (a crack).
+//  - a *tie* when both sides hit something and the disagreement is within the precision of the
+//    backends: both triangles are hit at the same depth within a few float ulps, or the ray
+//    passes within epsilon of an edge or vertex of the nearer of the two -- unless the surface is
+//    closed across that edge (see below);
+//  - a *real* mismatch otherwise: one side sees the background where the other hits a triangle
+//    (whatever the depths and edge margins), the farther triangle was reported although a nearer
+//    one covers the ray robustly, a backend reported a triangle the ray does not pierce, or the
+//    surface is closed across the edge the ray passes near (a crack).
 //
 // Tolerances are scale-free, sized to the float arithmetic of Embree and GL (see image_diff.cpp
 // and docs/verification.md). The shaded colours are compared separately (PSNR, maximum error).

@@ -33,6 +33,15 @@ using Mat4 = Eigen::Matrix4d;
   return m.topLeftCorner<3, 3>() * p + m.topRightCorner<3, 1>();
 }
 
+/// The problem with a model vertex that is not finite. assimp reads positions as float, so a
+/// coordinate beyond float's range in the file (1e300, say) arrives here as infinite: the message
+/// says so rather than leaving the user to wonder where an infinity came from.
+[[nodiscard]] inline std::string non_finite_vertex(size_t v) {
+  return "vertex " + std::to_string(v) +
+         " is NaN or infinite as a float (a coordinate beyond +-3.4e38, which the float "
+         "references cannot represent, reads as infinite)";
+}
+
 /// Reports a documented repair of bad model data: one line on stderr naming the place.
 void warn_repair(const std::string& where, const std::string& what);
 

@@ -302,8 +302,7 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
       instance.base.resize(nv);
       for (size_t v = 0; v < nv; ++v) instance.base[v] = to_eigen(mesh.mVertices[v]);
       for (uint32_t v : instance.used)
-        if (!instance.base[v].allFinite())
-          throw InputError(where, "vertex " + std::to_string(v) + " is NaN or infinite");
+        if (!instance.base[v].allFinite()) throw InputError(where, non_finite_vertex(v));
       instance.morph = read_morph_targets(mesh, where);
       for (const auto& key :
            {std::pair<int, unsigned>(int(n), index), std::pair<int, unsigned>(-1, index)})

@@ -26,8 +26,7 @@ MorphTargets read_morph_targets(const aiMesh& mesh, const std::string& where) {
                                            std::to_string(mesh.mNumVertices));
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
         const Vec3 position = to_eigen(target->mVertices[v]);
-        if (!position.allFinite())
-          throw InputError(target_where, "vertex " + std::to_string(v) + " is NaN or infinite");
+        if (!position.allFinite()) throw InputError(target_where, non_finite_vertex(v));
         displacement[v] = relative ? position : Vec3(position - to_eigen(mesh.mVertices[v]));
       }
     }

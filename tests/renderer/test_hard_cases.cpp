@@ -419,7 +419,11 @@ TEST(HardCases, EdgeParallelToTheRowsSweepsAcrossARowPlane) {
   const ExactScene s({{"t", {{0, 1, 2}}, {key(0.3), key(0.6)}, {0, 1}}});
   const std::vector<double> times = {0, 0.5, 0.5625, 0.625, 0.75, 1};
   const Renders r = render(s.cs(), times);
-  expect_agreement(s.cs(), r);
+  // At t = 9/16 the edge, a silhouette with nothing behind it, lies exactly on the centres of
+  // row 8: Embree's closed triangles cover them, the kinetic backend's perturbation of the ray
+  // (docs/kinetic_grid.md) and the strict sign rule do not. Hit against background is never a
+  // tie (a tie needs both sides to hit something), so the sign rule is the reference there.
+  expect_agreement(s.cs(), r, {0.5625});
   ASSERT_EQ(r.kinetic.size(), times.size());
   // Just after the crossing, row 8 holds the triangle in the middle of the image.
   EXPECT_EQ(r.kinetic[3].object[r.kinetic[3].index(16, 8)], 0u) << "row 8 is covered after t = 9/16";

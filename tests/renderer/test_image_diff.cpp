@@ -127,7 +127,7 @@ TEST(ImageDiff, SharedEdgeThroughPixelCentreIsATie) {
   EXPECT_EQ(diff.pixels[tested.index(kI, kJ)], PixelClass::kTie);
 }
 
-TEST(ImageDiff, SilhouetteEdgeThroughPixelCentreIsATie) {
+TEST(ImageDiff, SilhouetteEdgeThroughPixelCentreIsATieWithWhatIsBehind) {
   // Only the left triangle: its edge p q is a silhouette, so the ray may see it or what is behind.
   const SharedEdge pair;
   const Object left = test::camera_space_object("left", {{0, 1, 2}}, {{pair.p, pair.q, pair.l}});
@@ -138,11 +138,50 @@ TEST(ImageDiff, SilhouetteEdgeThroughPixelCentreIsATie) {
   Frame tested = background_frame(), reference = background_frame();
   set_pixel(tested, kI, kJ, 1, 0);
   set_pixel(reference, kI, kJ, 0, 0);  // the wall behind
-  EXPECT_EQ(comparator.compare(tested, reference).mismatch_tie, 1u);
-  set_pixel(reference, kI, kJ, kNoHit, kNoHit);  // or the background
   const FrameDiff diff = comparator.compare(tested, reference);
   EXPECT_EQ(diff.mismatch_tie, 1u);
   EXPECT_EQ(diff.mismatch_real, 0u);
+}
+
+TEST(ImageDiff, ATieNeedsBothSidesToHitSomething) {
+  // Nothing behind the triangles: one side seeing the background where the other hits a triangle
+  // is real whatever the edge margins and depths -- on a silhouette edge, at a vertex, inside, and
+  // on a sliver seen edge-on (every edge within the tolerance of the ray).
+  const SharedEdge pair;
+  const ImageGeometry image{kSize, kSize};
+  const Vec3 corner = 3 * image.direction(20, 20);  // a vertex exactly on the ray of (20, 20)
+  const std::vector<Vec3> left{pair.p, pair.q, pair.l},
+      corner_triangle{corner, corner + Vec3(1, 0, 0), corner + Vec3(0, -1, 0)},
+      sliver{3 * kRay, 3 * kRay + Vec3(1e-9, 0, 0), 3 * kRay + Vec3(0, 0, 1e12)};
+  const Scene scene =
+      test::analytic_scene({test::camera_space_object("left", {{0, 1, 2}}, {left}),
+                            test::camera_space_object("corner", {{0, 1, 2}}, {corner_triangle}),
+                            test::camera_space_object("sliver", {{0, 1, 2}}, {sliver})});
+  CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  set_positions(cs, 0, left);
+  set_positions(cs, 1, corner_triangle);
+  set_positions(cs, 2, sliver);
+  const Frame exact = test::exact_frame(cs, kSize, kSize, 0);
+  ASSERT_EQ(exact.object[exact.index(9, kJ)], 0u);  // inside the left triangle
+  // {i, j, object}: the silhouette edge, the vertex, the interior, the sliver.
+  const int cases[4][3] = {{kI, kJ, 0}, {20, 20, 1}, {9, kJ, 0}, {kI, kJ, 2}};
+  FrameComparator comparator(cs);
+  for (const auto& c : cases)
+    for (const bool tested_hits : {true, false}) {
+      SCOPED_TRACE(::testing::Message() << "pixel " << c[0] << "," << c[1] << " object " << c[2]);
+      Frame hit = background_frame(), miss = background_frame();
+      set_pixel(hit, c[0], c[1], uint32_t(c[2]), 0);
+      const FrameDiff diff =
+          tested_hits ? comparator.compare(hit, miss) : comparator.compare(miss, hit);
+      EXPECT_EQ(diff.mismatch_real, 1u);
+      EXPECT_EQ(diff.mismatch_tie, 0u);
+      EXPECT_EQ(diff.pixels[hit.index(c[0], c[1])], PixelClass::kReal);
+    }
+  // Both hitting, the sliver against the left triangle stays a tie: same depth 3, on their edges.
+  Frame sliver_frame = background_frame(), left_frame = background_frame();
+  set_pixel(sliver_frame, kI, kJ, 2, 0);
+  set_pixel(left_frame, kI, kJ, 0, 0);
+  EXPECT_EQ(comparator.compare(sliver_frame, left_frame).mismatch_tie, 1u);
 }
 
 TEST(ImageDiff, LeakThroughAClosedEdgeIsACrack) {

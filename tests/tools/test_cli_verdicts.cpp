@@ -3,11 +3,14 @@
 // refused instead of rendering blank frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/tools/kinray_process.h"
@@ -50,6 +53,24 @@ TEST_F(CliVerdicts, CoordinatesBeyondWhatFloatCanTraceAreBadInput) {
   EXPECT_EQ(run.status, 0) << run.err;
 }
 
+TEST_F(CliVerdicts, AModelCoordinateBeyondFloatIsRefusedSayingSo) {
+  // assimp reads positions as float: 1e300 arrives as infinity, 1e30 as a float beyond +-1e15.
+  const std::pair<const char*, const char*> cases[] = {
+      {"1e300", "vertex 2 is NaN or infinite as a float (a coordinate beyond +-3.4e38"},
+      {"1e30", "vertex 2 at key 0 has a coordinate beyond +-1e15"}};
+  for (const auto& [far, problem] : cases) {
+    SCOPED_TRACE(far);
+    std::ofstream(path("far.obj")) << "v -1 -1 0\nv 1 -1 0\nv 0 " << far << " 3\nf 1 2 3\n";
+    const test::CommandRun run = kinray("render '" + path("far.obj") +
+                                        "' --size 32x32 --frames 1 -q --out '" + path("f") + "'");
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_EQ(run.err.rfind("kinray: error: " + path("far.obj") + ": ", 0), 0u) << run.err;
+    EXPECT_NE(run.err.find(problem), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+  EXPECT_FALSE(fs::exists(path("f")));
+}
+
 std::string base64(const std::vector<uint8_t>& bytes) {
   static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string text;
@@ -84,6 +105,53 @@ TEST_F(CliVerdicts, AGltfWhoseBufferIsGarbageIsRefused) {
   EXPECT_NE(run.err.find("garbage.gltf"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("beyond +-1e15"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(path("f")));
+}
+
+TEST_F(CliVerdicts, ASharedGltfWithItsPositionBufferCorruptedIsRefused) {
+  // A copy of a shared glTF whose POSITION bytes are overwritten with 0xDEADBEEF (as floats about
+  // -1.2e29, and 1.2e31 after the node's scale): finite garbage, far beyond what float traces.
+  const fs::path source =
+      fs::path(KINRAY_SHARED_DIR) / "data/models/glTF2/AnimatedMorphSphere/glTF";
+  if (!fs::exists(source / "AnimatedMorphSphere.gltf"))
+    GTEST_SKIP() << "no " << source << " (the shared folder's models)";
+  for (const char* name : {"AnimatedMorphSphere.gltf", "AnimatedMorphSphere.bin"})
+    fs::copy_file(source / name, path(name));
+  const nlohmann::json gltf =
+      nlohmann::json::parse(test::read_text(path("AnimatedMorphSphere.gltf")));
+  const nlohmann::json& accessor =
+      gltf["accessors"][gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<size_t>()];
+  const nlohmann::json& view = gltf["bufferViews"][accessor["bufferView"].get<size_t>()];
+  const size_t offset =
+      view.value("byteOffset", size_t(0)) + accessor.value("byteOffset", size_t(0));
+  const size_t length = 12 * accessor["count"].get<size_t>();
+  {
+    std::fstream bin(path("AnimatedMorphSphere.bin"),
+                     std::ios::in | std::ios::out | std::ios::binary);
+    bin.seekp(std::streamoff(offset));
+    for (size_t i = 0; i < length; i += 4) bin.write("\xef\xbe\xad\xde", 4);
+    ASSERT_TRUE(bin.good());
+  }
+  const std::string model = "'" + path("AnimatedMorphSphere.gltf") + "'";
+  for (const std::string args :
+       {"render " + model + " --size 32x32 --frames 1 -q --out '" + path("f") + "'",
+        "diff " + model + " --size 32x32 --frames 1 -q --json '" + path("d.json") + "'",
+        "info " + model}) {
+    SCOPED_TRACE(args);
+    const test::CommandRun run = kinray(args);
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_EQ(run.out, "");
+    // One line, naming the file, the object and the vertex, and saying why.
+    EXPECT_EQ(run.err.rfind("kinray: error: " + path("AnimatedMorphSphere.gltf") + ": object 0", 0),
+              0u)
+        << run.err;
+    EXPECT_NE(run.err.find("vertex 0 at key 0 has a coordinate beyond +-1e15"), std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find("which the float references cannot trace"), std::string::npos)
+        << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  }
+  EXPECT_FALSE(fs::exists(path("f")));
+  EXPECT_FALSE(fs::exists(path("d.json")));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // `kinray diff` as a user runs it: exit status, table, JSON summary, report folder, bad flags.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -23,14 +24,16 @@ CommandRun kinray_diff(const std::string& args) {
   // One folder per test: ctest runs tests in parallel processes that share TempDir().
   const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
   const fs::path folder = fs::path(::testing::TempDir()) /
-                          ("kinray_diff_command_" + std::string(test->test_suite_name()) + "_" + test->name());
+                          ("kinray_diff_command_" + std::string(test->test_suite_name()) + "_" +
+                           test->name() + "_" + std::to_string(::getpid()));
   fs::create_directories(folder);
   return test::run_kinray("diff " + args, folder);
 }
 
 /// A fresh, empty scratch folder for one test.
 fs::path scratch(const std::string& name) {
-  const fs::path folder = fs::path(::testing::TempDir()) / ("kinray_diff_" + name);
+  const fs::path folder =
+      fs::path(::testing::TempDir()) / ("kinray_diff_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(folder);
   fs::create_directories(folder);
   return folder;

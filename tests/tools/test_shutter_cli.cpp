@@ -3,6 +3,7 @@
 // --shutter` passes for the kinetic backend and reports RMSE and max error; `bench --shutter`
 // writes the "motion_blur" JSON.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -22,7 +23,8 @@ class ShutterCli : public ::testing::Test {
   void SetUp() override {
     m_dir = fs::temp_directory_path() /
             ("kinray_shutter_" +
-             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+             std::to_string(::getpid()));
     fs::remove_all(m_dir);
     fs::create_directories(m_dir);
   }
