@@ -32,82 +32,88 @@ double seconds_at(const nlohmann::json& stats, const char* key) {
   return (*time)[key].get<double>();
 }
 
+double event_total(const BenchPoint& p) {
+  const auto events = p.kinetic_stats.find("events");
+  return events != p.kinetic_stats.end() && events->contains("total")
+             ? (*events)["total"].get<double>()
+             : 0;
+}
+
 struct Configuration {
   std::string sweep, scene;
   int width, height, threads, inbetweens;
 };
 
-BenchPoint measure(const BenchParams& bench, const Configuration& config) {
-  RenderParams params = bench.base;
-  params.scene = config.scene;
-  params.width = config.width;
-  params.height = config.height;
-  params.threads = config.threads;
-  params.frames.reset();
-  params.fps.reset();
-  params.inbetweens = config.inbetweens;
-  params.backend = "kinetic";
-  params.audit = false;
-  params.quiet = true;
-  RenderJob job(params);
-  const std::vector<double>& times = job.frame_times();
+}  // namespace
 
-  BenchPoint point;
-  point.sweep = config.sweep;
-  point.scene = config.scene;
-  point.width = config.width;
-  point.height = config.height;
-  point.threads = resolve_threads(config.threads);
-  point.inbetweens = config.inbetweens;
-  point.triangles = job.scene().triangle_count();
-  point.frames = times.size();
-  point.key_intervals = (times.size() - 1) / size_t(config.inbetweens);
+BackendRun run_backend(RenderJob& job, const std::function<std::unique_ptr<Backend>()>& make,
+                       std::span<const double> times, std::span<const size_t> sampled) {
+  BackendRun run;
+  run.sampled_frames.resize(sampled.size());
+  const auto start = Clock::now();
+  std::unique_ptr<Backend> backend = make();
+  Frame frame;
+  frame.resize(job.params().width, job.params().height);
+  size_t next_sample = 0;
+  for (size_t i = 0; i < times.size(); ++i) {
+    frame.time = times[i];
+    backend->render(times[i], frame);
+    if (next_sample < sampled.size() && sampled[next_sample] == i)
+      run.sampled_frames[next_sample++] = frame;
+  }
+  run.wall_ms = elapsed_ms(start);
+  backend->write_stats(run.stats);
+  return run;
+}
 
-  const std::vector<size_t> sampled = spread(times.size(), bench.reference_frames);
-  std::vector<Frame> kinetic_frames(sampled.size());
+namespace {
 
+/// The kinetic side of a point: medians over repetitions of the backend's own timings; returns
+/// the first repetition's frames at `sampled`.
+std::vector<Frame> measure_kinetic(const BenchParams& bench, RenderJob& job,
+                                   const std::vector<double>& times,
+                                   const std::vector<size_t>& sampled, BenchPoint& point) {
+  std::vector<Frame> kinetic_frames;
   std::vector<double> per_frame, init, events, readout, with_init;
   for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
-    std::unique_ptr<Backend> backend = job.make_backend("kinetic");
-    Frame frame;
-    frame.resize(config.width, config.height);
-    size_t next_sample = 0;
-    for (size_t i = 0; i < times.size(); ++i) {
-      frame.time = times[i];
-      backend->render(times[i], frame);
-      if (repetition == 0 && next_sample < sampled.size() && sampled[next_sample] == i)
-        kinetic_frames[next_sample++] = frame;
-    }
-    nlohmann::json stats;
-    backend->write_stats(stats);
+    BackendRun run = run_backend(
+        job, [&] { return job.make_backend("kinetic"); }, times,
+        repetition == 0 ? std::span<const size_t>(sampled) : std::span<const size_t>());
     const double frames = double(times.size());
-    const double init_ms = 1e3 * seconds_at(stats, "init");
-    const double events_ms = 1e3 * seconds_at(stats, "events");
-    const double readout_ms = 1e3 * seconds_at(stats, "readout");
+    const double init_ms = 1e3 * seconds_at(run.stats, "init");
+    const double events_ms = 1e3 * seconds_at(run.stats, "events");
+    const double readout_ms = 1e3 * seconds_at(run.stats, "readout");
     init.push_back(init_ms);
     events.push_back(events_ms / frames);
     readout.push_back(readout_ms / frames);
     per_frame.push_back((events_ms + readout_ms) / frames);
     with_init.push_back((init_ms + events_ms + readout_ms) / frames);
-    if (repetition == 0) point.kinetic_stats = stats;
+    if (repetition == 0) {
+      point.kinetic_stats = std::move(run.stats);
+      kinetic_frames = std::move(run.sampled_frames);
+    }
   }
   point.kinetic_ms_per_frame = median(per_frame);
   point.kinetic_init_ms = median(init);
   point.kinetic_events_ms = median(events);
   point.kinetic_readout_ms = median(readout);
   point.kinetic_with_init_ms_per_frame = median(with_init);
+  return kinetic_frames;
+}
 
+/// Every Embree mode on the `sampled` frames (after a warm-up frame), checked against the kinetic
+/// frames on the first repetition; the best mode is the fastest median.
+void measure_peers(const BenchParams& bench, RenderJob& job, const std::vector<double>& times,
+                   const std::vector<size_t>& sampled, const std::vector<Frame>& kinetic_frames,
+                   BenchPoint& point) {
+  const RenderParams& params = job.params();
   FrameComparator comparator(job.camera_space());
-  const BackendConfig base_config = backend_config(params);
   const std::vector<EmbreeMode> embree_modes =
       bench.embree_modes.empty() ? default_embree_modes(params.threads) : bench.embree_modes;
   for (const EmbreeMode& mode : embree_modes) {
-    BackendConfig config_embree = base_config;
-    config_embree.embree_mode = mode.build;
-    config_embree.embree_packet = mode.packet;
-    std::unique_ptr<Backend> backend = make_backend("embree", job.camera_space(), config_embree);
+    std::unique_ptr<Backend> backend = make_embree_backend(job, mode);
     Frame frame;
-    frame.resize(config.width, config.height);
+    frame.resize(params.width, params.height);
     frame.time = times[sampled.front()];
     backend->render(frame.time, frame);  // warm-up: the first build of a refit scene
     BenchPoint::Peer peer;
@@ -119,12 +125,8 @@ BenchPoint measure(const BenchParams& bench, const Configuration& config) {
         const auto start = Clock::now();
         backend->render(frame.time, frame);
         samples.push_back(elapsed_ms(start));
-        if (repetition == 0) {
-          const FrameDiff diff = comparator.compare(kinetic_frames[s], frame);
-          peer.mismatch_real += diff.mismatch_real;
-          peer.mismatch_tie += diff.mismatch_tie;
-          point.pixels_compared += diff.pixel_count();
-        }
+        if (repetition == 0)
+          point.pixels_compared += peer.count(comparator.compare(kinetic_frames[s], frame));
       }
     }
     peer.ms_per_frame = median(samples);
@@ -141,31 +143,85 @@ BenchPoint measure(const BenchParams& bench, const Configuration& config) {
     point.speedup_vs_best_embree =
         point.kinetic_ms_per_frame > 0 ? best->ms_per_frame / point.kinetic_ms_per_frame : 0;
   }
+}
 
-  // One Embree scene built from nothing and traced once (the widest packets up to 8 this machine
-  // has): what initialisation is set beside.
-  const std::vector<int> widths = embree_packet_widths(config.threads);
-  const int first_packet = *std::prev(std::upper_bound(widths.begin(), widths.end(), 8));
+/// One Embree scene built from nothing and traced once (the widest packets up to 8 this machine
+/// has): what initialisation is set beside. Median over repetitions, in ms.
+double measure_first_build(const BenchParams& bench, RenderJob& job, double time) {
+  const std::vector<int> widths = embree_packet_widths(job.params().threads);
+  const EmbreeMode mode{"rebuild", *std::prev(std::upper_bound(widths.begin(), widths.end(), 8))};
   std::vector<double> first;
   for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
-    BackendConfig config_embree = base_config;
-    config_embree.embree_mode = "rebuild";
-    config_embree.embree_packet = first_packet;
     const auto start = Clock::now();
-    std::unique_ptr<Backend> backend = make_backend("embree", job.camera_space(), config_embree);
+    std::unique_ptr<Backend> backend = make_embree_backend(job, mode);
     Frame frame;
-    frame.resize(config.width, config.height);
-    frame.time = times.front();
+    frame.resize(job.params().width, job.params().height);
+    frame.time = time;
     backend->render(frame.time, frame);
     first.push_back(elapsed_ms(start));
   }
-  point.embree_build_and_trace_ms = median(first);
+  return median(first);
+}
+
+}  // namespace
+
+size_t BenchPoint::Peer::count(const FrameDiff& diff) {
+  mismatch_real += diff.mismatch_real;
+  mismatch_tie += diff.mismatch_tie;
+  return diff.pixel_count();
+}
+
+double BenchPoint::events_per_key_interval() const {
+  return key_intervals ? event_total(*this) / double(key_intervals) : 0;
+}
+
+std::unique_ptr<Backend> make_embree_backend(const RenderJob& job, const EmbreeMode& mode) {
+  BackendConfig config = backend_config(job.params());
+  config.embree_mode = mode.build;
+  config.embree_packet = mode.packet;
+  return make_backend("embree", job.camera_space(), config);
+}
+
+BenchPoint measure_frames(const BenchParams& bench, RenderJob& job,
+                          const std::vector<double>& times, int inbetweens) {
+  const RenderParams& params = job.params();
+  BenchPoint point;
+  point.sweep = "base";
+  point.scene = params.scene;
+  point.width = params.width;
+  point.height = params.height;
+  point.threads = resolve_threads(params.threads);
+  point.inbetweens = inbetweens;
+  point.triangles = job.scene().triangle_count();
+  point.frames = times.size();
+  point.key_intervals = (times.size() - 1) / size_t(inbetweens);
+  const std::vector<size_t> sampled = spread(times.size(), bench.reference_frames);
+  const std::vector<Frame> kinetic_frames = measure_kinetic(bench, job, times, sampled, point);
+  measure_peers(bench, job, times, sampled, kinetic_frames, point);
+  point.embree_build_and_trace_ms = measure_first_build(bench, job, times.front());
   return point;
 }
 
-double event_total(const BenchPoint& p) {
-  const auto events = p.kinetic_stats.find("events");
-  return events != p.kinetic_stats.end() && events->contains("total") ? (*events)["total"].get<double>() : 0;
+namespace {
+
+BenchPoint measure(const BenchParams& bench, const Configuration& config) {
+  RenderParams params = bench.base;
+  params.scene = config.scene;
+  params.width = config.width;
+  params.height = config.height;
+  // A scene's own image size (BART) applies to the base configuration only, not to a size sweep.
+  params.scene_size = params.scene_size && config.sweep != "size";
+  params.threads = config.threads;
+  params.frames.reset();
+  params.fps.reset();
+  params.inbetweens = config.inbetweens;
+  params.backend = "kinetic";
+  params.audit = false;
+  params.quiet = true;
+  RenderJob job(params);
+  BenchPoint point = measure_frames(bench, job, job.frame_times(), config.inbetweens);
+  point.sweep = config.sweep;
+  return point;
 }
 
 /// BenchReport::ns_per_event_one_thread: a one-thread point of the base scene if one was
@@ -320,7 +376,7 @@ nlohmann::json BenchReport::to_json() const {
                            {"kinetic_events_ms_per_frame", p.kinetic_events_ms},
                            {"kinetic_readout_ms_per_frame", p.kinetic_readout_ms},
                            {"kinetic_with_init_ms_per_frame", p.kinetic_with_init_ms_per_frame},
-                           {"kinetic_events_per_key_interval", p.key_intervals ? event_total(p) / double(p.key_intervals) : 0},
+                           {"kinetic_events_per_key_interval", p.events_per_key_interval()},
                            {"kinetic_stats", p.kinetic_stats},
                            {"embree", embree},
                            {"embree_best_ms_per_frame", p.embree_best_ms_per_frame},
@@ -474,7 +530,7 @@ void BenchReport::print(std::ostream& out) const {
         << std::setprecision(1) << std::setw(8) << p.kinetic_init_ms << std::setprecision(3) << std::setw(10)
         << p.embree_best_ms_per_frame << " (" << std::left << std::setw(10) << p.embree_best_mode << ")" << std::right
         << std::setprecision(2) << std::setw(10) << p.speedup_vs_best_embree << "x" << std::setprecision(0)
-        << std::setw(14) << (p.key_intervals ? event_total(p) / double(p.key_intervals) : 0) << std::setw(8)
+        << std::setw(14) << p.events_per_key_interval() << std::setw(8)
         << p.mismatch_real << std::setw(6) << p.mismatch_tie << "\n";
   }
   if (const auto k = break_even_inbetweens())

@@ -9,14 +9,16 @@
 // the others keep their first value.
 #include <functional>
 #include <iosfwd>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "renderer/bench_support.h"
+#include "renderer/image_diff.h"
 #include "renderer/render_job.h"
 
 namespace kinray {
@@ -70,6 +72,8 @@ struct BenchPoint {
     double ms_per_frame = 0;         ///< median over frames and repetitions, warm-up excluded
     size_t frames_measured = 0;
     size_t mismatch_real = 0, mismatch_tie = 0;
+    /// Adds a comparison with the kinetic frame to the mismatch counts; returns its pixel count.
+    size_t count(const FrameDiff& diff);
   };
   std::vector<Peer> embree;
   double embree_best_ms_per_frame = 0;
@@ -77,6 +81,8 @@ struct BenchPoint {
   double speedup_vs_best_embree = 0;  ///< embree_best_ms_per_frame / kinetic_ms_per_frame
   double embree_build_and_trace_ms = 0;  ///< one Embree rebuild plus trace, to set beside init
   size_t pixels_compared = 0, mismatch_real = 0, mismatch_tie = 0;
+  /// Kinetic events (all kinds) per keyframe interval of the measured frames.
+  [[nodiscard]] double events_per_key_interval() const;
 };
 
 struct BenchReport {
@@ -96,6 +102,28 @@ struct BenchReport {
   /// A readable table.
   void print(std::ostream& out) const;
 };
+
+/// One run of a backend over frame times: its --stats, the frames at the sampled indices and the
+/// wall time from creating the backend to the last frame.
+struct BackendRun {
+  nlohmann::json stats;
+  std::vector<Frame> sampled_frames;
+  double wall_ms = 0;
+};
+/// Renders `times` of `job` with the backend `make` creates, keeping the frames at the indices
+/// `sampled` (increasing).
+[[nodiscard]] BackendRun run_backend(RenderJob& job,
+                                     const std::function<std::unique_ptr<Backend>()>& make,
+                                     std::span<const double> times,
+                                     std::span<const size_t> sampled);
+/// An Embree backend of `job`'s scene and flags in `mode`.
+[[nodiscard]] std::unique_ptr<Backend> make_embree_backend(const RenderJob& job,
+                                                           const EmbreeMode& mode);
+/// Measures one configuration on a loaded job: the kinetic backend over `times` (made with
+/// `inbetweens` per keyframe interval) and every Embree mode of `bench` on frames spread over
+/// them, checked against each other. The point's sweep is "base".
+[[nodiscard]] BenchPoint measure_frames(const BenchParams& bench, RenderJob& job,
+                                        const std::vector<double>& times, int inbetweens);
 
 /// Runs every configuration; `progress` gets a line before each one.
 [[nodiscard]] BenchReport run_benchmark(const BenchParams& params,

@@ -18,6 +18,7 @@
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"
+#include "tools/bench_suite_command.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
@@ -33,6 +34,7 @@ struct BenchOptions {
   int repetitions = 3, reference_frames = 12;
   bool quiet = false;
   MotionBlurBenchOptions motion_blur;  ///< --shutter and its flags
+  SuiteOptions suite;                  ///< --suite and its flags
 };
 
 BenchParams resolve(const BenchOptions& options) {
@@ -52,16 +54,21 @@ BenchParams resolve(const BenchOptions& options) {
   return params;
 }
 
-/// Every configuration the sweeps will run, checked before the first one runs: flags, the frame
-/// schedule on the scene's key grid, memory, and --triangles only on a built-in scene.
-void check_configurations(const BenchParams& params) {
-  const RenderParams& base = params.base;
+/// --repetitions and --reference-frames within their bounds (bench and bench --suite).
+void check_limits(const BenchParams& params) {
   if (params.repetitions > 1000)
     throw InputError("--repetitions",
                      "must lie in 1..1000, got " + std::to_string(params.repetitions));
   if (params.reference_frames > 10000)
     throw InputError("--reference-frames",
                      "must lie in 1..10000, got " + std::to_string(params.reference_frames));
+}
+
+/// Every configuration the sweeps will run, checked before the first one runs: flags, the frame
+/// schedule on the scene's key grid, memory, and --triangles only on a built-in scene.
+void check_configurations(const BenchParams& params) {
+  const RenderParams& base = params.base;
+  check_limits(params);
   const bool builtin = builtin_scene_params(base.scene).has_value();
   if (!params.triangles.empty() && !builtin)
     throw InputError("--triangles", "sweeps the triangles= parameter of a built-in scene, and '" +
@@ -110,7 +117,22 @@ void check_configurations(const BenchParams& params) {
   }
 }
 
-void run_bench(const BenchOptions& options) {
+/// `bench --suite`: bench's own flags resolved as for SCENE (the first suite scene), with the
+/// suite's size and in-betweens unless given.
+void run_suite_bench(const BenchOptions& options, const CLI::App& command) {
+  std::vector<SuiteScene> scenes = resolve_suite_scenes(options.suite);
+  BenchOptions suite = options;
+  suite.render.params.scene = scenes.front().spec;
+  if (command.get_option("--size")->count() == 0) suite.render.size = kSuiteSize;
+  if (command.get_option("--inbetweens")->count() == 0) suite.inbetweens = kSuiteInbetweens;
+  const BenchParams params = resolve(suite);
+  check_limits(params);
+  run_suite_command(options.suite, std::move(scenes), params, options.json, options.quiet);
+}
+
+void run_bench(const BenchOptions& options, const CLI::App& command) {
+  check_suite_flags(command, options.suite);
+  if (options.suite.enabled) return run_suite_bench(options, command);
   if (options.structure != "grid") {
     run_tree_bench(options.render.resolve(), options.structure, options.inbetweens, options.triangles,
                    options.repetitions, options.json, options.charts, options.quiet);
@@ -151,7 +173,12 @@ void register_bench_command(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
   add_scene_options(*command, options->render);
   add_camera_options(*command, options->render.params.camera);
-  command->add_option("--size", options->render.size, "Base image size WxH")->capture_default_str();
+  command->get_option("SCENE")->required(false);  // not with --suite; without it, validate() asks
+  options->render.size_option =
+      command
+          ->add_option("--size", options->render.size,
+                       "Base image size WxH (default: the scene's own, else 512x512)")
+          ->capture_default_str();
   options->render.time_option =
       command->add_option("--time", options->render.time, "Restrict the shot to [A, B] (seconds), as A:B");
   command->add_option("--threads", options->render.params.threads, "Base thread count (0: all cores)")
@@ -178,7 +205,8 @@ void register_bench_command(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   add_motion_blur_bench_options(*command, options->motion_blur);
-  command->callback([options] { run_bench(*options); });
+  add_suite_options(*command, options->suite);
+  command->callback([options, command] { run_bench(*options, *command); });
 }
 
 }  // namespace kinray
