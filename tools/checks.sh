@@ -19,12 +19,14 @@ jobs="$(nproc)"
 
 # Sanitizer settings for everything these checks run, the kinray processes the suite starts
 # included. Every UBSan finding stops the program with a stack (the build also makes them
-# fatal); leaks are reported at exit. Nothing is suppressed. allocator_may_return_null keeps
-# C++'s std::bad_alloc for an allocation that cannot be had (ASan would abort instead): kinray
-# turns that into an error, and the reading child of model_guard.h relies on it under its
-# address-space limit.
+# fatal); leaks are reported at exit. Nothing of kinray's own is suppressed.
+# allocator_may_return_null keeps C++'s std::bad_alloc for an allocation that cannot be had (ASan
+# would abort instead): kinray turns that into an error, and the reading child of model_guard.h
+# relies on it under its address-space limit.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:check_initialization_order=1:allocator_may_return_null=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+# Leaks inside third-party libraries only, each with its reason (tools/lsan_suppressions.txt).
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$root/tools/lsan_suppressions.txt}"
 
 case "$mode" in
   sanitize)

@@ -18,14 +18,7 @@
 #include "renderer/kinetic_backend.h"
 #include "scenes/camera_space.h"
 #include "scenes/scene_loader.h"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define KINRAY_SOAK_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define KINRAY_SOAK_UNDER_ASAN 1
-#endif
-#endif
+#include "tests/address_sanitizer.h"
 
 namespace kinray {
 namespace {
@@ -95,7 +88,7 @@ TEST_P(Soak, ThousandsOfFramesAuditedWithFlatMemory) {
   // than when it settled (records and certificates come and go as triangles cross pixels).
   EXPECT_LE(grid_bytes_max, grid_bytes_settled + grid_bytes_settled / 4)
       << "grid memory grew from " << grid_bytes_settled << " to " << grid_bytes_max << " bytes";
-#ifndef KINRAY_SOAK_UNDER_ASAN
+#ifndef KINRAY_UNDER_ADDRESS_SANITIZER
   // The process: within 4 MiB of the settled resident set (allocator slack, and what the grid's
   // own growth above explains).
   EXPECT_LE(rss_end, rss_settled + (size_t(4) << 20))

@@ -17,6 +17,7 @@
 #include "scenes/error.h"
 #include "scenes/model_guard.h"
 #include "scenes/model_import.h"
+#include "tests/address_sanitizer.h"
 #include "tests/scenes/model_test_support.h"
 
 namespace kinray {
@@ -257,6 +258,10 @@ TEST(ModelGuard, ChildCrashesAndHangsBecomeMessages) {
   ASSERT_TRUE(hang.has_value());
   EXPECT_NE(hang->find("did not finish"), std::string::npos) << *hang;
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
+TEST(ModelGuard, ChildOverItsAddressSpaceLimitFailsWithBadAlloc) {
+  if (test::kUnderAddressSanitizer) GTEST_SKIP() << test::kAddressSpaceLimitUnderAsan;
   const auto greedy = run_in_child(
       []() -> std::string {
         std::vector<char> memory(size_t(1) << 32);  // 4 GiB under a 1 GiB limit

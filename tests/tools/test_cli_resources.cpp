@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "renderer/memory_estimate.h"
+#include "tests/address_sanitizer.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {
@@ -47,6 +48,8 @@ TEST_F(CliResources, RequestsThatCannotFitAreRefusedNamingTheFlag) {
 }
 
 TEST_F(CliResources, AnAllocationFailureIsOneLineAndStatusOne) {
+  // Under ASan the program cannot even start in 1.2 GB of address space.
+  if (test::kUnderAddressSanitizer) GTEST_SKIP() << test::kAddressSpaceLimitUnderAsan;
   // A 1.2 GB address-space limit, which the estimate (from physical memory) does not know of.
   const fs::path err = m_dir / "err.txt";
   const std::string command = "ulimit -v 1200000; '" + std::string(KINRAY_BINARY) +
