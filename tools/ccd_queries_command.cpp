@@ -8,14 +8,13 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "kinetic/collision/ccd_query_file.h"
 #include "kinetic/collision/exact_ccd.h"
 #include "kinetic/collision/primitive_ccd.h"
 #include "renderer/image_io.h"
@@ -30,72 +29,6 @@ namespace {
 struct CcdQueriesOptions {
   std::string file, type, json;
 };
-
-struct CcdQuery {
-  RationalMotion motion;
-  bool truth = false;
-  int line = 0;  ///< first line of the query in the file
-};
-
-mpq_class parse_rational(const std::string& num, const std::string& den, const std::string& where) {
-  mpz_class n, d;
-  if (n.set_str(num, 10) != 0 || d.set_str(den, 10) != 0)
-    throw InputError(where, "expected integers num,den, got '" + num + "," + den + "'");
-  if (d == 0) throw InputError(where, "zero denominator");
-  mpq_class q(n, d);
-  q.canonicalize();
-  return q;
-}
-
-std::vector<CcdQuery> read_queries(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open the query file");
-  std::vector<CcdQuery> queries;
-  std::string text;
-  int line = 0, row = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    if (text.empty()) continue;
-    const std::string where = path + ":" + std::to_string(line);
-    std::vector<std::string> cells;
-    std::stringstream fields(text);
-    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-    if (cells.size() != 7)
-      throw InputError(where, "expected 7 columns x_num,x_den,y_num,y_den,z_num,z_den,truth, got " +
-                                  std::to_string(cells.size()));
-    if (row % 8 == 0) {
-      queries.emplace_back();
-      queries.back().line = line;
-      if (cells[6] != "0" && cells[6] != "1")
-        throw InputError(where, "truth must be 0 or 1, got '" + cells[6] + "'");
-      queries.back().truth = cells[6] == "1";
-    }
-    RationalPoint point;
-    for (int k = 0; k < 3; ++k) point[k] = parse_rational(cells[2 * k], cells[2 * k + 1], where);
-    CcdQuery& query = queries.back();
-    const int index = row % 8;
-    (index < 4 ? query.motion.start[index] : query.motion.end[index - 4]) = point;
-    ++row;
-  }
-  if (row % 8 != 0)
-    throw InputError(path, std::to_string(row) + " rows, not a multiple of 8 (8 rows per query)");
-  if (queries.empty()) throw InputError(path, "no queries");
-  return queries;
-}
-
-/// The motion in doubles when every coordinate is exactly a double.
-std::optional<PrimitiveMotion> as_doubles(const RationalMotion& m) {
-  PrimitiveMotion d;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) {
-      d.start[i][k] = m.start[i][k].get_d();
-      d.end[i][k] = m.end[i][k].get_d();
-      if (mpq_class(d.start[i][k]) != m.start[i][k] || mpq_class(d.end[i][k]) != m.end[i][k])
-        return std::nullopt;
-    }
-  return d;
-}
 
 ContactType query_type(const CcdQueriesOptions& options) {
   if (options.type == "vf") return ContactType::vertex_face;
@@ -113,12 +46,12 @@ ContactType query_type(const CcdQueriesOptions& options) {
 void run_ccd_queries(const CcdQueriesOptions& options) {
   const ContactType type = query_type(options);
   prepare_json_output(options.json);
-  const std::vector<CcdQuery> queries = read_queries(options.file);
+  const std::vector<CcdQuery> queries = read_ccd_queries(options.file);
   std::uint64_t tp = 0, fp = 0, fn = 0, tn = 0;
   PrimitiveCcdCounters counters;
   const auto begin = std::chrono::steady_clock::now();
   for (const CcdQuery& query : queries) {
-    const std::optional<PrimitiveMotion> doubles = as_doubles(query.motion);
+    const std::optional<PrimitiveMotion> doubles = exactly_as_doubles(query.motion);
     const bool hit = doubles ? !contact_times(type, *doubles, &counters).empty()
                              : !exact_contact_times(type, query.motion).empty();
     tp += hit && query.truth;
