@@ -16,8 +16,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kU = 0x1p-53;  // unit roundoff
 
-thread_local ExactStats t_stats;
-
 // ---- double-double evaluation with an error bound ----------------------------------------
 
 struct Pair {
@@ -112,7 +110,6 @@ double root_bound(const RationalPolynomial& f) {
 
 /// exact_first_failure by exact root isolation over (s_now, s_end] (f holds just after s_now).
 std::optional<double> isolated_failure(const ExactPolynomial& F, double s_now, double s_end) {
-  ++t_stats.isolations;
   const RationalPolynomial f = rational(F);
   if (f.is_zero()) return std::nullopt;
   const double end =
@@ -141,15 +138,10 @@ Polynomial with_error(const Polynomial& f, const Polynomial& error, double k) {
 
 }  // namespace
 
-ExactStats& exact_stats() {
-  return t_stats;
-}
-
 std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial& p1,
                                                                 const Polynomial& q1,
                                                                 const Polynomial& p2,
                                                                 const Polynomial& q2, int sign) {
-  ++t_stats.certificates;
   ExactPolynomial f{p1, q1, p2, q2, sign, {}, {}};
   const int n =
       std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
@@ -187,7 +179,6 @@ std::shared_ptr<const ExactPolynomial> exact_negated(const ExactPolynomial& f) {
 int exact_sign_after(const ExactPolynomial& f, double s) {
   const int filtered = filtered_sign(f, s);
   if (filtered != 2) return filtered;
-  ++t_stats.rational_signs;
   return sign_after_at(rational(f), mpq_class(s));
 }
 
@@ -216,7 +207,6 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
     if (sign_after(falling, *low) > 0 && !first_failure(falling, *low, hi)) {
       // F decreasing on [low, hi]: one crossing at most, pinned down by the exact sign from
       // the close polynomial's own failure.
-      ++t_stats.bisections;
       if (negative(*low)) return low;
       if (!negative(hi)) {
         if (high) break;

@@ -61,13 +61,4 @@ struct ExactPolynomial {
 [[nodiscard]] bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
                                    double s_end);
 
-/// Counters of the exact path (thread-local, resettable), for tests and --stats.
-struct ExactStats {
-  uint64_t certificates = 0;    ///< certificates that carried their exact form
-  uint64_t rational_signs = 0;  ///< signs the double-double filter could not tell (GMP)
-  uint64_t bisections = 0;      ///< failure times found by bisection on a monotone stretch
-  uint64_t isolations = 0;      ///< failure times found by exact root isolation (GMP)
-};
-ExactStats& exact_stats();
-
 }  // namespace kinray

@@ -29,8 +29,8 @@ KINRAY_FUZZ_TARGET(ccd_queries) {
   const std::vector<kinray::CcdQuery> queries = kinray::read_ccd_queries(path);
   for (std::size_t i = 0; i < queries.size() && i < 4; ++i) {
     const kinray::CcdQuery& query = queries[i];
-    const std::optional<kinray::PrimitiveMotion> doubles = kinray::exactly_as_doubles(query.motion);
     if (!small_enough(query.motion)) continue;
+    const std::optional<kinray::PrimitiveMotion> doubles = kinray::exactly_as_doubles(query.motion);
     for (const kinray::ContactType type :
          {kinray::ContactType::vertex_face, kinray::ContactType::edge_edge}) {
       const bool exact_hit = !kinray::exact_contact_times(type, query.motion).empty();
