@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <string_view>
 
 #include "kinetic/parallel.h"
 #include "scenes/automatic_camera.h"
@@ -51,6 +53,43 @@ struct MeshInstance {
   Skin skin;
 };
 
+/// A string property of a material, read within the property's own bytes. assimp's
+/// aiMaterial::Get(aiString&) and GetTexture copy the length the property claims into a
+/// fixed-size aiString, so a malformed file with a longer claim overflows the caller's stack
+/// (found by fuzz_model_import on CI); here a claim past the property's bytes is cut to them.
+std::string material_string(const aiMaterial& material, const char* key, unsigned semantic,
+                            unsigned index) {
+  for (unsigned p = 0; p < material.mNumProperties; ++p) {
+    const aiMaterialProperty* property = material.mProperties[p];
+    if (property == nullptr || property->mType != aiPTI_String || property->mData == nullptr ||
+        property->mDataLength < 4 || property->mSemantic != semantic || property->mIndex != index ||
+        std::string_view(property->mKey.C_Str()) != key)
+      continue;
+    uint32_t claimed = 0;
+    std::memcpy(&claimed, property->mData, sizeof claimed);
+    const size_t length = std::min<size_t>(claimed, property->mDataLength - 4);
+    const std::string_view text(property->mData + 4, length);
+    return std::string(text.substr(0, text.find('\0')));
+  }
+  return {};
+}
+
+/// An integer property of a material, or `fallback`; read within the property's bytes too.
+unsigned material_unsigned(const aiMaterial& material, const char* key, unsigned semantic,
+                           unsigned index, unsigned fallback) {
+  for (unsigned p = 0; p < material.mNumProperties; ++p) {
+    const aiMaterialProperty* property = material.mProperties[p];
+    if (property == nullptr || property->mType != aiPTI_Integer || property->mData == nullptr ||
+        property->mDataLength < sizeof(int32_t) || property->mSemantic != semantic ||
+        property->mIndex != index || std::string_view(property->mKey.C_Str()) != key)
+      continue;
+    int32_t value = 0;
+    std::memcpy(&value, property->mData, sizeof value);
+    return value >= 0 ? unsigned(value) : fallback;
+  }
+  return fallback;
+}
+
 /// Materials of the model, with their textures read once each.
 struct MaterialReader {
   const aiScene& model;
@@ -64,8 +103,7 @@ struct MaterialReader {
     Material material;
     uv_channel = 0;
     if (in == nullptr) return material;
-    aiString name;
-    if (in->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
+    material.name = material_string(*in, AI_MATKEY_NAME);
     const std::string where =
         source + ": material " + std::to_string(index) + " '" + material.name + "'";
     aiColor4D color;
@@ -77,13 +115,13 @@ struct MaterialReader {
       else
         warn_repair(where, "has a NaN, infinite or negative base colour; using grey 0.8");
     }
-    aiString reference;
+    std::string key;
     for (aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
-      if (in->GetTextureCount(type) == 0) continue;
-      if (in->GetTexture(type, 0, &reference, nullptr, &uv_channel) == AI_SUCCESS) break;
-      reference.Clear();
+      key = material_string(*in, AI_MATKEY_TEXTURE(type, 0));
+      if (key.empty()) continue;
+      uv_channel = material_unsigned(*in, AI_MATKEY_UVWSRC(type, 0), 0);
+      break;
     }
-    const std::string key = reference.C_Str();
     if (key.empty()) return material;
     auto found = texture_of.find(key);
     if (found == texture_of.end()) {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -205,6 +206,34 @@ TEST(ModelBadData, NanVerticesAndIndicesOutOfRangeAreInputErrors) {
     ::testing::internal::GetCapturedStderr();
     model->mMeshes[0]->mFaces[0].mNumIndices = 3;
   }
+}
+
+/// Adds a string property as assimp stores one (a 32-bit length, the bytes, a zero), but with
+/// `claimed` as its length: what a malformed file can leave behind.
+void add_string_property(aiMaterial& material, const std::string& text, uint32_t claimed,
+                         const char* key, unsigned semantic) {
+  std::vector<char> bytes(4 + text.size() + 1, '\0');
+  std::memcpy(bytes.data(), &claimed, 4);
+  std::memcpy(bytes.data() + 4, text.data(), text.size());
+  material.AddBinaryProperty(bytes.data(), unsigned(bytes.size()), key, semantic, 0, aiPTI_String);
+}
+
+TEST(ModelBadData, MaterialStringsLongerThanAssimpsFixedStringAreReadWithinTheirBytes) {
+  // assimp's own Get(aiString&) copies the claimed length into a 1,024-byte aiString on the
+  // caller's stack; fuzz_model_import found a file doing that on CI. The ASan suite checks this.
+  auto model = triangle_scene();
+  const std::string long_name(3000, 'n');
+  add_string_property(*model->mMaterials[0], long_name, uint32_t(long_name.size()), "?mat.name", 0);
+  add_string_property(*model->mMaterials[0], "missing.png", 100000, "$tex.file",
+                      aiTextureType_DIFFUSE);
+  ::testing::internal::CaptureStderr();
+  const Scene scene = convert_model(*model, "long-strings");
+  const std::string warnings = ::testing::internal::GetCapturedStderr();
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.materials[0].name, long_name);
+  // The texture path is cut at the property's end; the file does not exist: a warning, no texture.
+  EXPECT_NE(warnings.find("missing.png"), std::string::npos) << warnings;
+  EXPECT_EQ(scene.materials[0].texture, -1);
 }
 
 /// A text .x cube whose SkinWeights weigh `vertex` (the mesh has 3 vertices).
