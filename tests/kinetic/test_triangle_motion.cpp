@@ -1,4 +1,5 @@
 // The per-segment polynomials of a moving triangle against direct evaluation from positions.
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -67,6 +68,37 @@ TEST(TriangleMotion, EdgeNormalIsExactlyAntisymmetricAndZeroOnRepeatedVertices) 
     const CoverageRule rule(degenerate, 0.25);
     EXPECT_FALSE(rule.covers(0.1, 0.2));
   }
+}
+
+TEST(TriangleMotion, CollinearVerticesHaveZeroOrientationAndNearCollinearOnesTheirExactSign) {
+  // The kitchen's sliver at t = 7.18 s: one x and z, three heights. In double O was 6.5e-19.
+  TriangleMotion sliver;
+  const double y[3] = {-0.38992199646799108, -0.35695226633554455, -0.36024923945868836};
+  for (int v = 0; v < 3; ++v) {
+    sliver.v[size_t(v)].a = Vec(-1.2248698428063562, y[v], 0.65308772788891489);
+    sliver.v[size_t(v)].b = Vec(26.842460395776044, 0, -1.0286719045449793);
+  }
+  EXPECT_TRUE(sliver.orientation().is_zero());
+  EXPECT_FALSE(CoverageRule(sliver, 0.022556944027691372).covers(-0.98333333333333339, -0.58333333333333326));
+  // Vertices on a line through two random points, moving along it: collinear at every time.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-3, 3);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec p(u(rng), u(rng), u(rng)), q(0x1p-3 * std::round(8 * u(rng)), 0, 0);
+    TriangleMotion line;
+    for (int v = 0; v < 3; ++v) line.v[size_t(v)].a = p + q * double(v + trial % 4);
+    for (int v = 0; v < 3; ++v) line.v[size_t(v)].b = Vec(0.5, -0.25, 0.125) * double(trial % 3);
+    EXPECT_TRUE(line.orientation().is_zero()) << "trial " << trial;
+  }
+  // Lifted off the line by one unit in the last place: O is tiny, and of the exact sign.
+  TriangleMotion thin = sliver;
+  thin.v[2].a.x() = std::nextafter(thin.v[2].a.x(), 0.0);
+  const Vec p0 = thin.v[0].at(0), p1 = thin.v[1].at(0);
+  // det at s = 0, by hand: v0 and v1 share x and z, so only v2's x offset h counts.
+  const double h = thin.v[2].a.x() - thin.v[0].a.x();
+  const double exact_sign = (h * (p0.y() * p1.z() - p1.y() * p0.z())) > 0 ? 1 : -1;
+  EXPECT_FALSE(thin.orientation().is_zero());
+  EXPECT_EQ(sign_after(thin.orientation(), 0), exact_sign);
 }
 
 TEST(TriangleMotion, RebasedMotionIsTheSameMotion) {
