@@ -117,7 +117,12 @@ std::optional<double> isolated_failure(const ExactPolynomial& F, double s_now, d
   std::vector<IsolatedRoot> roots = isolate_roots(f, mpq_class(s_now), mpq_class(end));
   for (IsolatedRoot& r : roots) {
     // The sign between this root and the next: at the interval's upper end when the root is
-    // irrational (the ends are no roots), else just after the rational root.
+    // irrational, else just after the rational root. The upper end is no root of the deflated
+    // polynomial the interval isolates a root of, but it can be one of f: a root of f at s_end
+    // is divided out before isolation (a certificate whose pair touches exactly at the end of
+    // its segment). Then f's sign there is 0, and read as "no failure" it hid the crossing
+    // inside; the interval is halved until its upper end is no root of f either.
+    while (!r.is_rational() && sgn(f(r.hi)) == 0) r.refine();
     const int after = r.is_rational() ? sign_after_at(f, r.lo) : sgn(f(r.hi));
     if (after >= 0) continue;  // a - to + change, or a touch from +
     // f < 0 from r to the next root: the first double at or after r, if one lies before it.

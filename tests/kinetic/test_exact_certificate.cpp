@@ -105,6 +105,29 @@ TEST(ExactCertificate, RobotsClusterFailsWhereTheDepthsCross) {
             reference_failure(RationalPolynomial{} - ref, *r, s_end));
 }
 
+// A pair of the grid test TrianglesFlatForAWholeKeyIntervalCoverNothingThen (pixel (31, 19)):
+// the certificate crosses at s = 0.884 and again, touching back to +, exactly at the segment's
+// end s = 1, where one triangle flattens. Isolation divides out the root at 1, and the sign
+// "between the crossing and the next root" was then read at 1 itself: zero, so the crossing was
+// skipped and the swap came at the segment's end, too late.
+TEST(ExactCertificate, ARootAtTheSegmentEndDoesNotHideACrossingBeforeIt) {
+  const Polynomial p1{0x1.185383fbc0bdep+2, -0x1.e4f977b8699e3p+2, 0x1.86d16cf86a015p+1,
+                      0x1.27a7a80e7bf1cp-3};
+  const Polynomial q1{-0x1.4af5b7e445fabp+0, 0x1.3332076c03acep+1, -0x1.1b6e56f3c15f1p+0};
+  const Polynomial p2{-0x1.550828782cecfp+1, 0x1.941465d7135d5p+1, 0x1.7cf1af92daab6p+0,
+                      -0x1.fb0a2a50a78bap+0};
+  const Polynomial q2{0x1.01a85b92e3954p+1, -0x1.c4eeac7823c7p+1, 0x1.868ca1ca80638p+0};
+  const double s_now = 0x1.6cc8cddba0ccdp-4, s_end = 1;
+  const RationalPolynomial ref = reference(p1, q1, p2, q2, 1);
+  ASSERT_EQ(sgn(ref(mpq_class(s_end))), 0);  // the root at the end
+  ASSERT_GT(reference_sign_after(ref, s_now), 0);
+  const std::optional<double> expected = reference_failure(ref, s_now, s_end);
+  ASSERT_TRUE(expected);
+  EXPECT_NEAR(*expected, 0.884, 1e-3);
+  const auto exact = exact_product_difference(p1, q1, p2, q2, 1);
+  EXPECT_EQ(exact_first_failure(*exact, s_now, s_end), expected);
+}
+
 TEST(ExactCertificate, SignsAgreeWithRationals) {
   // Doubles around the robots' cluster, where the double form is noise, and exact zeros.
   const auto exact = exact_product_difference(kNa, kDb, kNb, kDa, 1);
