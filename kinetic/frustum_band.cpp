@@ -280,7 +280,12 @@ template <class Sort>
 void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn) {
   if (!tn.moving) return;
   TriangleState& ts = m_triangles[tri];
-  const double t = failure_time(ts.orientation, tn.motion.orientation(), tn.segment);
+  // O is the zero polynomial on a segment where the triangle is degenerate throughout (a sliver
+  // whose vertices are collinear over this key interval but not the last): its sign is then 0,
+  // not the + that failure_time reads the zero polynomial as, so a kept sign changes now.
+  const Polynomial o = tn.motion.orientation();
+  const double t = o.is_zero() ? (ts.orientation == 0 ? kInf : m_now)
+                               : failure_time(ts.orientation, o, tn.segment);
   ++m_stats.certificates_computed;
   set_event(ts.event, t, EventKey{0, kGridOrientation, tri, 0}, tri);
 }

@@ -24,28 +24,23 @@ Polynomial dot(const EdgeNormal& n, const PointMotion& v) {
 }  // namespace
 
 Polynomial TriangleMotion::orientation() const {
-  const Polynomial o1 = dot(edge_normal(v[0], v[1]), v[2]);
-  const Polynomial o2 = dot(edge_normal(v[1], v[2]), v[0]);
-  const Polynomial o3 = dot(edge_normal(v[2], v[0]), v[1]);
-  const Polynomial o = (1.0 / 3.0) * ((o1 + o2) + o3);
+  const Polynomial o = dot(edge_normal(v[0], v[1]), v[2]);
   // Coefficient k of det(a_i + b_i s) sums 6 * C(3, k) products of k motions and 3 - k positions,
-  // each at most B^k A^(3-k); each triple product rounds through about ten operations, the mean
-  // three more: 32 units of rounding of that sum bound the error generously. When the rounded O
-  // cannot be told from zero, it is formed exactly (exact_orientation.h). A triangle that is not
-  // degenerate has some coefficient far above its bound, so the exact path is for slivers only.
+  // each at most B^k A^(3-k); the triple product rounds through at most eight operations per
+  // term: 32 units of rounding of that sum bound its error generously. When the rounded O cannot
+  // be told from zero it is formed exactly (exact_orientation.h): then a degenerate triangle (two
+  // vertices equal, or all three on one line) has O exactly zero and covers nothing. A triangle
+  // that is not degenerate has some coefficient far above its bound, and costs one triple product.
   double A = 0, B = 0;
   for (const PointMotion& p : v) {
     A = std::max(A, p.a.cwiseAbs().maxCoeff());
     B = std::max(B, p.b.cwiseAbs().maxCoeff());
   }
-  constexpr double kUnits = 32 * 0x1p-53;
-  constexpr std::array<double, 4> kBinomial = {1, 3, 3, 1};
-  double power_b = 1;
-  for (size_t k = 0; k < 4; ++k) {
-    const double bound = kUnits * 6 * kBinomial[k] * power_b * std::pow(A, double(3 - k));
-    if (std::abs(o.c[k]) > bound) return o;
-    power_b *= B;
-  }
+  constexpr double kUnits = 32 * 6 * 0x1p-53;
+  const double bound[4] = {kUnits * A * A * A, kUnits * 3 * A * A * B, kUnits * 3 * A * B * B,
+                           kUnits * B * B * B};
+  for (size_t k = 0; k < 4; ++k)
+    if (std::abs(o.c[k]) > bound[k]) return o;
   return exact_orientation(*this);
 }
 

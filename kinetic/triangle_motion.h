@@ -102,8 +102,8 @@ struct TriangleMotion {
   std::array<PointMotion, 3> v;
 
   [[nodiscard]] EdgeNormal edge(int e) const { return edge_normal(v[kEdgeStart[e]], v[kEdgeEnd[e]]); }
-  /// O(s) = det(v0, v1, v2) as the symmetric mean of the three triple products, so that it is
-  /// exactly zero when two vertices coincide (a degenerate triangle covers nothing).
+  /// O(s) = det(v0, v1, v2), a cubic; exactly zero when the triangle is degenerate all segment
+  /// long (two vertices equal, or three on one line): such a triangle covers nothing.
   [[nodiscard]] Polynomial orientation() const;
   /// The same motion in the local time s' = s - shift (re-centred at origin + shift).
   [[nodiscard]] TriangleMotion rebased(double shift) const;
