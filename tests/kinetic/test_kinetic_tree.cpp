@@ -129,7 +129,9 @@ void expect_queries_match_brute_force(const Tree& tree, const TreeFrame& frame, 
     if (hit) {
       ++hits;
       EXPECT_EQ(hit->s, expected->s);  // the same triangle, or one at exactly the same parameter
-      if (hit->triangle != expected->triangle) EXPECT_NE(hit->triangle, ray.skip);
+      if (hit->triangle != expected->triangle) {
+        EXPECT_NE(hit->triangle, ray.skip);
+      }
     }
   }
 }
