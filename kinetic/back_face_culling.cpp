@@ -153,7 +153,7 @@ int cubic_sign_on_unit_interval(const std::array<double, 4>& b, double margin, i
   return a != 0 && cubic_sign_on_unit_interval(r, margin, depth - 1) == a ? a : 0;
 }
 
-int back_face_cull_sign(const GridMesh& mesh, int threads) {
+int back_face_cull_sign(const GridMesh& mesh, int threads, WorkProgress* progress) {
   const size_t keys = mesh.is_static ? 1 : mesh.key_count();
   const std::vector<Triangle> triangles = welded(mesh, keys);
   if (!closed_oriented_manifold(triangles, threads)) return 0;
@@ -177,9 +177,11 @@ int back_face_cull_sign(const GridMesh& mesh, int threads) {
   // the determinants taking Q in k of the three places and P in the others. Each block of
   // triangles proves one sign over all segments (0: none), then the blocks must agree.
   std::vector<int> block_sign(block_count(triangles.size()), 0);
+  const size_t segments = keys > 1 ? keys - 1 : 1;
   parallel_for_dynamic(block_sign.size(), threads, [&](size_t block) {
     int sigma = 0;
     const size_t end = std::min(triangles.size(), (block + 1) * kBlock);
+    if (progress != nullptr) progress->add((end - block * kBlock) * segments);
     for (size_t t = block * kBlock; t < end; ++t) {
       const Triangle& tri = triangles[t];
       const size_t comp = size_t(component[tri[0]]);

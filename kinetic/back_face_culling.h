@@ -31,13 +31,16 @@
 #include <array>
 
 #include "kinetic/grid_input.h"
+#include "kinetic/work_progress.h"
 
 namespace kinray {
 
 /// 0 when culling mesh `mesh` is not proved sound, else the sign of O
 /// (TriangleMotion::orientation, det(v0, v1, v2)) of the triangles that face the eye. The proof
-/// runs on `threads` workers (0: all cores); its answer does not depend on them.
-[[nodiscard]] int back_face_cull_sign(const GridMesh& mesh, int threads = 1);
+/// runs on `threads` workers (0: all cores); its answer does not depend on them. When given,
+/// `progress` counts the (triangle, segment) pairs examined.
+[[nodiscard]] int back_face_cull_sign(const GridMesh& mesh, int threads = 1,
+                                      WorkProgress* progress = nullptr);
 
 /// Sign (+1 or -1) that the cubic with Bernstein coefficients `b` on [0, 1] keeps strictly, each
 /// coefficient beyond `margin` in absolute value, after at most `depth` halvings; 0 if unproved.

@@ -729,7 +729,7 @@ void FrustumBand<Sort>::rebuild_boundary(uint32_t id) {
 // Meshes.
 
 template <class Sort>
-void FrustumBand<Sort>::insert_mesh(uint32_t m) {
+void FrustumBand<Sort>::insert_mesh(uint32_t m, WorkProgress* progress) {
   const GridMesh& mesh = m_scene.mesh(m);
   MeshState& ms = m_meshes[m];
   if (ms.present) return;
@@ -753,7 +753,12 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m) {
     }
   }
   const int cull = m_scene.cull_sign(m);
+  uint64_t unreported = 0;  // a shared counter touched once per 4096 triangles, not per triangle
   for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri) {
+    if (progress != nullptr && ++unreported == 4096) {
+      progress->add(unreported);
+      unreported = 0;
+    }
     if (cull == 0) {
       scan_triangle(tri, patterns);
       continue;
@@ -763,6 +768,7 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m) {
     const std::array<RowPattern, 3> p = mesh_patterns(tri, patterns);
     if (meets_rows(tri, p)) watch(tri, p);
   }
+  if (progress != nullptr) progress->add(unreported);
   schedule_flightplan(m);
   double remove_at = kInf;
   if (mesh.disappear < kInf && mesh.disappear > m_now) remove_at = mesh.disappear;
@@ -807,7 +813,7 @@ void FrustumBand<Sort>::start(double t0) {
     const GridMesh& mesh = m_scene.mesh(m);
     m_motion.set_segment(m, m_scene.segment_at(m, t0));
     if (mesh.present(t0)) {
-      insert_mesh(m);
+      insert_mesh(m, m_config.init_progress);
     } else if (mesh.appear > t0 && mesh.disappear > mesh.appear) {
       set_event(m_meshes[m].insert, mesh.appear, EventKey{0, kGridInsert, m, 0}, m);
     }

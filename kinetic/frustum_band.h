@@ -27,6 +27,7 @@
 #include "kinetic/kinetic_sort.h"
 #include "kinetic/pixel_depth_order.h"
 #include "kinetic/row_record.h"
+#include "kinetic/work_progress.h"
 
 namespace kinray {
 
@@ -53,6 +54,7 @@ class FrustumBand {
   struct Config {
     bool audit = false;          ///< audit each touched pixel order after every change
     bool counts_meshes = false;  ///< counts the per-mesh events (exactly one band does)
+    WorkProgress* init_progress = nullptr;  ///< start() counts the triangles it scans here
   };
 
   /// Rows [row_begin, row_end) of `scene`, which must outlive the band. Nothing is built yet.
@@ -257,7 +259,8 @@ class FrustumBand {
   void pixel_erase(uint32_t tri, int column, int row);
 
   // Meshes.
-  void insert_mesh(uint32_t m);
+  /// Attaches mesh m's triangles (scan conversion at now); counts them into `progress` if given.
+  void insert_mesh(uint32_t m, WorkProgress* progress = nullptr);
   void remove_mesh(uint32_t m);
 
   // Events.

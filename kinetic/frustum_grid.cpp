@@ -73,13 +73,14 @@ namespace {
 template <class Sort>
 class BandsOf final : public FrustumGrid::Bands {
  public:
-  BandsOf(const GridScene& scene, int bands, bool audit) {
+  BandsOf(const GridScene& scene, int bands, bool audit, WorkProgress* init_progress) {
     const int h = scene.height();
     for (int b = 0; b < bands; ++b) {
       const int r0 = int(int64_t(h) * b / bands), r1 = int(int64_t(h) * (b + 1) / bands);
       typename FrustumBand<Sort>::Config config;
       config.audit = audit;
       config.counts_meshes = b == 0;
+      config.init_progress = init_progress;
       m_bands.push_back(std::make_unique<FrustumBand<Sort>>(scene, r0, r1, config));
       m_row_begin.push_back(r0);
     }
@@ -133,7 +134,7 @@ class BandsOf final : public FrustumGrid::Bands {
 }  // namespace
 
 FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridConfig& config)
-    : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input), config.threads), m_config(config),
+    : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input), config.threads, config.init_progress), m_config(config),
       m_now(start_time) {
   m_threads = resolve_threads(config.threads);
   // The events gather where the geometry moves (a horizon, a fold of the cloth), so with several
@@ -143,14 +144,24 @@ FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridCo
   const int bands = std::clamp(config.bands > 0 ? config.bands : automatic, 1, m_scene.height());
   switch (config.sort) {
     case DepthSortKind::kList:
-      m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit);
+      m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit,
+                                                                          config.init_progress);
       break;
     case DepthSortKind::kTournament:
-      m_bands = std::make_unique<BandsOf<KineticTournament<PixelDepthKeys>>>(m_scene, bands, config.audit);
+      m_bands = std::make_unique<BandsOf<KineticTournament<PixelDepthKeys>>>(m_scene, bands, config.audit,
+                                                                          config.init_progress);
       break;
     case DepthSortKind::kHeap:
-      m_bands = std::make_unique<BandsOf<KineticHeap<PixelDepthKeys>>>(m_scene, bands, config.audit);
+      m_bands = std::make_unique<BandsOf<KineticHeap<PixelDepthKeys>>>(m_scene, bands, config.audit,
+                                                                          config.init_progress);
       break;
+  }
+  if (config.init_progress != nullptr) {
+    uint64_t present = 0;
+    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
+      if (m_scene.mesh(m).present(start_time))
+        present += m_scene.triangle_end(m) - m_scene.triangle_begin(m);
+    config.init_progress->begin("scan conversion", present * uint64_t(bands));
   }
   m_bands->start(start_time, m_threads);
   m_timings.init = seconds_since(m_created);

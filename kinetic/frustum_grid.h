@@ -23,6 +23,7 @@
 #include "kinetic/grid_input.h"
 #include "kinetic/grid_scene.h"
 #include "kinetic/grid_stats.h"
+#include "kinetic/work_progress.h"
 
 namespace kinray {
 
@@ -39,6 +40,10 @@ struct FrustumGridConfig {
   /// Audit every invariant after each advance (and every touched pixel order after each
   /// change); a violation throws std::logic_error.
   bool audit = false;
+  /// When given, the constructor counts its two long steps here (the back-face culling proof,
+  /// then the scan conversion), so a caller can show how far a long initialisation has got; it
+  /// must outlive the constructor.
+  WorkProgress* init_progress = nullptr;
 };
 
 /// A pixel's front triangle.

@@ -26,7 +26,8 @@ void validate(const GridInput& input) {
 
 }  // namespace
 
-GridScene::GridScene(GridInput input, int threads) : m_input(std::move(input)) {
+GridScene::GridScene(GridInput input, int threads, WorkProgress* progress)
+    : m_input(std::move(input)) {
   validate(m_input);
   const PixelRays& rays = m_input.rays;
   m_x.resize(size_t(rays.width));
@@ -87,7 +88,14 @@ GridScene::GridScene(GridInput input, int threads) : m_input(std::move(input)) {
   build_edges();
 
   m_cull_sign.resize(meshes);
-  for (uint32_t m = 0; m < meshes; ++m) m_cull_sign[m] = int8_t(back_face_cull_sign(m_input.meshes[m], threads));
+  if (progress != nullptr) {
+    uint64_t work = 0;  // (triangle, segment) pairs, as back_face_cull_sign counts them
+    for (const GridMesh& mesh : m_input.meshes)
+      work += mesh.triangles.size() * (mesh.is_static || mesh.key_count() < 2 ? 1 : mesh.key_count() - 1);
+    progress->begin("back-face culling proof", work);
+  }
+  for (uint32_t m = 0; m < meshes; ++m)
+    m_cull_sign[m] = int8_t(back_face_cull_sign(m_input.meshes[m], threads, progress));
 }
 
 void GridScene::build_edges() {

@@ -10,6 +10,7 @@
 
 #include "kinetic/grid_input.h"
 #include "kinetic/triangle_motion.h"
+#include "kinetic/work_progress.h"
 
 namespace kinray {
 
@@ -26,7 +27,8 @@ struct MeshSegment {
 class GridScene {
  public:
   /// `threads` (0: all cores) only speeds up the load-time proofs; the scene does not depend on it.
-  explicit GridScene(GridInput input, int threads = 1);
+  /// `progress`, when given, counts the back-face culling proof.
+  explicit GridScene(GridInput input, int threads = 1, WorkProgress* progress = nullptr);
 
   [[nodiscard]] const PixelRays& rays() const { return m_input.rays; }
   [[nodiscard]] int width() const { return m_input.rays.width; }

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "kinetic/work_progress.h"
 #include "renderer/frame.h"
 #include "renderer/shadow_tracer.h"
 #include "renderer/shutter.h"
@@ -44,6 +45,9 @@ class Backend {
   /// What traces this backend's shadow rays at the frame it rendered last; nullptr when the
   /// scene has no lights (or the backend traces no shadow rays).
   [[nodiscard]] virtual ShadowTracer* shadow_tracer() { return nullptr; }
+  /// How far the work before the first frame has got (the kinetic grid's initialisation), for a
+  /// progress line; nullptr when the backend has no such step.
+  [[nodiscard]] virtual const WorkProgress* initialisation_progress() const { return nullptr; }
 };
 
 /// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.

@@ -36,6 +36,7 @@ class KineticBackend final : public Backend {
     }
     m_grid_config.threads = config.threads;
     m_grid_config.audit = config.audit;
+    m_grid_config.init_progress = &m_init_progress;
     // Primary hits come from the grid; shadow rays, only when there are lights, from the tracer
     // --shadow-tree chooses.
     if (!scene.scene->lights.empty())
@@ -43,6 +44,9 @@ class KineticBackend final : public Backend {
   }
 
   [[nodiscard]] ShadowTracer* shadow_tracer() override { return m_shadows.get(); }
+  [[nodiscard]] const WorkProgress* initialisation_progress() const override {
+    return &m_init_progress;
+  }
 
   [[nodiscard]] std::string name() const override { return "kinetic"; }
 
@@ -145,6 +149,7 @@ class KineticBackend final : public Backend {
   const CameraSpaceScene& m_scene;
   BackendConfig m_config;
   FrustumGridConfig m_grid_config;
+  WorkProgress m_init_progress;  ///< the grid's scan conversion, counted while it is built
   std::unique_ptr<FrustumGrid> m_grid;
   std::unique_ptr<ShadowTracer> m_shadows;  ///< when the scene has lights
   std::unique_ptr<KineticShutter> m_shutter;  ///< motion blur, made by the first render_shutter

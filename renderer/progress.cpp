@@ -29,6 +29,23 @@ Progress::~Progress() {
   finish();
 }
 
+void Progress::draw(const std::string& line) {
+  std::lock_guard lock(m_mutex);
+  m_drawn = true;
+  std::fprintf(stderr, "\r%s\033[K", line.c_str());
+  std::fflush(stderr);
+}
+
+void Progress::stop_ticker() {
+  if (!m_ticker.joinable()) return;
+  {
+    std::lock_guard lock(m_mutex);
+    m_ticking = false;
+  }
+  m_wake.notify_all();
+  m_ticker.join();
+}
+
 bool Progress::stderr_is_terminal() {
   return ::isatty(STDERR_FILENO) == 1;
 }
@@ -48,8 +65,19 @@ std::string Progress::format(size_t done, size_t total, double elapsed_s, int wi
   return line;
 }
 
+std::string Progress::format_working(const std::string& text, double fraction, double elapsed_s) {
+  std::string line = text;
+  if (fraction >= 0) {
+    char percent[16];
+    std::snprintf(percent, sizeof percent, " %d%%", int(std::floor(100 * fraction)));
+    line += percent;
+  }
+  return line + "  " + format_seconds(elapsed_s);
+}
+
 void Progress::update(size_t done) {
   if (!m_enabled) return;
+  stop_ticker();
   const Clock::time_point now = Clock::now();
   if (done < m_total && m_drawn && now - m_last_draw < std::chrono::milliseconds(100)) return;
   m_last_draw = now;
@@ -61,13 +89,32 @@ void Progress::update(size_t done) {
 
 void Progress::note(const std::string& text) {
   if (!m_enabled) return;
-  m_drawn = true;
-  std::fprintf(stderr, "\r%s\033[K", text.c_str());
-  std::fflush(stderr);
+  stop_ticker();
+  draw(text);
+}
+
+void Progress::working(const std::string& text, const WorkProgress* work) {
+  if (!m_enabled) return;
+  stop_ticker();
+  draw(text);
+  m_ticking = true;
+  m_ticker = std::thread([this, text, work, start = Clock::now()] {
+    std::unique_lock lock(m_mutex);
+    while (!m_wake.wait_for(lock, std::chrono::milliseconds(250), [this] { return !m_ticking; })) {
+      const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+      const char* step = work ? work->step.load(std::memory_order_relaxed) : nullptr;
+      const std::string line =
+          format_working(step ? text + " " + step : text, work ? work->fraction() : -1, elapsed);
+      std::fprintf(stderr, "\r%s\033[K", line.c_str());
+      std::fflush(stderr);
+    }
+  });
 }
 
 void Progress::finish() {
-  if (!m_enabled || !m_drawn) return;
+  if (!m_enabled) return;
+  stop_ticker();
+  if (!m_drawn) return;
   std::fprintf(stderr, "\r\033[K");
   std::fflush(stderr);
   m_drawn = false;

@@ -63,12 +63,15 @@ void run_render(const RenderParams& flags) {
   check_output_paths(out, flags);
   // Loading a big model and building the kinetic grid take seconds before the first frame.
   Progress status(0, !flags.quiet && Progress::stderr_is_terminal());
-  status.note("loading " + flags.scene + "...");
+  status.working("loading " + flags.scene + "...");
   RenderJob job(flags);
   const RenderParams& params = job.params();  // with the scene's own size and frame count
   std::unique_ptr<Backend> backend = job.make_backend();
   const bool kinetic = backend->name() == "kinetic";
-  if (kinetic) status.note("initialising the kinetic grid...");
+  if (kinetic)
+    status.working("initialising the kinetic grid...", backend->initialisation_progress());
+  else
+    status.finish();
 
   // Everything is valid: from here on files are written.
   create_folder(out, "--out");
@@ -96,6 +99,7 @@ void run_render(const RenderParams& flags) {
   };
   KineticForecast forecast;
   const RenderTimings& timings = job.run(*backend, [&](size_t index, const Frame& frame) {
+    if (index == job.slice().begin) status.finish();  // the job's bar takes the line from here
     if (kinetic && !params.quiet)
       if (const std::optional<RenderForecast> slow = forecast.frame_done(job, index)) {
         status.finish();  // the bar's line, drawn again at the next frame

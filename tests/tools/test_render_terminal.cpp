@@ -46,6 +46,35 @@ TEST_F(CliRenderTerminal, NotesLoadingAndGridInitialisationThenDrawsTheBar) {
       << run.out;
 }
 
+TEST_F(CliRenderTerminal, AGridThatTakesSecondsToInitialiseShowsHowFarItHasGot) {
+  // 300,000 triangles: the culling proof and the scan conversion take well over the 250 ms
+  // between redraws.
+  const test::CommandRun run = on_terminal(
+      "render wavy-sphere:triangles=300000 --size 320x240 --frames 1 --threads 1 --out '" +
+      path("frames") + "'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  // Two steps, each with its share done, which only grows within the step.
+  int shown = 0;
+  for (const std::string step : {"back-face culling proof ", "scan conversion "}) {
+    const std::string note = "initialising the kinetic grid... " + step;
+    int last = -1;
+    for (size_t at = run.err.find(note); at != std::string::npos; at = run.err.find(note, at + 1)) {
+      const size_t digits = at + note.size();
+      const size_t percent = run.err.find('%', digits);
+      ASSERT_NE(percent, std::string::npos) << run.err;
+      ASSERT_LE(percent - digits, 3u) << run.err;
+      const int value = std::stoi(run.err.substr(digits, percent - digits));
+      EXPECT_GE(value, last) << run.err;
+      EXPECT_LE(value, 100);
+      last = value;
+      ++shown;
+    }
+  }
+  EXPECT_GT(shown, 0) << run.err;
+  EXPECT_NE(run.err.find(" s\033[K"), std::string::npos) << run.err;  // with its elapsed time
+  EXPECT_EQ(last_visible_line(run.err), "");
+}
+
 TEST_F(CliRenderTerminal, EmbreeHasNoGridToInitialise) {
   const test::CommandRun run = on_terminal(
       "render wavy-sphere:triangles=600 --size 64x48 --frames 2 --backend embree --out '" +
