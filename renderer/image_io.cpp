@@ -16,13 +16,10 @@
 
 #include "renderer/temporary_files.h"
 #include "scenes/error.h"
+#include "scenes/texture_image.h"
 
 namespace kinray {
 namespace {
-
-float srgb_decode(double encoded) {
-  return float(encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4));
-}
 
 /// thresholds[c] is the linear intensity at which the 8-bit code goes from c to c + 1, so that
 /// encoding is a search over exact decision points instead of a pow per channel.
@@ -60,10 +57,6 @@ uint8_t linear_to_srgb8(float linear) {
   if (!(linear > 0.0f)) return 0;  // also NaN
   const auto& t = srgb_thresholds();
   return uint8_t(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
-}
-
-float srgb8_to_linear(uint8_t code) {
-  return srgb_decode(code / 255.0);
 }
 
 cv::Mat color_image(const Frame& frame) {

@@ -18,8 +18,6 @@ namespace kinray {
 /// 8-bit sRGB code of a linear intensity (IEC 61966-2-1 curve, clamped to [0, 1], rounded to
 /// nearest); NaN gives 0.
 [[nodiscard]] uint8_t linear_to_srgb8(float linear);
-/// Linear intensity of an 8-bit sRGB code.
-[[nodiscard]] float srgb8_to_linear(uint8_t code);
 
 /// frame.color as an 8-bit sRGB image in OpenCV's BGR channel order.
 [[nodiscard]] cv::Mat color_image(const Frame& frame);

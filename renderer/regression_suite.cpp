@@ -17,6 +17,7 @@
 #include <opencv2/core.hpp>
 
 #include "renderer/image_io.h"
+#include "scenes/texture_image.h"
 #include "renderer/render_job.h"
 #include "scenes/error.h"
 
@@ -91,7 +92,7 @@ void set_colors(const cv::Mat& bgr, Frame& frame) {
   for (int j = 0; j < frame.height && j < bgr.rows; ++j)
     for (int i = 0; i < frame.width && i < bgr.cols; ++i) {
       const cv::Vec3b& c = bgr.at<cv::Vec3b>(j, i);
-      frame.color[frame.index(i, j)] = Color(srgb8_to_linear(c[2]), srgb8_to_linear(c[1]), srgb8_to_linear(c[0]));
+      frame.color[frame.index(i, j)] = Color(srgb_to_linear(c[2]), srgb_to_linear(c[1]), srgb_to_linear(c[0]));
     }
 }
 

@@ -4,8 +4,6 @@
 #include <assimp/texture.h>
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <opencv2/core.hpp>
@@ -14,13 +12,11 @@
 
 #include "scenes/model_assimp.h"
 #include "scenes/model_tga.h"
+#include "scenes/texture_image.h"
 
 namespace kinray {
 
 namespace {
-
-// 8192 x 8192: past this a texture costs more memory than the whole model is worth.
-constexpr size_t kMaxTexels = size_t(8192) * 8192;
 
 std::optional<Texture> from_bgr(const cv::Mat& image, const std::string& name,
                                 const std::string& where) {
@@ -33,18 +29,7 @@ std::optional<Texture> from_bgr(const cv::Mat& image, const std::string& name,
                            "' is larger than 8192 x 8192 texels; using the base colour alone");
     return std::nullopt;
   }
-  Texture texture;
-  texture.path = name;
-  texture.width = image.cols;
-  texture.height = image.rows;
-  texture.texels.resize(size_t(image.cols) * size_t(image.rows));
-  for (int y = 0; y < image.rows; ++y) {
-    const cv::Vec3b* row = image.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < image.cols; ++x)
-      texture.texels[size_t(y) * size_t(image.cols) + size_t(x)] =
-          Color(srgb_to_linear(row[x][2]), srgb_to_linear(row[x][1]), srgb_to_linear(row[x][0]));
-  }
-  return texture;
+  return texture_from_bgr(image, name);
 }
 
 std::optional<Texture> from_embedded(const aiTexture& embedded, const std::string& name,
@@ -77,18 +62,6 @@ bool is_file(const std::filesystem::path& path) {
 }
 
 }  // namespace
-
-float srgb_to_linear(uint8_t value) {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i) {
-      const double c = i / 255.0;
-      t[size_t(i)] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-    }
-    return t;
-  }();
-  return table[value];
-}
 
 std::optional<Texture> read_texture(const aiScene& scene, const std::string& reference,
                                     const std::filesystem::path& model_directory,

@@ -23,8 +23,4 @@ namespace kinray {
                                                   const std::filesystem::path& model_directory,
                                                   const std::string& where);
 
-/// sRGB-encoded 8-bit value to linear intensity in [0, 1] (the IEC 61966-2-1 curve): image files
-/// hold sRGB, kinray shades in linear RGB.
-[[nodiscard]] float srgb_to_linear(uint8_t value);
-
 }  // namespace kinray

@@ -7,12 +7,10 @@
 #include <string>
 
 #include "scenes/error.h"
-#include "scenes/model_textures.h"
+#include "scenes/texture_image.h"
 
 namespace kinray {
 namespace {
-
-constexpr long long kMaxTexels = 8192LL * 8192LL;
 
 /// The header fields and pixel data of a PPM held in memory.
 class PpmBytes {
@@ -83,7 +81,7 @@ Texture read_ppm(const std::filesystem::path& path) {
                   height = ppm.header_integer("the height");
   const long long maxval = ppm.header_integer("maxval");
   if (width < 1 || height < 1) ppm.fail("width and height must be at least 1");
-  if (width * height > kMaxTexels) ppm.fail("more than 8192 x 8192 texels");
+  if (width * height > (long long)kMaxTexels) ppm.fail("more than 8192 x 8192 texels");
   if (maxval < 1 || maxval > 65535) ppm.fail("maxval must lie in 1..65535");
   if (binary) ppm.end_of_header();
 

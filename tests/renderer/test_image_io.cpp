@@ -10,6 +10,7 @@
 #include <string>
 
 #include "renderer/image_io.h"
+#include "scenes/texture_image.h"
 #include "scenes/error.h"
 
 namespace kinray {
@@ -115,7 +116,7 @@ TEST(Srgb, EncodesTheStandardCurve) {
   EXPECT_EQ(linear_to_srgb8(0.18f), 118);  // middle grey: 0.4614 * 255 = 117.66
   EXPECT_EQ(linear_to_srgb8(0.001f), 3);   // linear segment: 12.92 * 0.001 * 255 = 3.29
   for (int code = 0; code < 256; ++code)
-    EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(uint8_t(code))), code);
+    EXPECT_EQ(linear_to_srgb8(srgb_to_linear(uint8_t(code))), code);
   for (float x = 0; x < 1; x += 1e-3f) EXPECT_LE(linear_to_srgb8(x), linear_to_srgb8(x + 1e-3f));
 }
 

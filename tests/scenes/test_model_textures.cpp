@@ -13,6 +13,7 @@
 #include "scenes/model_guard.h"
 #include "scenes/model_import.h"
 #include "scenes/model_textures.h"
+#include "scenes/texture_image.h"
 #include "scenes/model_tga.h"
 #include "tests/scenes/model_test_support.h"
 
