@@ -23,7 +23,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 
 packages=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ pkg-config ccache
   libeigen3-dev libembree-dev libassimp-dev assimp-testmodels libosmesa6-dev
   libopencv-imgcodecs-dev libopencv-imgproc-dev libopencv-videoio-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libgmp-dev
@@ -48,13 +48,19 @@ if ((${#missing[@]} > 0)); then
   "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
+# ccache keeps compiled objects across builds and clones on one machine (a second clone, the
+# sanitizer build after a change, CI on a developer's machine): paths are hashed relative to the
+# checkout, so every clone shares the cache.
+export CCACHE_BASEDIR="$root"
+export KINRAY_CMAKE_ARGS="${KINRAY_CMAKE_ARGS:--DCMAKE_CXX_COMPILER_LAUNCHER=ccache}"
+
 # The sanitizer and fuzz builds live in folders of their own (tools/checks.sh).
 if [[ "$mode" == sanitize || "$mode" == fuzz ]]; then
   exec bash tools/checks.sh "$mode"
 fi
 
 echo "setup: building into build/"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 # Rendering needs only the program; the tests need everything (the suite runs the program too).
 if [[ "$mode" == test ]]; then
   cmake --build build -j "$(nproc)"
