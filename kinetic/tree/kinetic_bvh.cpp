@@ -204,46 +204,6 @@ void KineticBvh::handle_mesh(uint32_t m) {
   schedule_mesh(m);
 }
 
-void KineticBvh::refresh_mesh(uint32_t m) {
-  for (uint32_t k = m_mesh_node_begin[m]; k < m_mesh_node_begin[m + 1]; ++k) {
-    const uint32_t i = m_mesh_nodes[k];
-    const BvhNode& n = m_topology.nodes[i];
-    m_active[i] = n.leaf() ? m_meshes.present(m) : uint8_t(m_active[n.left] | m_active[n.right]);
-    for (int s = 0; s < 6; ++s)
-      if (((m_sides[i] >> s) & 1) != 0 && !keeps_through_segment(i, s) && update_side(i, s))
-        ++m_stats.realizer_changes;
-  }
-}
-
-bool KineticBvh::keeps_through_segment(uint32_t node, int s) {
-  if (!m_active[node]) return false;
-  const BvhNode& n = m_topology.nodes[node];
-  const int axis = side_axis(s), sign = side_sign(s);
-  const uint32_t r = m_realizer[node][size_t(s)];
-  if (r == kNoVertex) return false;  // just attached
-  const double margin = m_key_margin;
-  uint8_t live = 0;
-  if (n.leaf()) {
-    for (uint32_t q : m_meshes.triangle(n.triangle)) {
-      if (q == r) continue;
-      if (!m_meshes.beyond_at_both_keys(r, q, axis, sign, margin)) return false;
-      ++live;
-    }
-  } else {
-    const uint32_t l = m_realizer[n.left][size_t(s)], rr = m_realizer[n.right][size_t(s)];
-    if (l == kNoVertex || rr == kNoVertex || l == rr || (r != l && r != rr)) return false;
-    if (!m_meshes.beyond_at_both_keys(r, r == l ? rr : l, axis, sign, margin)) return false;
-    live = 1;
-  }
-  ++m_stats.certificates_computed;
-  ++m_stats.certificates_by_keys;
-  uint8_t& counted = m_live[size_t(node) * 6 + size_t(s)];
-  m_live_total += uint64_t(live) - uint64_t(counted);
-  counted = live;
-  schedule(node, s, kInfinityTime);
-  return true;
-}
-
 uint64_t KineticBvh::live_certificates() const {
   uint64_t live = 0;
   for (uint32_t i = 0; i < m_topology.nodes.size(); ++i) {
