@@ -12,11 +12,12 @@ namespace kinray {
 
 void KineticBvh::refresh_mesh(uint32_t m) {
   uint64_t settled_total = 0;
+  const bool moving = !m_meshes.still(m);
   for (uint32_t k = m_mesh_node_begin[m]; k < m_mesh_node_begin[m + 1]; ++k) {
     const uint32_t i = m_mesh_nodes[k];
     const BvhNode& n = m_topology.nodes[i];
     m_active[i] = n.leaf() ? m_meshes.present(m) : uint8_t(m_active[n.left] | m_active[n.right]);
-    const uint8_t settled = settle_at_key(i);
+    const uint8_t settled = moving ? settle_at_key(i) : 0;
     settled_total += uint64_t(std::popcount(settled));
     const uint8_t rest = uint8_t(m_sides[i] & ~settled);
     if (rest == 0) continue;
@@ -52,8 +53,7 @@ uint8_t KineticBvh::settle_at_key(uint32_t node) {
   uint8_t settled = 0;
   std::array<uint8_t, 6> live{};
   if (n.leaf()) {
-    const std::array<uint32_t, 3>& v = m_meshes.triangle(n.triangle);
-    if (m_meshes.still(m_meshes.mesh_of_triangle(n.triangle))) return 0;
+    const std::array<uint32_t, 3>& v = m_leaf_vertices[node];  // node order: no random load
     // The key positions, axis-major: p[key][axis][corner].
     double p[2][3][3];
     for (int c = 0; c < 3; ++c)
