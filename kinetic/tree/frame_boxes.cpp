@@ -50,7 +50,9 @@ void FrameBoxes::prepare(const BvhTopology& topology, const TreeMeshes& meshes,
     for (uint32_t i = 0; i < nodes.size(); ++i)
       if (!nodes[i].leaf()) compact[i] = inner++;
     m_nodes.assign(inner, Node{});
-    auto link = [&](uint32_t i) { return nodes[i].leaf() ? kLeaf | nodes[i].triangle : compact[i]; };
+    auto link = [&](uint32_t i) {
+      return nodes[i].leaf() ? kLeaf | nodes[i].triangle : compact[i];
+    };
     for (uint32_t i = 0; i < nodes.size(); ++i) {
       if (nodes[i].leaf()) continue;
       Node& n = m_nodes[compact[i]];
@@ -160,15 +162,7 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
     for (uint32_t link : n.link)  // the next nodes' lines load while this one is tested
       if ((link & FrameBoxes::kLeaf) == 0) __builtin_prefetch(&boxes.node(link));
     const double el = entry(n.box[0], s_max), er = entry(n.box[1], s_max);
-    KINRAY_CHECK_MSG(top + 2 <= 128, "tree query: the tree is deeper than the traversal stack");
-    // Nearer child on top.
-    if (el <= er) {
-      if (er < s_max) stack[top++] = Entry{n.link[1], er};
-      if (el < s_max) stack[top++] = Entry{n.link[0], el};
-    } else {
-      if (el < s_max) stack[top++] = Entry{n.link[0], el};
-      if (er < s_max) stack[top++] = Entry{n.link[1], er};
-    }
+    detail::push_children(stack, top, Entry{n.link[0], el}, Entry{n.link[1], er}, s_max);
   }
   return best;
 }

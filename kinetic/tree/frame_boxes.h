@@ -3,9 +3,10 @@
 // 64-byte node per inner node of the tree holding both children's float boxes (rounded outward
 // from the padded double boxes, so each contains the box the lazy traversal of tree_query.h
 // evaluates and no hit is lost) and the children's links; the triangles are placed exactly as
-// TreeMeshes::position places them (the exact double triangle test, hence the same hits). A traversal step reads one cache line and tests both children, instead of
-// evaluating twelve realizers' motions. Filled from the kinetic AABB tree, the kinetic BoxTree (a
-// child is its parent's box cut by the sides it tracks) or the bottom-up tree's stored boxes.
+// TreeMeshes::position places them (the exact double triangle test, hence the same hits). A
+// traversal step reads one cache line and tests both children, instead of evaluating twelve
+// realizers' motions. Filled from the kinetic AABB tree, the kinetic BoxTree (a child is its
+// parent's box cut by the sides it tracks) or the bottom-up tree's stored boxes.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -44,7 +45,8 @@ class FrameBoxes {
   }
   [[nodiscard]] const TreeMeshes& meshes() const { return *m_meshes; }
   [[nodiscard]] size_t memory_bytes() const {
-    return m_nodes.capacity() * sizeof(Node) + m_slot.capacity() * sizeof(uint32_t) + m_coordinates.capacity() * sizeof(double);
+    return m_nodes.capacity() * sizeof(Node) + m_slot.capacity() * sizeof(uint32_t) +
+           m_coordinates.capacity() * sizeof(double);
   }
 
  private:

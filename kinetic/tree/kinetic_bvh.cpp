@@ -43,7 +43,8 @@ KineticBvh::KineticBvh(std::vector<GridMesh> meshes, double t, const Config& con
   m_active.assign(nodes, 0);
   m_leaf_vertices.assign(nodes, {kNoVertex, kNoVertex, kNoVertex});
   for (uint32_t i = 0; i < nodes; ++i)
-    if (m_topology.nodes[i].leaf()) m_leaf_vertices[i] = m_meshes.triangle(m_topology.nodes[i].triangle);
+    if (m_topology.nodes[i].leaf())
+      m_leaf_vertices[i] = m_meshes.triangle(m_topology.nodes[i].triangle);
   m_live.assign(nodes * 6, 0);
   m_key_margin = 1e-12 * m_meshes.scale();
 
@@ -246,8 +247,8 @@ size_t KineticBvh::memory_bytes() const {
   return m_topology.nodes.capacity() * sizeof(BvhNode) +
          m_realizer.capacity() * sizeof(m_realizer[0]) + m_event.capacity() * sizeof(m_event[0]) +
          m_sides.capacity() + m_active.capacity() +
-         m_leaf_vertices.capacity() * sizeof(m_leaf_vertices[0]) + m_mesh_nodes.capacity() * sizeof(uint32_t) +
-         m_sim.queue().memory_bytes() +
+         m_leaf_vertices.capacity() * sizeof(m_leaf_vertices[0]) +
+         m_mesh_nodes.capacity() * sizeof(uint32_t) + m_sim.queue().memory_bytes() +
          size_t(m_meshes.vertex_count()) * 2 * sizeof(Eigen::Vector3d) +
          size_t(m_meshes.triangle_count()) * 4 * sizeof(uint32_t);
 }

@@ -135,9 +135,9 @@ class KineticBvh {
     return b;
   }
   void schedule(uint32_t node, int s, double time);
-  /// At a key of a moving mesh (kinetic_bvh_keys.cpp): the tracked sides of the node whose realizer provably stays
-  /// through the new segment, decided from the key positions alone and settled (no failure time,
-  /// no event); the others are left to update_side.
+  /// At a key of a moving mesh (kinetic_bvh_keys.cpp): the tracked sides of the node whose realizer
+  /// provably stays through the new segment, decided from the key positions alone and settled (no
+  /// failure time, no event); the others are left to update_side.
   uint8_t settle_at_key(uint32_t node);
   /// Those sides keep their realizer with `live` certificates each and no event.
   void settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live);
@@ -155,8 +155,9 @@ class KineticBvh {
   Simulator m_sim;
   std::vector<std::array<uint32_t, 6>> m_realizer;
   std::vector<std::array<EventHandle, 6>> m_event;
-  std::vector<uint8_t> m_sides;   ///< per node: bit s set when side s is tracked
-  std::vector<std::array<uint32_t, 3>> m_leaf_vertices;  ///< per node: a leaf's triangle, in node order
+  std::vector<uint8_t> m_sides;  ///< per node: bit s set when side s is tracked
+  std::vector<std::array<uint32_t, 3>>
+      m_leaf_vertices;            ///< per node: a leaf's triangle, in node order
   std::vector<uint8_t> m_active;  ///< per node
   std::vector<uint8_t> m_live;    ///< per node side: its live certificates (leaf 0-2, inner 0-1)
   uint64_t m_live_total = 0;

@@ -70,6 +70,19 @@ inline double slab_entry(const Aabb& box, const Eigen::Vector3d& o, const Eigen:
   return slab_entry(box.lo, box.hi, o, inv, s_min, s_max);
 }
 
+/// Pushes the children the ray enters before s_max, the nearer one on top (popped first); the
+/// stack (128 entries) holds at most the tree's height + 1.
+template <class Entry>
+inline void push_children(Entry* stack, int& top, const Entry& left, const Entry& right,
+                          double s_max) {
+  KINRAY_CHECK_MSG(top + 2 <= 128, "tree query: the tree is deeper than the traversal stack");
+  const bool left_first = left.entry <= right.entry;
+  const Entry& far = left_first ? right : left;
+  const Entry& near = left_first ? left : right;
+  if (far.entry < s_max) stack[top++] = far;
+  if (near.entry < s_max) stack[top++] = near;
+}
+
 /// The traversal: visit(triangle, s_max) returns the hit parameter or nullopt; with `any` the
 /// first hit ends it, else the nearest one is kept and s_max shrinks to it.
 template <class Boxes>
@@ -113,15 +126,7 @@ std::optional<TreeHit> traverse(const Boxes& boxes, const TreeRay& ray, const Tr
     boxes.child_boxes(n, cur.box, frame, lbox, rbox);
     const double el = slab_entry(lbox, ray.origin, inv, ray.s_min, s_max);
     const double er = slab_entry(rbox, ray.origin, inv, ray.s_min, s_max);
-    // Nearer child on top; the stack holds at most height + 1 entries.
-    KINRAY_CHECK_MSG(top + 2 <= 128, "tree query: the tree is deeper than the traversal stack");
-    if (el <= er) {
-      if (er < s_max) stack[top++] = Entry{n.right, er, rbox};
-      if (el < s_max) stack[top++] = Entry{n.left, el, lbox};
-    } else {
-      if (el < s_max) stack[top++] = Entry{n.left, el, lbox};
-      if (er < s_max) stack[top++] = Entry{n.right, er, rbox};
-    }
+    push_children(stack, top, Entry{n.left, el, lbox}, Entry{n.right, er, rbox}, s_max);
   }
   return best;
 }

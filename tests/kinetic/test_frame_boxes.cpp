@@ -12,25 +12,13 @@
 namespace kinray {
 namespace {
 
-using test::Vec;
-
-TreeRay random_scene_ray(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  TreeRay ray;
-  ray.origin = Vec(u(rng), u(rng), 3) + 4 * Vec(u(rng), u(rng), u(rng)).normalized();
-  ray.direction = Vec(u(rng), u(rng), 3 + u(rng)) - ray.origin;
-  if (rng() % 3 == 0) ray.direction *= 0.3;  // a segment that may stop short of the triangles
-  ray.s_max = rng() % 2 == 0 ? 1.0 : kInfinityTime;
-  return ray;
-}
-
 template <class Tree>
 void expect_frame_queries_match(const Tree& tree, const TreeFrame& frame, std::mt19937& rng,
                                 int& hits) {
   FrameBoxes boxes;
   boxes.fill(tree, frame);
   for (int r = 0; r < 200; ++r) {
-    TreeRay ray = random_scene_ray(rng);
+    TreeRay ray = test::random_tree_ray(rng);
     const auto first = brute_force_closest_hit(tree.meshes(), ray, frame);
     if (first && rng() % 4 == 0) ray.skip = first->triangle;  // the shadow rays' rule
     const auto expected = brute_force_closest_hit(tree.meshes(), ray, frame);
