@@ -1,11 +1,13 @@
 #include "renderer/tree_shadow_tracer.h"
 
 #include <chrono>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 
 #include "kinetic/tree/bottom_up_bvh.h"
+#include "kinetic/tree/frame_boxes.h"
 #include "kinetic/tree/kinetic_bvh.h"
 #include "renderer/grid_meshes.h"
 #include "renderer/kinetic_shadow_tracer.h"
@@ -48,10 +50,22 @@ class TreeShadowTracer final : public ShadowTracer {
     (m_frames == 0 ? m_build_s : m_update_s) += seconds;
     ++m_frames;
     m_frame = TreeFrame(meshes(), t);
+    m_boxes_time = std::nullopt;
   }
 
   void occluded(std::span<const ShadowRay> rays, std::span<uint8_t> blocked) const override {
     if (m_frames == 0) throw std::logic_error("tree shadow tracer: occluded before advance_to");
+    const TreeMeshes& tree_meshes = meshes();
+    {  // the frame's boxes, once for every call of the frame (a query cost, timed with them)
+      const std::lock_guard<std::mutex> lock(m_boxes_mutex);
+      if (m_boxes_time != m_frame.t) {
+        if (m_kinetic)
+          m_boxes.fill(*m_kinetic, m_frame);
+        else
+          m_boxes.fill(*m_bottom_up, m_frame);
+        m_boxes_time = m_frame.t;
+      }
+    }
     for (size_t i = 0; i < rays.size(); ++i) {
       const ShadowRay& r = rays[i];
       TreeRay ray;
@@ -59,9 +73,8 @@ class TreeShadowTracer final : public ShadowTracer {
       ray.direction = r.direction;
       ray.s_max = r.s_max;
       if (r.object < m_mesh_of_object.size() && m_mesh_of_object[r.object] != UINT32_MAX)
-        ray.skip = meshes().triangle_begin(m_mesh_of_object[r.object]) + r.prim;
-      blocked[i] =
-          m_kinetic ? any_hit(*m_kinetic, ray, m_frame) : any_hit(*m_bottom_up, ray, m_frame);
+        ray.skip = tree_meshes.triangle_begin(m_mesh_of_object[r.object]) + r.prim;
+      blocked[i] = frame_traverse(m_boxes, ray, true).has_value();
     }
   }
 
@@ -86,6 +99,9 @@ class TreeShadowTracer final : public ShadowTracer {
   std::optional<KineticBvh> m_kinetic;
   std::optional<BottomUpBvh> m_bottom_up;
   TreeFrame m_frame;
+  mutable std::mutex m_boxes_mutex;  ///< occluded may be called from several threads
+  mutable FrameBoxes m_boxes;        ///< filled by the first occluded call of a frame
+  mutable std::optional<double> m_boxes_time;
   uint64_t m_frames = 0;
   double m_build_s = 0, m_update_s = 0;
 };

@@ -41,6 +41,10 @@ KineticBvh::KineticBvh(std::vector<GridMesh> meshes, double t, const Config& con
   m_realizer.assign(nodes, {kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex});
   m_event.assign(nodes, {kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent});
   m_active.assign(nodes, 0);
+  m_leaf_vertices.assign(nodes, {kNoVertex, kNoVertex, kNoVertex});
+  for (uint32_t i = 0; i < nodes; ++i)
+    if (m_topology.nodes[i].leaf())
+      m_leaf_vertices[i] = m_meshes.triangle(m_topology.nodes[i].triangle);
   m_live.assign(nodes * 6, 0);
   m_key_margin = 1e-12 * m_meshes.scale();
 
@@ -204,46 +208,6 @@ void KineticBvh::handle_mesh(uint32_t m) {
   schedule_mesh(m);
 }
 
-void KineticBvh::refresh_mesh(uint32_t m) {
-  for (uint32_t k = m_mesh_node_begin[m]; k < m_mesh_node_begin[m + 1]; ++k) {
-    const uint32_t i = m_mesh_nodes[k];
-    const BvhNode& n = m_topology.nodes[i];
-    m_active[i] = n.leaf() ? m_meshes.present(m) : uint8_t(m_active[n.left] | m_active[n.right]);
-    for (int s = 0; s < 6; ++s)
-      if (((m_sides[i] >> s) & 1) != 0 && !keeps_through_segment(i, s) && update_side(i, s))
-        ++m_stats.realizer_changes;
-  }
-}
-
-bool KineticBvh::keeps_through_segment(uint32_t node, int s) {
-  if (!m_active[node]) return false;
-  const BvhNode& n = m_topology.nodes[node];
-  const int axis = side_axis(s), sign = side_sign(s);
-  const uint32_t r = m_realizer[node][size_t(s)];
-  if (r == kNoVertex) return false;  // just attached
-  const double margin = m_key_margin;
-  uint8_t live = 0;
-  if (n.leaf()) {
-    for (uint32_t q : m_meshes.triangle(n.triangle)) {
-      if (q == r) continue;
-      if (!m_meshes.beyond_at_both_keys(r, q, axis, sign, margin)) return false;
-      ++live;
-    }
-  } else {
-    const uint32_t l = m_realizer[n.left][size_t(s)], rr = m_realizer[n.right][size_t(s)];
-    if (l == kNoVertex || rr == kNoVertex || l == rr || (r != l && r != rr)) return false;
-    if (!m_meshes.beyond_at_both_keys(r, r == l ? rr : l, axis, sign, margin)) return false;
-    live = 1;
-  }
-  ++m_stats.certificates_computed;
-  ++m_stats.certificates_by_keys;
-  uint8_t& counted = m_live[size_t(node) * 6 + size_t(s)];
-  m_live_total += uint64_t(live) - uint64_t(counted);
-  counted = live;
-  schedule(node, s, kInfinityTime);
-  return true;
-}
-
 uint64_t KineticBvh::live_certificates() const {
   uint64_t live = 0;
   for (uint32_t i = 0; i < m_topology.nodes.size(); ++i) {
@@ -282,8 +246,9 @@ TreeStats KineticBvh::stats() const {
 size_t KineticBvh::memory_bytes() const {
   return m_topology.nodes.capacity() * sizeof(BvhNode) +
          m_realizer.capacity() * sizeof(m_realizer[0]) + m_event.capacity() * sizeof(m_event[0]) +
-         m_sides.capacity() + m_active.capacity() + m_mesh_nodes.capacity() * sizeof(uint32_t) +
-         m_sim.queue().memory_bytes() +
+         m_sides.capacity() + m_active.capacity() +
+         m_leaf_vertices.capacity() * sizeof(m_leaf_vertices[0]) +
+         m_mesh_nodes.capacity() * sizeof(uint32_t) + m_sim.queue().memory_bytes() +
          size_t(m_meshes.vertex_count()) * 2 * sizeof(Eigen::Vector3d) +
          size_t(m_meshes.triangle_count()) * 4 * sizeof(uint32_t);
 }

@@ -14,6 +14,7 @@
 // axis and stores its left child's max and its right child's min there; a node then tracks only
 // the sides its ancestors' planes need, so it never has more certificates than the AABB tree.
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -134,10 +135,12 @@ class KineticBvh {
     return b;
   }
   void schedule(uint32_t node, int s, double time);
-  /// At a key, before update_side: when the realizer is beyond its competitors by a margin at both
-  /// keys of the new segment, the certificates hold through it (linear motion) and no failure
-  /// time is needed; the realizer stays. Returns false when that does not decide it.
-  bool keeps_through_segment(uint32_t node, int s);
+  /// At a key of a moving mesh (kinetic_bvh_keys.cpp): the tracked sides of the node whose realizer
+  /// provably stays through the new segment, decided from the key positions alone and settled (no
+  /// failure time, no event); the others are left to update_side.
+  uint8_t settle_at_key(uint32_t node);
+  /// Those sides keep their realizer with `live` certificates each and no event.
+  void settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live);
   void handle(const EventKey& key, uint64_t payload);
   void handle_mesh(uint32_t m);
   void schedule_mesh(uint32_t m);
@@ -152,7 +155,9 @@ class KineticBvh {
   Simulator m_sim;
   std::vector<std::array<uint32_t, 6>> m_realizer;
   std::vector<std::array<EventHandle, 6>> m_event;
-  std::vector<uint8_t> m_sides;   ///< per node: bit s set when side s is tracked
+  std::vector<uint8_t> m_sides;  ///< per node: bit s set when side s is tracked
+  std::vector<std::array<uint32_t, 3>>
+      m_leaf_vertices;            ///< per node: a leaf's triangle, in node order
   std::vector<uint8_t> m_active;  ///< per node
   std::vector<uint8_t> m_live;    ///< per node side: its live certificates (leaf 0-2, inner 0-1)
   uint64_t m_live_total = 0;

@@ -52,11 +52,11 @@ TreeMeshes::TreeMeshes(std::vector<GridMesh> meshes, double t) : m_meshes(std::m
   }
   m_a.resize(vertices);
   m_b.resize(vertices);
+  m_end.resize(vertices);
   m_origin.assign(n, 0);
   m_segment_end.assign(n, kInfinityTime);
   m_present.assign(n, 0);
   m_still.assign(n, 1);
-  m_next_key.assign(n, nullptr);
   for (uint32_t m = 0; m < n; ++m) set_time(m, t);
 }
 
@@ -70,16 +70,17 @@ void TreeMeshes::set_time(uint32_t m, double t) {
   m_origin[m] = keys[index == 0 ? 0 : index - 1];
   m_segment_end[m] = index < n ? keys[index] : kInfinityTime;
   m_still[m] = index == 0 || index >= n;
-  m_next_key[m] = m_still[m] ? nullptr : &mesh.positions[index * mesh.vertex_count];
   m_present[m] = mesh.present(t);
   for (uint32_t local = 0; local < mesh.vertex_count; ++local) {
     const uint32_t v = m_vertex_begin[m] + local;
     if (m_still[m]) {
       m_a[v] = mesh.key_position(index == 0 ? 0 : n - 1, local);
       m_b[v].setZero();
+      m_end[v] = m_a[v];
     } else {
       m_a[v] = mesh.key_position(index - 1, local);
-      m_b[v] = (mesh.key_position(index, local) - m_a[v]) / (keys[index] - keys[index - 1]);
+      m_end[v] = mesh.key_position(index, local);
+      m_b[v] = (m_end[v] - m_a[v]) / (keys[index] - keys[index - 1]);
     }
   }
 }

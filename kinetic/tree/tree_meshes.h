@@ -105,12 +105,13 @@ class TreeMeshes {
                                          double margin) const {
     const uint32_t m = m_vertex_mesh[r];
     if (m_vertex_mesh[q] != m || m_still[m]) return false;
-    const double d0 = sign * (m_a[r][axis] - m_a[q][axis]);  // a is the key position at the origin
-    if (!(d0 > margin)) return false;
-    const Eigen::Vector3d* next = m_next_key[m];
-    const uint32_t base = m_vertex_begin[m];
-    return sign * (next[r - base][axis] - next[q - base][axis]) > margin;
+    return sign * (m_a[r][axis] - m_a[q][axis]) > margin &&  // a is the key position at the origin
+           sign * (m_end[r][axis] - m_end[q][axis]) > margin;
   }
+  /// Vertex v's positions at the two keys of its mesh's current segment (equal when still): what
+  /// the key pass of the trees compares (kinetic_bvh_keys.cpp).
+  [[nodiscard]] const Eigen::Vector3d& key_start(uint32_t v) const { return m_a[v]; }
+  [[nodiscard]] const Eigen::Vector3d& key_end(uint32_t v) const { return m_end[v]; }
 
   /// The key blend of every mesh at t, for exact positions (GridMesh::position) in queries.
   void blends_at(double t, std::vector<GridMesh::KeyBlend>& out) const;
@@ -126,9 +127,9 @@ class TreeMeshes {
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin, m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;
   std::vector<Eigen::Vector3d> m_a, m_b;           ///< per vertex, on the mesh's current segment
+  std::vector<Eigen::Vector3d> m_end;              ///< per vertex: the key ending the segment
   std::vector<double> m_origin, m_segment_end;     ///< per mesh
   std::vector<uint8_t> m_present, m_still;         ///< per mesh
-  std::vector<const Eigen::Vector3d*> m_next_key;  ///< per mesh: the key ending its segment
   double m_scale = 0;
   Eigen::Vector3d m_shot_lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d m_shot_hi = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());

@@ -44,15 +44,18 @@ struct TreeFrame {
 
 namespace detail {
 
-/// Entry parameter of the ray into the box within (s_min, s_max), or +inf when it misses.
-inline double slab_entry(const Aabb& box, const Eigen::Vector3d& o, const Eigen::Vector3d& inv,
-                         double s_min, double s_max) {
+/// Entry parameter of the ray into the box [lo, hi] within (s_min, s_max), or +inf when it misses
+/// (lo and hi: anything indexable by axis, double or float).
+template <class Corner>
+inline double slab_entry(const Corner& box_lo, const Corner& box_hi, const Eigen::Vector3d& o,
+                         const Eigen::Vector3d& inv, double s_min, double s_max) {
   double lo = s_min, hi = s_max;
   for (int a = 0; a < 3; ++a) {
-    if (!(box.lo[a] <= box.hi[a])) return std::numeric_limits<double>::infinity();
-    double t0 = (box.lo[a] - o[a]) * inv[a], t1 = (box.hi[a] - o[a]) * inv[a];
+    const double blo = box_lo[a], bhi = box_hi[a];
+    if (!(blo <= bhi)) return std::numeric_limits<double>::infinity();
+    double t0 = (blo - o[a]) * inv[a], t1 = (bhi - o[a]) * inv[a];
     if (std::isnan(t0) || std::isnan(t1)) {  // direction 0 along a, origin on the slab's plane
-      if (o[a] < box.lo[a] || o[a] > box.hi[a]) return std::numeric_limits<double>::infinity();
+      if (o[a] < blo || o[a] > bhi) return std::numeric_limits<double>::infinity();
       continue;
     }
     if (t0 > t1) std::swap(t0, t1);
@@ -61,6 +64,23 @@ inline double slab_entry(const Aabb& box, const Eigen::Vector3d& o, const Eigen:
     if (lo > hi) return std::numeric_limits<double>::infinity();
   }
   return lo;
+}
+inline double slab_entry(const Aabb& box, const Eigen::Vector3d& o, const Eigen::Vector3d& inv,
+                         double s_min, double s_max) {
+  return slab_entry(box.lo, box.hi, o, inv, s_min, s_max);
+}
+
+/// Pushes the children the ray enters before s_max, the nearer one on top (popped first); the
+/// stack (128 entries) holds at most the tree's height + 1.
+template <class Entry>
+inline void push_children(Entry* stack, int& top, const Entry& left, const Entry& right,
+                          double s_max) {
+  KINRAY_CHECK_MSG(top + 2 <= 128, "tree query: the tree is deeper than the traversal stack");
+  const bool left_first = left.entry <= right.entry;
+  const Entry& far = left_first ? right : left;
+  const Entry& near = left_first ? left : right;
+  if (far.entry < s_max) stack[top++] = far;
+  if (near.entry < s_max) stack[top++] = near;
 }
 
 /// The traversal: visit(triangle, s_max) returns the hit parameter or nullopt; with `any` the
@@ -106,15 +126,7 @@ std::optional<TreeHit> traverse(const Boxes& boxes, const TreeRay& ray, const Tr
     boxes.child_boxes(n, cur.box, frame, lbox, rbox);
     const double el = slab_entry(lbox, ray.origin, inv, ray.s_min, s_max);
     const double er = slab_entry(rbox, ray.origin, inv, ray.s_min, s_max);
-    // Nearer child on top; the stack holds at most height + 1 entries.
-    KINRAY_CHECK_MSG(top + 2 <= 128, "tree query: the tree is deeper than the traversal stack");
-    if (el <= er) {
-      if (er < s_max) stack[top++] = Entry{n.right, er, rbox};
-      if (el < s_max) stack[top++] = Entry{n.left, el, lbox};
-    } else {
-      if (el < s_max) stack[top++] = Entry{n.left, el, lbox};
-      if (er < s_max) stack[top++] = Entry{n.right, er, rbox};
-    }
+    push_children(stack, top, Entry{n.left, el, lbox}, Entry{n.right, er, rbox}, s_max);
   }
   return best;
 }

@@ -104,22 +104,11 @@ TEST(KineticTree, BoxTreeTracksFewerSidesAndHasFewerEvents) {
   EXPECT_LT(box.stats().certificates_live, aabb.stats().certificates_live);
 }
 
-/// A random ray through the scene's region: origin on a sphere around it, aimed at a random point.
-TreeRay random_ray(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  TreeRay ray;
-  ray.origin = Vec(u(rng), u(rng), 3) + 4 * Vec(u(rng), u(rng), u(rng)).normalized();
-  ray.direction = Vec(u(rng), u(rng), 3 + u(rng)) - ray.origin;
-  if (rng() % 3 == 0) ray.direction *= 0.3;  // a segment that may stop short of the triangles
-  ray.s_max = rng() % 2 == 0 ? 1.0 : kInfinityTime;
-  return ray;
-}
-
 template <class Tree>
 void expect_queries_match_brute_force(const Tree& tree, const TreeFrame& frame, std::mt19937& rng,
                                       int& hits) {
   for (int r = 0; r < 200; ++r) {
-    TreeRay ray = random_ray(rng);
+    TreeRay ray = test::random_tree_ray(rng);
     const auto brute = brute_force_closest_hit(tree.meshes(), ray, frame);
     if (brute && rng() % 4 == 0) ray.skip = brute->triangle;  // the shadow rays' rule
     const auto expected = brute_force_closest_hit(tree.meshes(), ray, frame);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "grid_test_scenes.h"
+#include "kinetic/tree/tree_query.h"
 
 namespace kinray::test {
 
@@ -64,6 +65,17 @@ inline TestScene mixed_tree_scene(uint32_t seed, int grid = 12) {
   visitor.disappear = 2.2;
   s.meshes.push_back(visitor);
   return s;
+}
+
+/// A random ray through the scene's region: origin on a sphere around it, aimed at a random point.
+inline TreeRay random_tree_ray(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  TreeRay ray;
+  ray.origin = Vec(u(rng), u(rng), 3) + 4 * Vec(u(rng), u(rng), u(rng)).normalized();
+  ray.direction = Vec(u(rng), u(rng), 3 + u(rng)) - ray.origin;
+  if (rng() % 3 == 0) ray.direction *= 0.3;  // a segment that may stop short of the triangles
+  ray.s_max = rng() % 2 == 0 ? 1.0 : kInfinityTime;
+  return ray;
 }
 
 }  // namespace kinray::test
