@@ -20,6 +20,7 @@
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"
 #include "tools/cli_options.h"
+#include "tools/collide_bench.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
 
@@ -133,6 +134,13 @@ void run_suite_bench(const BenchOptions& options, const CLI::App& command) {
 void run_bench(const BenchOptions& options, const CLI::App& command) {
   check_suite_flags(command, options.suite);
   if (options.suite.enabled) return run_suite_bench(options, command);
+  const bool collide = options.structure.find("ksl") != std::string::npos ||
+                       options.structure.find("swept") != std::string::npos;
+  if (collide) {
+    run_collide_bench(options.render.params.scene, options.structure, options.inbetweens,
+                      options.triangles, options.repetitions, options.json, options.quiet);
+    return;
+  }
   if (options.structure != "grid") {
     run_tree_bench(options.render.resolve(), options.structure, options.inbetweens, options.triangles,
                    options.repetitions, options.json, options.charts, options.quiet);
@@ -201,7 +209,8 @@ void register_bench_command(CLI::App& app) {
   output_path(command->add_option("--charts", options->charts,
                                   "Write PNG charts of each sweep into this folder"));
   command->add_option("--structure", options->structure,
-                      "grid (the kinetic grid against Embree), or kinetic trees for shadow rays: aabb,boxtree[,refit]")
+                      "grid (the kinetic grid against Embree), kinetic trees for shadow rays: aabb,boxtree[,refit], "
+                      "or collision detection: ksl,swept[,brute] (--inbetweens: collision checks per keyframe interval)")
       ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   add_motion_blur_bench_options(*command, options->motion_blur);

@@ -1,6 +1,6 @@
 // kinray collide SCENE: every contact between (and with --self, within) the scene's animated
 // meshes, in time order, found by exact continuous collision detection on each flightplan
-// segment (kinetic/collision/), with swept volumes or brute force.
+// segment (kinetic/collision/), with the kinetic separation list, swept volumes or brute force.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,6 +9,7 @@
 
 #include "renderer/frame_schedule.h"
 #include "renderer/image_io.h"
+#include "renderer/quality_measures.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
@@ -21,8 +22,9 @@ namespace {
 
 struct CollideOptions {
   RenderOptions scene;  ///< SCENE, --animation, --keyrate
-  bool self = false, stats = false, quiet = false;
-  std::string objects, time, json, structure = "swept";
+  bool self = false, stats = false, quiet = false, audit = false;
+  int checks = 1;
+  std::string objects, time, json, structure = "ksl";
 };
 
 /// "A,B,...": object indices or names.
@@ -54,23 +56,61 @@ nlohmann::json to_json(const Contact& c) {
           {"point", {c.point.x(), c.point.y(), c.point.z()}}};
 }
 
+nlohmann::json ksl_json(const KslReport& k) {
+  const KslEventCounts& e = k.list.events;
+  QualityCounts q;
+  q.certificates_live_max = k.list.certificates_live_max;
+  q.certificates_live = k.list.certificates_live;
+  q.certificates_computed = k.list.certificates_computed;
+  q.events = e.total();
+  q.events_external = e.external();
+  q.events_internal = e.total() - e.external();
+  q.objects_present = k.list.triangles;
+  return {{"events",
+           {{"overlap", e.overlap},
+            {"separation", e.separation},
+            {"witness_change", e.witness_change},
+            {"recertification", e.recertification},
+            {"flightplan", e.flightplan},
+            {"rounding", e.rounding},
+            {"total", e.total()}}},
+          {"events_external", q.events_external},
+          {"events_internal", q.events_internal},
+          {"certificates",
+           {{"live", k.list.certificates_live},
+            {"live_max", k.list.certificates_live_max},
+            {"computed", k.list.certificates_computed}}},
+          {"list", {{"pairs", k.list.list_pairs}, {"pairs_max", k.list.list_pairs_max},
+                    {"leaf_pairs", k.list.leaf_pairs}, {"watched_pairs", k.list.watched_pairs},
+                    {"leaf_tests", k.list.leaf_tests}}},
+          {"quality", quality_json(q)},
+          {"trees", {{"leaf_events", k.trees.events.leaf}, {"tree_events", k.trees.events.tree},
+                     {"flightplan_events", k.trees.events.flightplan},
+                     {"realizer_changes", k.trees.realizer_changes}, {"nodes", k.trees.nodes}}},
+          {"pad", k.pad}};
+}
+
 nlohmann::json stats_json(const SceneContacts& r) {
   const PrimitiveCcdCounters& p = r.counters.primitives;
-  return {{"segments", r.segments},
-          {"object_segments", r.counters.segments},
-          {"node_visits", r.counters.node_visits},
-          {"triangle_pairs", r.counters.triangle_pairs},
-          {"primitive_tests", p.tests},
-          {"box_rejections", p.box_rejections},
-          {"cubic_rejections", p.cubic_rejections},
-          {"exact_decisions", p.exact_decisions},
-          {"primitive_pairs_in_contact", p.contacts}};
+  nlohmann::json stats = {{"segments", r.segments},
+                          {"object_segments", r.counters.segments},
+                          {"node_visits", r.counters.node_visits},
+                          {"triangle_pairs", r.counters.triangle_pairs},
+                          {"primitive_tests", p.tests},
+                          {"box_rejections", p.box_rejections},
+                          {"cubic_rejections", p.cubic_rejections},
+                          {"exact_decisions", p.exact_decisions},
+                          {"primitive_pairs_in_contact", p.contacts}};
+  if (r.ksl) stats["ksl"] = ksl_json(*r.ksl);
+  return stats;
 }
 
 void run_collide(const CollideOptions& options) {
   CollideParams params;
   params.structure = parse_contact_structure(options.structure);
   params.self = options.self;
+  params.audit = options.audit;
+  params.checks = options.checks;
   if (!options.time.empty())
     std::tie(params.time_begin, params.time_end) = parse_time_range(options.time);
   prepare_json_output(options.json);
@@ -114,7 +154,13 @@ void register_collide_command(CLI::App& app) {
   command->add_option("--objects", options->objects,
                       "Only these objects: names or indices A,B,...");
   command->add_option("--time", options->time, "Only contacts in [A, B] seconds, given as A:B");
-  command->add_option("--structure", options->structure, "swept | brute")->capture_default_str();
+  command->add_option("--structure", options->structure, "ksl | swept | brute")
+      ->capture_default_str();
+  command->add_option("--checks", options->checks,
+                      "Collision checks per flightplan segment (swept volumes run per check)")
+      ->capture_default_str();
+  command->add_flag("--audit", options->audit,
+                    "ksl: audit the separation list and its trees after every advance");
   command->add_option("--json", options->json, "Write every contact and the counters as JSON");
   command->add_flag("--stats", options->stats, "Print the counters");
   command->add_flag("-q,--quiet", options->quiet, "Only the summary line");

@@ -86,20 +86,22 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
     }
 }
 
-void sort_contacts(std::vector<Contact>& contacts) {
+void canonical_contact(Contact& c) {
   // An edge shared by two triangles is tested from both, in either direction: one orientation
   // of each edge (smaller vertex id first) and of each edge pair names the contact.
-  for (Contact& c : contacts) {
-    if (c.type != ContactType::edge_edge) continue;
-    if (c.vertices[0] > c.vertices[1]) std::swap(c.vertices[0], c.vertices[1]);
-    if (c.vertices[2] > c.vertices[3]) std::swap(c.vertices[2], c.vertices[3]);
-    if (std::tie(c.objects[0], c.vertices[0], c.vertices[1]) >
-        std::tie(c.objects[1], c.vertices[2], c.vertices[3])) {
-      std::swap(c.objects[0], c.objects[1]);
-      std::swap(c.vertices[0], c.vertices[2]);
-      std::swap(c.vertices[1], c.vertices[3]);
-    }
+  if (c.type != ContactType::edge_edge) return;
+  if (c.vertices[0] > c.vertices[1]) std::swap(c.vertices[0], c.vertices[1]);
+  if (c.vertices[2] > c.vertices[3]) std::swap(c.vertices[2], c.vertices[3]);
+  if (std::tie(c.objects[0], c.vertices[0], c.vertices[1]) >
+      std::tie(c.objects[1], c.vertices[2], c.vertices[3])) {
+    std::swap(c.objects[0], c.objects[1]);
+    std::swap(c.vertices[0], c.vertices[2]);
+    std::swap(c.vertices[1], c.vertices[3]);
   }
+}
+
+void sort_contacts(std::vector<Contact>& contacts) {
+  for (Contact& c : contacts) canonical_contact(c);
   std::sort(contacts.begin(), contacts.end());
   contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
 }

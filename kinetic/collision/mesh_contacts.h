@@ -55,6 +55,11 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters);
 
+/// Names an edge-edge contact one way (each edge's smaller vertex id first, then the edge pair
+/// in (object, vertices) order): the same primitive pair met from two triangle pairs, or from
+/// either side, compares equal.
+void canonical_contact(Contact& c);
+
 /// Sorts contacts in time order and removes the repeats that arise when a vertex or an edge
 /// belongs to several tested triangle pairs.
 void sort_contacts(std::vector<Contact>& contacts);

@@ -44,10 +44,15 @@ std::uint32_t SweptVolumeHierarchy::build(std::uint32_t first, std::uint32_t cou
   return index;
 }
 
-void SweptVolumeHierarchy::update(const MeshSegment& mesh) {
+void SweptVolumeHierarchy::update(const MeshSegment& mesh, double pad) {
   const std::uint32_t n = static_cast<std::uint32_t>(mesh.triangles.size());
   m_boxes.resize(n);
-  for (std::uint32_t t = 0; t < n; ++t) m_boxes[t] = swept_box(mesh, t);
+  const Eigen::Vector3d grow = Eigen::Vector3d::Constant(pad);
+  for (std::uint32_t t = 0; t < n; ++t) {
+    m_boxes[t] = swept_box(mesh, t);
+    m_boxes[t].min() -= grow;
+    m_boxes[t].max() += grow;
+  }
   if (m_order.size() != n || m_nodes.empty()) {
     m_order.resize(n);
     for (std::uint32_t t = 0; t < n; ++t) m_order[t] = t;
@@ -69,21 +74,23 @@ void SweptVolumeHierarchy::update(const MeshSegment& mesh) {
   }
 }
 
-void SweptVolumeHierarchy::contacts(const MeshSegment& a, const MeshSegment& b, double time_begin,
-                                    double time_end, std::vector<Contact>& out,
-                                    ContactCounters& counters) const {
-  const bool self = &a == &b;
+void SweptVolumeHierarchy::contacts(const SweptVolumeHierarchy& query, const MeshSegment& a,
+                                    const MeshSegment& b, double time_begin, double time_end,
+                                    double window_begin, double window_end,
+                                    std::vector<Contact>& out, ContactCounters& counters) const {
+  const bool self = &query == this;
   ++counters.segments;
   if (m_nodes.empty()) return;
+  const std::size_t first = out.size();
   std::vector<std::uint32_t> stack;
-  for (std::uint32_t i = 0; i < a.triangles.size(); ++i) {
-    const Eigen::AlignedBox3d query = self ? m_boxes[i] : swept_box(a, i);
+  for (std::uint32_t i = 0; i < query.m_boxes.size(); ++i) {
+    const Eigen::AlignedBox3d& box = query.m_boxes[i];
     stack.assign(1, 0);
     while (!stack.empty()) {
       const Node& node = m_nodes[stack.back()];
       stack.pop_back();
       ++counters.node_visits;
-      if (!node.box.intersects(query)) continue;
+      if (!node.box.intersects(box)) continue;
       if (node.count == 0) {
         stack.push_back(node.left);
         stack.push_back(node.right);
@@ -92,12 +99,16 @@ void SweptVolumeHierarchy::contacts(const MeshSegment& a, const MeshSegment& b, 
       for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
         const std::uint32_t j = m_order[k];
         if (self && (j <= i || triangles_adjacent(a.triangles[i], a.triangles[j]))) continue;
-        if (!m_boxes[j].intersects(query)) continue;
+        if (!m_boxes[j].intersects(box)) continue;
         ++counters.triangle_pairs;
         triangle_pair_contacts(a, i, b, j, time_begin, time_end, out, counters.primitives);
       }
     }
   }
+  const auto outside = [&](const Contact& c) {
+    return !(c.time >= window_begin && c.time < window_end);
+  };
+  out.erase(std::remove_if(out.begin() + long(first), out.end(), outside), out.end());
 }
 
 }  // namespace kinray

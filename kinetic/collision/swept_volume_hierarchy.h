@@ -14,13 +14,19 @@ namespace kinray {
 
 class SweptVolumeHierarchy {
  public:
-  /// Swept boxes of `mesh`'s triangles on its segment: builds the tree on the first call, refits
-  /// it (same topology, new boxes) on later calls with the same triangles.
-  void update(const MeshSegment& mesh);
+  /// Swept boxes of `mesh`'s triangles on its interval (the collision check's), grown by `pad`:
+  /// builds the tree on the first call, refits it (same topology, new boxes) on later calls with
+  /// the same triangles.
+  void update(const MeshSegment& mesh, double pad = 0);
 
-  /// Contacts of `a` (any mesh, with its own boxes computed here) against the mesh this hierarchy
-  /// was last updated with (`b`); when &a == &b, the non-adjacent pairs of a with itself.
-  void contacts(const MeshSegment& a, const MeshSegment& b, double time_begin, double time_end,
+  /// Contacts of the triangles of `query` (another hierarchy, or this one for the non-adjacent
+  /// pairs of a mesh with itself) against this one's, whose boxes overlap: the primitive tests
+  /// run on the flightplan segment [time_begin, time_end] of `a` (query's mesh) and `b` (this
+  /// one's), and keep the contacts whose time lies in [window_begin, window_end): the check
+  /// interval's (-inf and +inf at the segment's ends), so that checks on sub-intervals find
+  /// exactly the segment's contacts, each once.
+  void contacts(const SweptVolumeHierarchy& query, const MeshSegment& a, const MeshSegment& b,
+                double time_begin, double time_end, double window_begin, double window_end,
                 std::vector<Contact>& out, ContactCounters& counters) const;
 
  private:

@@ -131,7 +131,9 @@ bool KineticBvh::update_side(uint32_t node, int s) {
   m_live_total += uint64_t(live) - uint64_t(counted);
   counted = live;
   schedule(node, s, failure);
-  return realizer != before;
+  if (realizer == before) return false;
+  for (const RealizerObserver& observer : m_observers) observer(node, s);
+  return true;
 }
 
 void KineticBvh::schedule(uint32_t node, int s, double time) {

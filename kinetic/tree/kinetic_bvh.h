@@ -16,6 +16,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "kinetic/simulator.h"
@@ -52,6 +53,16 @@ class KineticBvh {
   /// Processes every event up to t (t never decreases).
   void advance_to(double t);
   [[nodiscard]] double now() const { return m_sim.now(); }
+  /// Time of the next scheduled event (+inf when none): lets a structure built on the tree (the
+  /// kinetic separation list) interleave its own events with the tree's in time order.
+  [[nodiscard]] double next_event_time() const { return m_sim.next_event_time(); }
+
+  /// Called with (node, side) whenever the realizer of a node side changes (tree and leaf events,
+  /// keys, appearance). The observer must stay valid while the tree advances.
+  using RealizerObserver = std::function<void(uint32_t node, int side)>;
+  void add_realizer_observer(RealizerObserver observer) {
+    m_observers.push_back(std::move(observer));
+  }
 
   /// At a time strictly between events (after the last one processed): every tracked side's value
   /// equals the extreme recomputed from the node's leaves, every certificate holds, and an event
@@ -165,6 +176,7 @@ class KineticBvh {
   std::vector<uint32_t> m_mesh_node_begin, m_mesh_nodes;  ///< per mesh: its nodes, descending
   std::vector<EventHandle> m_mesh_event;
   TreeStats m_stats;
+  std::vector<RealizerObserver> m_observers;
 };
 
 }  // namespace kinray

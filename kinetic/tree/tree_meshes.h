@@ -88,6 +88,9 @@ class TreeMeshes {
   [[nodiscard]] double coordinate(uint32_t v, int axis, double t) const {
     return m_a[v][axis] + m_b[v][axis] * (t - m_origin[m_vertex_mesh[v]]);
   }
+  /// Coordinate `axis` of vertex v's velocity on its current segment (b of a + b (t - o)): the
+  /// slope of a certificate between vertices of two different trees.
+  [[nodiscard]] double velocity(uint32_t v, int axis) const { return m_b[v][axis]; }
   /// The certificate "vertex r is beyond vertex q along axis, on side sign (+1 max, -1 min)":
   /// sign (x_r - x_q) as a linear polynomial. Built in one order (lower vertex id first) and
   /// negated exactly for the other, so the two vertices' comparison has one set of coefficients.

@@ -55,7 +55,7 @@ TEST_F(CollideCommand, SpikeFallsOntoATriangleAtTheExpectedTime) {
       {"kind": "mesh", "name": "spike", "triangles": [[0, 1, 2]],
        "keys": [{"time": 0, "vertices": [[0.2, 0.2, 1], [0.2, 0.2, 2], [0.3, 0.2, 2]]},
                 {"time": 1, "vertices": [[0.2, 0.2, -0.5], [0.2, 0.2, 0.5], [0.3, 0.2, 0.5]]}]}]})";
-  for (const char* structure : {"brute", "swept"}) {
+  for (const char* structure : {"brute", "swept", "ksl"}) {
     SCOPED_TRACE(structure);
     const nlohmann::json report = collide("'" + scene.string() + "' --structure " + structure);
     ASSERT_EQ(report["contacts"].size(), 1u);
@@ -69,23 +69,58 @@ TEST_F(CollideCommand, SpikeFallsOntoATriangleAtTheExpectedTime) {
   }
 }
 
-TEST_F(CollideCommand, SweptVolumesAndBruteForceFindTheSameContactsInTimeOrder) {
+TEST_F(CollideCommand, KslSweptVolumesAndBruteForceFindTheSameContactsInTimeOrder) {
   for (const char* scene : {"cloth-fold:triangles=72,duration=1,keyrate=4 --self",
-                            "crossing:triangles=100,duration=1,keyrate=4"}) {
+                            "crossing:triangles=100,duration=1,keyrate=4",
+                            "crossing:triangles=60,duration=1,keyrate=4 --self"}) {
     SCOPED_TRACE(scene);
+    const nlohmann::json ksl = collide(std::string(scene) + " --structure ksl --audit");
+    const nlohmann::json ksl_checks =
+        collide(std::string(scene) + " --structure ksl --audit --checks 7");
     const nlohmann::json swept = collide(std::string(scene) + " --structure swept");
+    const nlohmann::json swept_checks = collide(std::string(scene) + " --structure swept --checks 5");
     const nlohmann::json brute = collide(std::string(scene) + " --structure brute");
-    EXPECT_GT(swept["contacts"].size(), 10u) << "the scene has real contacts";
+    EXPECT_GT(brute["contacts"].size(), 10u) << "the scene has real contacts";
     EXPECT_EQ(identities(swept), identities(brute));
-    double last = -1;
-    for (const nlohmann::json& c : swept["contacts"]) {
-      EXPECT_GE(c["time"].get<double>(), last);
-      last = c["time"].get<double>();
+    EXPECT_EQ(identities(swept_checks), identities(brute)) << "checks on sub-intervals";
+    EXPECT_EQ(identities(ksl), identities(brute));
+    EXPECT_EQ(identities(ksl_checks), identities(brute));
+    // the list's events do not depend on how often it is asked
+    EXPECT_EQ(ksl["stats"]["ksl"]["events"], ksl_checks["stats"]["ksl"]["events"]);
+    for (const nlohmann::json* report : {&swept, &ksl, &ksl_checks}) {
+      double last = -1;
+      for (const nlohmann::json& c : (*report)["contacts"]) {
+        EXPECT_GE(c["time"].get<double>(), last);
+        last = c["time"].get<double>();
+      }
     }
-    // the swept boxes prune: fewer triangle pairs reach the primitive tests
+    // the swept boxes and the list prune: fewer triangle pairs reach the primitive tests
     EXPECT_LT(swept["stats"]["triangle_pairs"].get<double>(),
               brute["stats"]["triangle_pairs"].get<double>());
+    EXPECT_LT(ksl["stats"]["triangle_pairs"].get<double>(),
+              brute["stats"]["triangle_pairs"].get<double>());
+    EXPECT_GT(ksl["stats"]["ksl"]["events"]["overlap"].get<double>(), 0);
+    EXPECT_TRUE(ksl["stats"]["ksl"]["quality"].contains("efficiency"));
   }
+}
+
+TEST_F(CollideCommand, BenchComparesKslWithSweptVolumesOnTheSameContacts) {
+  const fs::path json = m_dir / "bench.json";
+  const test::CommandRun run = test::run_kinray(
+      "bench crossing:triangles=60,duration=0.5,keyrate=4 --structure ksl,swept --inbetweens 1,8 "
+      "--triangles 40 --repetitions 1 -q --json '" + json.string() + "'", m_dir);
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(test::read_text(json));
+  ASSERT_EQ(report["points"].size(), 6u);  // 2 structures x (2 interpolated-frame counts + 1)
+  for (const nlohmann::json& p : report["points"]) {
+    for (const char* key : {"structure", "interpolated_frames", "triangles", "ms_per_frame",
+                            "contacts", "speedup_vs_swept"})
+      EXPECT_TRUE(p.contains(key)) << key;
+    EXPECT_GT(p["ms_per_frame"].get<double>(), 0);
+  }
+  EXPECT_EQ(report["points"][0]["contacts"], report["points"][1]["contacts"]);
+  EXPECT_EQ(report["points"][0]["ksl_events"], report["points"][2]["ksl_events"])
+      << "the list's events do not depend on the interpolated frames";
 }
 
 TEST_F(CollideCommand, SelfContactsExcludeAdjacentTriangles) {
@@ -97,7 +132,8 @@ TEST_F(CollideCommand, SelfContactsExcludeAdjacentTriangles) {
 
 TEST_F(CollideCommand, BadFlagsAreOneLineAndExitTwo) {
   for (const char* args :
-       {"crossing --structure ksl", "crossing --objects 0,7", "crossing --time 5:6"}) {
+       {"crossing --structure octree", "crossing --objects 0,7", "crossing --time 5:6",
+        "crossing --checks 0"}) {
     const test::CommandRun run = test::run_kinray(std::string("collide ") + args, m_dir);
     EXPECT_EQ(run.status, 2) << args;
     EXPECT_EQ(run.err.rfind("kinray: error: ", 0), 0u) << run.err;

@@ -1,0 +1,389 @@
+#include "kinetic/collision/kinetic_separation_list.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "kinetic/collision/exact_ccd.h"
+
+namespace kinray {
+
+namespace {
+constexpr double kNever = std::numeric_limits<double>::infinity();
+/// Heap order of the pending contacts: the earliest on top.
+constexpr auto later = [](const Contact& x, const Contact& y) { return y < x; };
+}  // namespace
+
+KineticSeparationList::KineticSeparationList(KineticBvh& a, KineticBvh& b, double pad)
+    : m_a(a), m_b(b), m_self(&a == &b), m_pad(pad), m_sim(a.now()) {
+  KINRAY_CHECK_MSG(a.now() == b.now(), "kinetic separation list: trees at different times");
+  m_head[0].assign(a.topology().nodes.size(), kNone);
+  m_head[1].assign(b.topology().nodes.size(), kNone);
+  m_stats.triangles = a.meshes().triangle_count() + (m_self ? 0 : b.meshes().triangle_count());
+  m_a.add_realizer_observer([this](uint32_t node, int side) {
+    on_realizer_change(0, node, side);
+    if (m_self) on_realizer_change(1, node, side);
+  });
+  if (!m_self)
+    m_b.add_realizer_observer([this](uint32_t node, int side) { on_realizer_change(1, node, side); });
+}
+
+// ---- certificates ----------------------------------------------------------------------------
+
+LinearCertificate KineticSeparationList::gap_certificate(const Record& r, int d) const {
+  return gap_certificate(r.a, r.b, d, m_segment_begin);
+}
+
+LinearCertificate KineticSeparationList::gap_certificate(uint32_t a, uint32_t b, int d,
+                                                         double origin) const {
+  const int axis = d >> 1, lower = d & 1;  // lower: which box is below (its max against a min)
+  const KineticBvh& lo = tree(lower);
+  const KineticBvh& hi = tree(1 - lower);
+  const uint32_t vlo = lo.realizer(lower == 0 ? a : b, side_of(axis, true));
+  const uint32_t vhi = hi.realizer(lower == 0 ? b : a, side_of(axis, false));
+  LinearCertificate c;
+  c.origin = origin;
+  c.end = m_segment_end;
+  c.c0 = hi.meshes().coordinate(vhi, axis, origin) - lo.meshes().coordinate(vlo, axis, origin) -
+         m_pad;
+  c.c1 = hi.meshes().velocity(vhi, axis) - lo.meshes().velocity(vlo, axis);
+  return c;
+}
+
+int KineticSeparationList::find_witness(const Record& r, double& failure) {
+  const double now = m_sim.now();
+  int best = -1;
+  for (int d = 0; d < 6; ++d) {
+    const LinearCertificate c = gap_certificate(r, d);
+    ++m_stats.certificates_computed;
+    if (c.sign_after(now) <= 0) continue;
+    const double f = c.failure_time(now);
+    if (best < 0 || f > failure) {
+      best = d;
+      failure = f;
+    }
+  }
+  return best;
+}
+
+// ---- records ---------------------------------------------------------------------------------
+
+bool KineticSeparationList::pairable(uint32_t a, uint32_t b) const {
+  if (!m_self) return true;
+  const BvhNode& x = m_a.topology().nodes[a];
+  const BvhNode& y = m_a.topology().nodes[b];
+  if (!x.leaf() || !y.leaf()) return true;
+  return a != b &&
+         !triangles_adjacent(m_a.meshes().triangle(x.triangle), m_a.meshes().triangle(y.triangle));
+}
+
+void KineticSeparationList::children_of(uint32_t a, uint32_t b,
+                                        std::vector<std::pair<uint32_t, uint32_t>>& out) const {
+  out.clear();
+  const BvhNode& x = m_a.topology().nodes[a];
+  const BvhNode& y = m_b.topology().nodes[b];
+  if (m_self && a == b) {
+    out = {{x.left, x.left}, {x.left, x.right}, {x.right, x.right}};
+  } else if (x.leaf()) {
+    if (!y.leaf()) out = {{a, y.left}, {a, y.right}};
+  } else if (y.leaf()) {
+    out = {{x.left, b}, {x.right, b}};
+  } else {
+    out = {{x.left, y.left}, {x.left, y.right}, {x.right, y.left}, {x.right, y.right}};
+  }
+  std::erase_if(out, [&](const auto& p) { return !pairable(p.first, p.second); });
+}
+
+uint32_t KineticSeparationList::create(uint32_t a, uint32_t b, uint32_t parent) {
+  uint32_t id;
+  if (!m_free.empty()) {
+    id = m_free.back();
+    m_free.pop_back();
+  } else {
+    id = uint32_t(m_records.size());
+    m_records.emplace_back();
+  }
+  Record& r = m_records[id];
+  r = Record{};
+  r.a = a;
+  r.b = b;
+  r.parent = parent;
+  r.alive = true;
+  r.permanent = m_self && a == b;
+  r.state = State::none;
+  link(id);
+  if (parent != kNone) {
+    Record& p = m_records[parent];
+    p.children[p.child_count++] = id;
+  }
+  return id;
+}
+
+void KineticSeparationList::link(uint32_t id) {
+  Record& r = m_records[id];
+  for (int w = 0; w < 2; ++w) {
+    uint32_t& head = m_head[size_t(w)][node(r, w)];
+    r.prev[size_t(w)] = kNone;
+    r.next[size_t(w)] = head;
+    if (head != kNone) m_records[head].prev[size_t(w)] = id;
+    head = id;
+  }
+}
+
+void KineticSeparationList::unlink(uint32_t id) {
+  Record& r = m_records[id];
+  for (int w = 0; w < 2; ++w) {
+    const uint32_t prev = r.prev[size_t(w)], next = r.next[size_t(w)];
+    if (prev != kNone)
+      m_records[prev].next[size_t(w)] = next;
+    else
+      m_head[size_t(w)][node(r, w)] = next;
+    if (next != kNone) m_records[next].prev[size_t(w)] = prev;
+  }
+}
+
+void KineticSeparationList::destroy_children(uint32_t id) {
+  Record& r = m_records[id];
+  for (uint8_t k = 0; k < r.child_count; ++k) {
+    const uint32_t child = m_records[id].children[k];
+    destroy_children(child);
+    set_state(child, State::none);
+    schedule(child, kNever);
+    unlink(child);
+    m_records[child].alive = false;
+    m_records[child].dirty = false;
+    m_free.push_back(child);
+  }
+  m_records[id].child_count = 0;
+}
+
+void KineticSeparationList::set_state(uint32_t id, State state) {
+  Record& r = m_records[id];
+  auto count = [&](State s, int sign) {
+    const uint64_t delta = uint64_t(int64_t(sign));
+    if (s == State::separated || s == State::leaf) m_stats.list_pairs += delta;
+    if (s == State::leaf) m_stats.leaf_pairs += delta;
+    if (s == State::expanded && !r.permanent) m_stats.watched_pairs += delta;
+    const uint64_t live = s == State::none || r.permanent ? 0 : s == State::separated ? 1 : 6;
+    m_stats.certificates_live += live * delta;
+  };
+  count(r.state, -1);
+  r.state = state;
+  count(state, +1);
+  m_stats.list_pairs_max = std::max(m_stats.list_pairs_max, m_stats.list_pairs);
+  m_stats.certificates_live_max =
+      std::max(m_stats.certificates_live_max, m_stats.certificates_live);
+}
+
+// ---- state changes ---------------------------------------------------------------------------
+
+void KineticSeparationList::classify_new(uint32_t id) {
+  if (m_records[id].permanent) {
+    expand(id);
+    return;
+  }
+  double failure = kNever;
+  const int d = find_witness(m_records[id], failure);
+  if (d < 0) {
+    overlap(id);
+    return;
+  }
+  m_records[id].witness = uint8_t(d);
+  set_state(id, State::separated);
+  schedule(id, failure);
+}
+
+void KineticSeparationList::overlap(uint32_t id) {
+  const Record& r = m_records[id];
+  if (m_a.topology().nodes[r.a].leaf() && m_b.topology().nodes[r.b].leaf()) {
+    set_state(id, State::leaf);
+    test_leaf(id);
+    (void)watch(id);
+  } else {
+    expand(id);
+  }
+}
+
+void KineticSeparationList::expand(uint32_t id) {
+  set_state(id, State::expanded);
+  std::vector<std::pair<uint32_t, uint32_t>> children;
+  children_of(m_records[id].a, m_records[id].b, children);
+  for (const auto& [x, y] : children) classify_new(create(x, y, id));
+  if (!m_records[id].permanent) (void)watch(id);
+}
+
+void KineticSeparationList::separate(uint32_t id, int witness, double failure) {
+  destroy_children(id);
+  m_records[id].witness = uint8_t(witness);
+  set_state(id, State::separated);
+  schedule(id, failure);
+}
+
+KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id) {
+  const double now = m_sim.now();
+  double first = kNever;
+  for (int d = 0; d < 6; ++d) {
+    const LinearCertificate c = gap_certificate(m_records[id], d);
+    ++m_stats.certificates_computed;
+    if (c.sign_after(now) > 0) {
+      double failure = kNever;
+      separate(id, find_witness(m_records[id], failure), failure);
+      return Outcome::separation;
+    }
+    first = std::min(first, c.negated().failure_time(now));  // pad - gap_d turns negative
+  }
+  schedule(id, first);
+  return Outcome::unchanged;
+}
+
+KineticSeparationList::Outcome KineticSeparationList::certify(uint32_t id) {
+  Record& r = m_records[id];
+  if (r.permanent) return Outcome::unchanged;
+  if (r.state != State::separated) return watch(id);
+  const double now = m_sim.now();
+  const LinearCertificate c = gap_certificate(r, r.witness);
+  ++m_stats.certificates_computed;
+  if (c.sign_after(now) > 0) {
+    schedule(id, c.failure_time(now));
+    return Outcome::unchanged;
+  }
+  double failure = kNever;
+  const int d = find_witness(m_records[id], failure);
+  if (d >= 0) {
+    m_records[id].witness = uint8_t(d);
+    schedule(id, failure);
+    return Outcome::witness_change;
+  }
+  overlap(id);
+  return Outcome::overlap;
+}
+
+void KineticSeparationList::count(Outcome outcome, Reason reason) {
+  KslEventCounts& e = m_stats.events;
+  switch (outcome) {
+    case Outcome::overlap: ++e.overlap; break;
+    case Outcome::separation: ++e.separation; break;
+    case Outcome::witness_change: ++e.witness_change; break;
+    case Outcome::unchanged:
+      if (reason == Reason::event) ++e.rounding;
+      if (reason == Reason::recertification) ++e.recertification;
+      break;
+  }
+}
+
+void KineticSeparationList::schedule(uint32_t id, double time) {
+  EventHandle& h = m_records[id].event;
+  if (!std::isfinite(time)) {
+    if (h != kNoEvent) m_sim.queue().erase(h);
+    h = kNoEvent;
+    return;
+  }
+  KINRAY_CHECK_MSG(time >= m_sim.now(), "kinetic separation list: certificate already broken");
+  const EventKey key{time, 0, id, 0};
+  if (h == kNoEvent)
+    h = m_sim.queue().push(key, id);
+  else
+    m_sim.queue().update(h, key);
+}
+
+// ---- time ------------------------------------------------------------------------------------
+
+void KineticSeparationList::begin_segment(const MeshSegment& a, const MeshSegment& b,
+                                          double time_begin, double time_end) {
+  advance_to(time_begin);
+  m_mesh_a = &a;
+  m_mesh_b = &b;
+  m_segment_begin = time_begin;
+  m_segment_end = time_end;
+  m_tested.clear();
+  ++m_stats.events.flightplan;
+  if (m_root == kNone) {  // initialisation: the simultaneous traversal
+    if (m_a.topology().nodes.empty() || m_b.topology().nodes.empty()) return;
+    m_root = create(0, 0, kNone);
+    classify_new(m_root);
+  } else {
+    for (uint32_t id = 0; id < m_records.size(); ++id)
+      if (m_records[id].alive) count(certify(id), Reason::flightplan);
+  }
+  for (uint32_t id = 0; id < m_records.size(); ++id)
+    if (m_records[id].alive && m_records[id].state == State::leaf) test_leaf(id);
+}
+
+void KineticSeparationList::advance_to(double t) {
+  do {
+    m_sim.advance_to(t, [this](const EventKey&, uint64_t payload) {
+      const auto id = uint32_t(payload);
+      m_records[id].event = kNoEvent;
+      count(certify(id), Reason::event);
+    });
+    recertify_dirty();
+  } while (std::isfinite(t) && m_sim.next_event_time() <= t);
+}
+
+bool KineticSeparationList::relevant(const Record& r, int which, int side) const {
+  if (r.permanent || r.state == State::none) return false;
+  if (r.state != State::separated) return true;
+  const int axis = r.witness >> 1, lower = r.witness & 1;
+  if (side_axis(side) != axis) return false;
+  return side == side_of(axis, which == lower);  // the lower box's max, the upper box's min
+}
+
+void KineticSeparationList::on_realizer_change(int which, uint32_t node, int side) {
+  for (uint32_t id = m_head[size_t(which)][node]; id != kNone;
+       id = m_records[id].next[size_t(which)]) {
+    Record& r = m_records[id];
+    if (r.dirty || !relevant(r, which, side)) continue;
+    r.dirty = true;
+    m_dirty.push_back(id);
+  }
+}
+
+void KineticSeparationList::recertify_dirty() {
+  for (size_t k = 0; k < m_dirty.size(); ++k) {
+    Record& r = m_records[m_dirty[k]];
+    if (!r.alive || !r.dirty) continue;
+    r.dirty = false;
+    count(certify(m_dirty[k]), Reason::recertification);
+  }
+  m_dirty.clear();
+}
+
+// ---- contacts --------------------------------------------------------------------------------
+
+void KineticSeparationList::test_leaf(uint32_t id) {
+  const Record& r = m_records[id];
+  uint32_t ta = m_a.topology().nodes[r.a].triangle, tb = m_b.topology().nodes[r.b].triangle;
+  if (m_self && tb < ta) std::swap(ta, tb);  // brute force's order: i < j
+  if (!m_tested.insert(uint64_t(ta) << 32 | tb).second) return;
+  ++m_stats.leaf_tests;
+  ++m_counters.triangle_pairs;
+  const size_t first = m_pending.size();
+  triangle_pair_contacts(*m_mesh_a, ta, *m_mesh_b, tb, m_segment_begin, m_segment_end, m_pending,
+                         m_counters.primitives);
+  for (size_t k = first; k < m_pending.size(); ++k) {
+    canonical_contact(m_pending[k]);
+    std::push_heap(m_pending.begin(), m_pending.begin() + long(k) + 1, later);
+  }
+}
+
+void KineticSeparationList::release_contacts(double t, std::vector<Contact>& out) {
+  const double margin =
+      4 * (kContactTimeEarliness * (m_segment_end - m_segment_begin) +
+           std::numeric_limits<double>::epsilon() * std::max(std::fabs(t), std::fabs(m_segment_end)));
+  const double threshold = std::isfinite(t) ? t - margin : t;
+  while (!m_pending.empty() && m_pending.front().time <= threshold) {
+    std::pop_heap(m_pending.begin(), m_pending.end(), later);
+    const Contact c = m_pending.back();
+    m_pending.pop_back();
+    if (m_released_any && c == m_last_released) continue;  // met from another triangle pair
+    m_released_any = true;
+    m_last_released = c;
+    out.push_back(c);
+  }
+}
+
+KslStats KineticSeparationList::stats() const {
+  return m_stats;
+}
+
+}  // namespace kinray
