@@ -30,6 +30,19 @@ std::string read_mesh_bytes(const std::string& path) {
   return std::move(bytes).str();
 }
 
+std::vector<std::string_view> split_words(std::string_view line) {
+  std::vector<std::string_view> out;
+  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; };
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && space(line[i])) ++i;
+    const size_t begin = i;
+    while (i < line.size() && !space(line[i])) ++i;
+    if (i > begin) out.push_back(line.substr(begin, i - begin));
+  }
+  return out;
+}
+
 void append_fan(const std::vector<uint32_t>& polygon, std::vector<Triangle>& triangles) {
   for (size_t k = 1; k + 1 < polygon.size(); ++k)
     triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});

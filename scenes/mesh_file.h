@@ -4,6 +4,7 @@
 // would move their contacts) and triangles, polygons fanned. Shared checks of the readers live
 // here so that PLY and OBJ refuse the same things the same way.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scenes/scene.h"
@@ -28,6 +29,9 @@ void check_mesh_coordinate(double value, const char* what, const std::string& wh
 
 /// The whole of the file at `path` as bytes; throws InputError naming it when it cannot be read.
 [[nodiscard]] std::string read_mesh_bytes(const std::string& path);
+
+/// The words of one line, split at spaces, tabs, CR, FF and VT.
+[[nodiscard]] std::vector<std::string_view> split_words(std::string_view line);
 
 /// Appends the fan (p0, pk, pk+1) of a polygon with at least three corners.
 void append_fan(const std::vector<uint32_t>& polygon, std::vector<Triangle>& triangles);

@@ -9,19 +9,6 @@
 namespace kinray {
 namespace {
 
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; };
-  while (i < line.size()) {
-    while (i < line.size() && space(line[i])) ++i;
-    const size_t begin = i;
-    while (i < line.size() && !space(line[i])) ++i;
-    if (i > begin) out.push_back(line.substr(begin, i - begin));
-  }
-  return out;
-}
-
 /// A part while the file is read: its faces in the file's global vertex numbering.
 struct RawPart {
   std::string name;
@@ -34,7 +21,7 @@ class ObjParser {
 
   void line(std::string_view text, size_t number) {
     m_line = number;
-    const std::vector<std::string_view> w = words(text);
+    const std::vector<std::string_view> w = split_words(text);
     if (w.empty() || w[0][0] == '#') return;
     if (w[0] == "v") vertex(w);
     else if (w[0] == "f") face(w);

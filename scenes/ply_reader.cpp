@@ -70,18 +70,6 @@ struct PlyHeader {
   size_t body_line = 0;  ///< line number of that byte
 };
 
-std::vector<std::string_view> words(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    const size_t begin = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > begin) out.push_back(line.substr(begin, i - begin));
-  }
-  return out;
-}
-
 std::string at_line(const std::string& source, size_t line) {
   return source + ":" + std::to_string(line);
 }
@@ -135,7 +123,7 @@ PlyHeader parse_header(std::string_view bytes, const std::string& source) {
     if (offset >= bytes.size())
       throw InputError(at_line(source, line), "the header ends without 'end_header'");
     const size_t newline = std::min(bytes.find('\n', offset), bytes.size());
-    const std::vector<std::string_view> w = words(bytes.substr(offset, newline - offset));
+    const std::vector<std::string_view> w = split_words(bytes.substr(offset, newline - offset));
     offset = newline + 1;
     const std::string where = at_line(source, line);
     if (line == 1) {
