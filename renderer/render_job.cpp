@@ -150,7 +150,11 @@ std::string scene_stem(const std::string& spec) {
   // A file keeps its whole name (it may contain ':'); a built-in name drops its parameters.
   const std::string base =
       std::filesystem::exists(spec, error) ? spec : spec.substr(0, spec.find(':'));
-  std::string stem = std::filesystem::path(base).stem().string();
+  // A mesh sequence: a folder named with a trailing '/', or a glob whose wildcards name nothing.
+  std::string trimmed = base;
+  while (trimmed.size() > 1 && trimmed.back() == '/') trimmed.pop_back();
+  std::erase_if(trimmed, [](char c) { return c == '*' || c == '?' || c == '[' || c == ']'; });
+  std::string stem = std::filesystem::path(trimmed).stem().string();
   for (char& c : stem)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
   return stem.empty() || stem == "." || stem == ".." ? "scene" : stem;

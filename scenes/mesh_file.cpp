@@ -32,7 +32,9 @@ std::string read_mesh_bytes(const std::string& path) {
 
 std::vector<std::string_view> split_words(std::string_view line) {
   std::vector<std::string_view> out;
-  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; };
+  const auto space = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+  };
   size_t i = 0;
   while (i < line.size()) {
     while (i < line.size() && space(line[i])) ++i;

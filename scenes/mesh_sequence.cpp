@@ -20,7 +20,8 @@ MeshFile read_mesh_file(const std::string& path) {
 }
 
 std::string describe(const Triangle& t) {
-  return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) + ")";
+  return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
+         ")";
 }
 
 /// Throws InputError naming `path` when `file` does not have the topology of `first` (read from
@@ -37,7 +38,8 @@ void check_topology(const MeshFile& first, const std::string& first_path, const 
   for (size_t p = 0; p < file.parts.size(); ++p) {
     const MeshPart& a = first.parts[p];
     const MeshPart& b = file.parts[p];
-    const std::string mesh = "mesh " + std::to_string(p) + (a.name.empty() ? "" : " '" + a.name + "'");
+    const std::string mesh =
+        "mesh " + std::to_string(p) + (a.name.empty() ? "" : " '" + a.name + "'");
     if (a.name != b.name) fail(mesh + " is named '" + b.name + "' here");
     if (a.positions.size() != b.positions.size())
       fail(mesh + " has " + std::to_string(b.positions.size()) + " vertices here, " +
@@ -66,7 +68,8 @@ std::string sequence_name(const std::string& spec) {
     path = path.parent_path();
   }
   if (name.empty()) name = fs::absolute(path, error).lexically_normal().filename().string();
-  if (name.empty()) name = fs::absolute(path, error).lexically_normal().parent_path().filename().string();
+  if (name.empty())
+    name = fs::absolute(path, error).lexically_normal().parent_path().filename().string();
   return name.empty() ? "sequence" : name;
 }
 

@@ -105,7 +105,8 @@ std::vector<std::string> mesh_sequence_files(const std::string& spec) {
   for (const fs::path& path : paths)
     if (lower_extension(path) != first_extension)
       throw InputError(spec, "mixes .ply and .obj files ('" + paths.front().filename().string() +
-                                 "', '" + path.filename().string() + "'); name one kind with a glob");
+                                 "', '" + path.filename().string() +
+                                 "'); name one kind with a glob");
   std::vector<std::string> files;
   for (const fs::path& path : paths) files.push_back(path.string());
   std::sort(files.begin(), files.end(), [](const std::string& a, const std::string& b) {

@@ -23,9 +23,12 @@ class ObjParser {
     m_line = number;
     const std::vector<std::string_view> w = split_words(text);
     if (w.empty() || w[0][0] == '#') return;
-    if (w[0] == "v") vertex(w);
-    else if (w[0] == "f") face(w);
-    else if (w[0] == "o" || w[0] == "g") select_part(w);
+    if (w[0] == "v")
+      vertex(w);
+    else if (w[0] == "f")
+      face(w);
+    else if (w[0] == "o" || w[0] == "g")
+      select_part(w);
   }
 
   MeshFile finish() const;
@@ -73,8 +76,7 @@ class ObjParser {
   }
 
   void face(const std::vector<std::string_view>& w) {
-    if (w.size() < 4)
-      fail("a face needs at least 3 corners, got " + std::to_string(w.size() - 1));
+    if (w.size() < 4) fail("a face needs at least 3 corners, got " + std::to_string(w.size() - 1));
     m_polygon.clear();
     for (size_t k = 1; k < w.size(); ++k) m_polygon.push_back(corner(w[k]));
     append_fan(m_polygon, m_parts[m_current].triangles);
@@ -117,7 +119,8 @@ MeshFile ObjParser::finish() const {
     const auto local = [&](uint32_t v) {
       return uint32_t(std::lower_bound(used.begin(), used.end(), v) - used.begin());
     };
-    for (const Triangle& t : raw.triangles) part.triangles.push_back({local(t[0]), local(t[1]), local(t[2])});
+    for (const Triangle& t : raw.triangles)
+      part.triangles.push_back({local(t[0]), local(t[1]), local(t[2])});
     file.parts.push_back(std::move(part));
   }
   if (file.parts.empty()) throw InputError(m_source, "has no faces");

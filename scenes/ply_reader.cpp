@@ -33,7 +33,9 @@ size_t type_size(PlyType type) {
   return 8;
 }
 
-bool is_integral(PlyType type) { return type != PlyType::float32 && type != PlyType::float64; }
+bool is_integral(PlyType type) {
+  return type != PlyType::float32 && type != PlyType::float64;
+}
 
 /// Both the names of the PLY paper and the sized ones (char/int8, float/float32, ...).
 std::optional<PlyType> parse_type(std::string_view name) {
@@ -80,11 +82,16 @@ void parse_header_line(const std::vector<std::string_view>& w, PlyHeader& header
   const auto fail = [&](const std::string& problem) { throw InputError(where, problem); };
   if (w[0] == "comment" || w[0] == "obj_info") return;
   if (w[0] == "format") {
-    if (w.size() != 3 || w[2] != "1.0") fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
-    if (w[1] == "ascii") header.format = PlyFormat::ascii;
-    else if (w[1] == "binary_little_endian") header.format = PlyFormat::little_endian;
-    else if (w[1] == "binary_big_endian") header.format = PlyFormat::big_endian;
-    else fail("unknown format '" + std::string(w[1]) + "'");
+    if (w.size() != 3 || w[2] != "1.0")
+      fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+    if (w[1] == "ascii")
+      header.format = PlyFormat::ascii;
+    else if (w[1] == "binary_little_endian")
+      header.format = PlyFormat::little_endian;
+    else if (w[1] == "binary_big_endian")
+      header.format = PlyFormat::big_endian;
+    else
+      fail("unknown format '" + std::string(w[1]) + "'");
   } else if (w[0] == "element") {
     uint64_t count = 0;
     if (w.size() != 3) fail("expected 'element NAME COUNT'");
@@ -96,7 +103,8 @@ void parse_header_line(const std::vector<std::string_view>& w, PlyHeader& header
     if (header.elements.empty()) fail("a property before any element");
     PlyProperty property;
     const bool list = w.size() == 5 && w[1] == "list";
-    if (!list && w.size() != 3) fail("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
+    if (!list && w.size() != 3)
+      fail("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
     const std::optional<PlyType> type = parse_type(w[list ? 3 : 1]);
     if (!type) fail("unknown property type '" + std::string(w[list ? 3 : 1]) + "'");
     property.type = *type;
@@ -146,8 +154,11 @@ PlyHeader parse_header(std::string_view bytes, const std::string& source) {
 class PlyBody {
  public:
   PlyBody(std::string_view bytes, const PlyHeader& header, const std::string& source)
-      : m_bytes(bytes), m_offset(header.body), m_line(header.body_line),
-        m_format(header.format), m_source(source) {}
+      : m_bytes(bytes),
+        m_offset(header.body),
+        m_line(header.body_line),
+        m_format(header.format),
+        m_source(source) {}
 
   /// The next value as a double (every PLY type converts exactly).
   double number(PlyType type) {
@@ -210,7 +221,8 @@ class PlyBody {
   T read_raw() {
     T value;
     std::memcpy(&value, m_bytes.data() + m_offset, sizeof(T));
-    const bool swap = (m_format == PlyFormat::big_endian) != (std::endian::native == std::endian::big);
+    const bool swap =
+        (m_format == PlyFormat::big_endian) != (std::endian::native == std::endian::big);
     if (swap) {
       unsigned char raw[sizeof(T)];
       std::memcpy(raw, &value, sizeof(T));
@@ -224,14 +236,22 @@ class PlyBody {
   double binary_number(PlyType type) {
     if (remaining() < type_size(type)) fail("the file ends early: more values are declared");
     switch (type) {
-      case PlyType::int8: return read_raw<int8_t>();
-      case PlyType::uint8: return read_raw<uint8_t>();
-      case PlyType::int16: return read_raw<int16_t>();
-      case PlyType::uint16: return read_raw<uint16_t>();
-      case PlyType::int32: return read_raw<int32_t>();
-      case PlyType::uint32: return read_raw<uint32_t>();
-      case PlyType::float32: return read_raw<float>();
-      case PlyType::float64: break;
+      case PlyType::int8:
+        return read_raw<int8_t>();
+      case PlyType::uint8:
+        return read_raw<uint8_t>();
+      case PlyType::int16:
+        return read_raw<int16_t>();
+      case PlyType::uint16:
+        return read_raw<uint16_t>();
+      case PlyType::int32:
+        return read_raw<int32_t>();
+      case PlyType::uint32:
+        return read_raw<uint32_t>();
+      case PlyType::float32:
+        return read_raw<float>();
+      case PlyType::float64:
+        break;
     }
     return read_raw<double>();
   }
@@ -283,7 +303,8 @@ int find_scalar(const PlyElement& element, std::string_view name) {
 }
 
 void read_vertices(PlyBody& body, const PlyElement& element, std::vector<Vec3>& positions) {
-  const int axis[3] = {find_scalar(element, "x"), find_scalar(element, "y"), find_scalar(element, "z")};
+  const int axis[3] = {find_scalar(element, "x"), find_scalar(element, "y"),
+                       find_scalar(element, "z")};
   static const char* const kAxes[3] = {"x", "y", "z"};
   positions.reserve(element.count);
   for (uint64_t v = 0; v < element.count; ++v) {
@@ -315,13 +336,16 @@ void read_faces(PlyBody& body, const PlyElement& element, uint64_t vertex_count,
   for (uint64_t f = 0; f < element.count; ++f) {
     for (const PlyProperty& property : element.properties) {
       if (!is_index_list(property)) {
-        if (property.list) skip_list(body, property);
-        else (void)body.number(property.type);
+        if (property.list)
+          skip_list(body, property);
+        else
+          (void)body.number(property.type);
         continue;
       }
       const uint64_t corners = body.whole(property.count_type, "a face's corner count");
       if (!body.ascii() && corners > body.remaining() / type_size(property.type))
-        body.fail("a face of " + std::to_string(corners) + " corners runs past the end of the file");
+        body.fail("a face of " + std::to_string(corners) +
+                  " corners runs past the end of the file");
       polygon.clear();
       for (uint64_t k = 0; k < corners; ++k) {
         const uint64_t index = body.whole(property.type, "a vertex index");
@@ -379,8 +403,10 @@ MeshFile parse_ply(std::string_view bytes, const std::string& source) {
     } else if (!element.properties.empty()) {
       for (uint64_t i = 0; i < element.count; ++i)
         for (const PlyProperty& property : element.properties) {
-          if (property.list) skip_list(body, property);
-          else (void)body.number(property.type);
+          if (property.list)
+            skip_list(body, property);
+          else
+            (void)body.number(property.type);
         }
     }
   }

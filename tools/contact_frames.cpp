@@ -16,7 +16,8 @@ class TrianglesAround {
   explicit TrianglesAround(const Scene& scene) : m_scene(scene), m_around(scene.objects.size()) {}
 
   /// Appends the keys of the triangles of `object` that hold every vertex of `corners`.
-  void append(uint32_t object, std::initializer_list<uint32_t> corners, std::vector<uint64_t>& out) {
+  void append(uint32_t object, std::initializer_list<uint32_t> corners,
+              std::vector<uint64_t>& out) {
     const Object& mesh = m_scene.objects[object];
     std::vector<std::vector<uint32_t>>& around = m_around[object];
     if (around.empty()) {
@@ -26,9 +27,8 @@ class TrianglesAround {
     }
     for (uint32_t t : around[*corners.begin()]) {
       const Triangle& tri = mesh.triangles[t];
-      if (std::all_of(corners.begin(), corners.end(), [&](uint32_t v) {
-            return tri[0] == v || tri[1] == v || tri[2] == v;
-          }))
+      if (std::all_of(corners.begin(), corners.end(),
+                      [&](uint32_t v) { return tri[0] == v || tri[1] == v || tri[2] == v; }))
         out.push_back(triangle_key(object, t));
     }
   }

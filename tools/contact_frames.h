@@ -14,7 +14,8 @@ namespace kinray {
 
 /// For each frame of `frame_times` (frames outside `slice` stay empty), the sorted keys of the
 /// triangles in contact during its window: for a vertex in contact every triangle around it, for
-/// an edge every triangle holding both its ends, for a face the face. Runs the contact search over the slice's windows.
+/// an edge every triangle holding both its ends, for a face the face. Runs the contact search over
+/// the slice's windows.
 [[nodiscard]] std::vector<std::vector<uint64_t>> contact_tint_frames(
     const Scene& scene, const std::vector<double>& frame_times, const FrameSlice& slice);
 

@@ -40,8 +40,10 @@ void write_ply(const fs::path& path, int n, int frame) {
   file << "ply\nformat ascii 1.0\nelement vertex " << points.size()
        << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << n
        << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (const Vec3& p : points) file << format(p.x()) << " " << format(p.y()) << " " << format(p.z()) << "\n";
-  for (int i = 0; i < n; ++i) file << "4 " << 2 * i << " " << 2 * i + 2 << " " << 2 * i + 3 << " " << 2 * i + 1 << "\n";
+  for (const Vec3& p : points)
+    file << format(p.x()) << " " << format(p.y()) << " " << format(p.z()) << "\n";
+  for (int i = 0; i < n; ++i)
+    file << "4 " << 2 * i << " " << 2 * i + 2 << " " << 2 * i + 3 << " " << 2 * i + 1 << "\n";
 }
 
 /// Two objects: the strip and a copy of it lifted by 5.
@@ -90,7 +92,8 @@ TEST_F(MeshSequence, NaturalOrderAndKeyrate) {
   EXPECT_TRUE(natural_less("frame_0009.ply", "frame_10.ply"));
   EXPECT_TRUE(natural_less("a2b3", "a2b10"));
   // frames 1, 2, 10 (lexicographic order would put 10 before 2)
-  for (int frame : {1, 2, 10}) write_ply(m_dir / ("frame_" + std::to_string(frame) + ".ply"), 3, frame);
+  for (int frame : {1, 2, 10})
+    write_ply(m_dir / ("frame_" + std::to_string(frame) + ".ply"), 3, frame);
   for (const std::string& spec : {(m_dir / "frame_*.ply").string(), m_dir.string()}) {
     SCOPED_TRACE(spec);
     ModelOptions options;
@@ -110,7 +113,8 @@ TEST_F(MeshSequence, NaturalOrderAndKeyrate) {
 }
 
 TEST_F(MeshSequence, DoublesThatFloatsWouldRoundAreKeptExactly) {
-  for (int frame = 0; frame < 2; ++frame) write_ply(m_dir / ("f" + std::to_string(frame) + ".ply"), 2, frame);
+  for (int frame = 0; frame < 2; ++frame)
+    write_ply(m_dir / ("f" + std::to_string(frame) + ".ply"), 2, frame);
   const Scene scene = load_scene((m_dir / "f*.ply").string());
   const Vec3 p = scene.objects[0].key_positions[1][2];
   EXPECT_EQ(p, strip(2, 1)[2]);
@@ -129,7 +133,9 @@ TEST_F(MeshSequence, ObjObjectsBecomeObjects) {
     EXPECT_EQ(scene.objects[1].key_positions[k][0], strip(4, k + 1)[0] + Vec3(0, 0, 5));
   }
   const std::vector<Triangle> first = {{0, 2, 3}, {0, 3, 1}};
-  EXPECT_EQ(std::vector<Triangle>(scene.objects[1].triangles.begin(), scene.objects[1].triangles.begin() + 2), first);
+  EXPECT_EQ(std::vector<Triangle>(scene.objects[1].triangles.begin(),
+                                  scene.objects[1].triangles.begin() + 2),
+            first);
 }
 
 TEST_F(MeshSequence, AFileOfAnotherTopologyIsNamed) {
@@ -166,16 +172,18 @@ TEST_F(MeshSequence, AMalformedLineIsNamedWithItsFile) {
 TEST_F(MeshSequence, EmptyMixedAndForeignSequencesAreRefused) {
   EXPECT_EQ(error_of((m_dir / "none_*.ply").string()),
             (m_dir / "none_*.ply").string() + ": matches no files (an empty sequence)");
-  EXPECT_EQ(error_of(m_dir.string()), m_dir.string() + ": holds no .ply or .obj files (an empty sequence)");
+  EXPECT_EQ(error_of(m_dir.string()),
+            m_dir.string() + ": holds no .ply or .obj files (an empty sequence)");
   write_ply(m_dir / "a1.ply", 1, 1);
   write_obj(m_dir / "a2.obj", 1, 2);
   EXPECT_NE(error_of(m_dir.string()).find("mixes .ply and .obj files"), std::string::npos);
   std::ofstream(m_dir / "a3.txt") << "x";
-  EXPECT_EQ(error_of((m_dir / "a*").string()),
-            (m_dir / "a*").string() + ": matches '" + (m_dir / "a3.txt").string() +
-                "', which is neither a .ply nor an .obj file");
+  EXPECT_EQ(error_of((m_dir / "a*").string()), (m_dir / "a*").string() + ": matches '" +
+                                                   (m_dir / "a3.txt").string() +
+                                                   "', which is neither a .ply nor an .obj file");
   EXPECT_EQ(error_of((m_dir / "*/x*.ply").string()),
-            (m_dir / "*/x*.ply").string() + ": only the file name of a sequence pattern may hold wildcards");
+            (m_dir / "*/x*.ply").string() +
+                ": only the file name of a sequence pattern may hold wildcards");
   ModelOptions options;
   options.keyrate = -1;
   EXPECT_EQ(error_of((m_dir / "a*.ply").string(), options),

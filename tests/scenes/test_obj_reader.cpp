@@ -56,15 +56,18 @@ std::string error_of(const std::string& text) {
 
 TEST(ObjReader, MalformedInputNamesFileAndLine) {
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
-  EXPECT_EQ(error_of(v + "f 1 2 4\n"), "bad.obj:4: vertex index 4 out of range (3 vertices so far)");
-  EXPECT_EQ(error_of(v + "f 1 2 0\n"), "bad.obj:4: vertex index 0 out of range (3 vertices so far)");
+  EXPECT_EQ(error_of(v + "f 1 2 4\n"),
+            "bad.obj:4: vertex index 4 out of range (3 vertices so far)");
+  EXPECT_EQ(error_of(v + "f 1 2 0\n"),
+            "bad.obj:4: vertex index 0 out of range (3 vertices so far)");
   EXPECT_EQ(error_of(v + "f -4 1 2\n"),
             "bad.obj:4: vertex index -4 out of range (3 vertices so far)");
   EXPECT_EQ(error_of(v + "f 1 2\n"), "bad.obj:4: a face needs at least 3 corners, got 2");
   EXPECT_EQ(error_of(v + "f 1 a/2 3\n"),
             "bad.obj:4: expected a vertex index (i, i/t, i//n or i/t/n), got 'a/2'");
-  EXPECT_EQ(error_of("v 0 0\n"),
-            "bad.obj:1: a 'v' line needs x y z (optionally w, or a colour r g b [a]), got 2 values");
+  EXPECT_EQ(
+      error_of("v 0 0\n"),
+      "bad.obj:1: a 'v' line needs x y z (optionally w, or a colour r g b [a]), got 2 values");
   EXPECT_EQ(error_of("v 0 0 0\nv 0 x 0\n"), "bad.obj:2: expected a number, got 'x'");
   EXPECT_EQ(error_of("v 0 0 0\n\nv 0 nan 0\n"), "bad.obj:3: coordinate y is NaN or infinite");
   EXPECT_EQ(error_of("v 0 0 1e16\n"),

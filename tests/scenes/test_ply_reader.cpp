@@ -67,7 +67,8 @@ TEST(PlyReader, BinaryBodiesOfBothByteOrdersKeepDoublesExactly) {
 TEST(PlyReader, FloatCoordinatesAreTheFloatValues) {
   const MeshFile file = parse_ply(binary_ply(false, false, kPoints), "mesh.ply");
   for (int v = 0; v < 5; ++v)
-    for (int a = 0; a < 3; ++a) EXPECT_EQ(file.parts[0].positions[v][a], double(float(kPoints[v][a])));
+    for (int a = 0; a < 3; ++a)
+      EXPECT_EQ(file.parts[0].positions[v][a], double(float(kPoints[v][a])));
 }
 
 TEST(PlyReader, AsciiBodyWithOtherElementsAndProperties) {
@@ -128,7 +129,8 @@ TEST(PlyReader, MalformedInputNamesFileAndLine) {
             "bad.ply:4: unknown property type 'fixed'");
   EXPECT_EQ(error_of("ply\nformat ascii 1.0\n"), "bad.ply:3: the header ends without 'end_header'");
   EXPECT_EQ(error_of("solid cube\n"), "bad.ply:1: not a PLY file (no 'ply' line)");
-  EXPECT_EQ(error_of(kHeader.substr(0, kHeader.find("element face")) + "end_header\n0 0 0\n1 0 0\n0 1 0\n"),
+  EXPECT_EQ(error_of(kHeader.substr(0, kHeader.find("element face")) +
+                     "end_header\n0 0 0\n1 0 0\n0 1 0\n"),
             "bad.ply: has no faces (a 'face' element with a 'vertex_indices' list)");
 }
 
@@ -139,7 +141,8 @@ TEST(PlyReader, CountsBeyondTheFileAreRefusedBeforeAnythingIsReserved) {
       << error_of(text);
   std::string truncated = binary_ply(true, true, kPoints);
   truncated.resize(truncated.size() - 3);
-  EXPECT_NE(error_of(truncated).find("a face of 3 corners runs past the end of the file"), std::string::npos);
+  EXPECT_NE(error_of(truncated).find("a face of 3 corners runs past the end of the file"),
+            std::string::npos);
   EXPECT_EQ(error_of(truncated).rfind("bad.ply: byte ", 0), 0u) << error_of(truncated);
 }
 

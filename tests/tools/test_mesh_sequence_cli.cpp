@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "renderer/render_job.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {
@@ -41,8 +42,9 @@ TEST_F(MeshSequenceCommands, RenderedSequenceAgreesWithEmbree) {
   std::filesystem::create_directories(path("sim"));
   for (int frame = 0; frame < 12; ++frame)
     write_sheet(path("sim/frame_" + std::to_string(frame) + ".ply"), 12, frame);
-  const test::CommandRun run = kinray("diff '" + path("sim/frame_*.ply") +
-                                      "' --size 64x48 --inbetweens 2 -q --json " + path("diff.json"));
+  const test::CommandRun run =
+      kinray("diff '" + path("sim/frame_*.ply") + "' --size 64x48 --inbetweens 2 -q --json " +
+             path("diff.json"));
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json diff = nlohmann::json::parse(test::read_text(path("diff.json")));
   EXPECT_EQ(diff["reference"], "embree");
@@ -51,7 +53,8 @@ TEST_F(MeshSequenceCommands, RenderedSequenceAgreesWithEmbree) {
 
   const test::CommandRun info = kinray("info " + path("sim"));
   ASSERT_EQ(info.status, 0) << info.err;
-  EXPECT_NE(info.out.find("mesh sequence with 12 frames (one file per key, 24 keys/s)"), std::string::npos)
+  EXPECT_NE(info.out.find("mesh sequence with 12 frames (one file per key, 24 keys/s)"),
+            std::string::npos)
       << info.out;
   EXPECT_NE(info.out.find("triangles   288"), std::string::npos) << info.out;
 }
@@ -66,9 +69,11 @@ TEST_F(MeshSequenceCommands, CollideReadsAnObjSequence) {
          << "o b\nv -0.2 -0.2 " << z << "\nv 0.3 -0.2 " << z << "\nv 0.3 0.3 " << z
          << "\nv -0.2 0.3 " << z + 0.1 << "\nf -4 -3 -2 -1\n";
   }
-  const test::CommandRun run = kinray("collide " + path("obj") + " --keyrate 10 -q --json " + path("c.json"));
+  const test::CommandRun run =
+      kinray("collide " + path("obj") + " --keyrate 10 -q --json " + path("c.json"));
   ASSERT_EQ(run.status, 0) << run.err;
-  const nlohmann::json contacts = nlohmann::json::parse(test::read_text(path("c.json")))["contacts"];
+  const nlohmann::json contacts =
+      nlohmann::json::parse(test::read_text(path("c.json")))["contacts"];
   ASSERT_FALSE(contacts.empty());
   // b's corners reach z = 0 between the first key (t = 0) and the second (t = 0.1)
   for (const nlohmann::json& c : contacts) {
@@ -87,6 +92,12 @@ TEST_F(MeshSequenceCommands, AFileOfAnotherTopologyIsOneErrorLine) {
                          ": topology differs from the sequence's first file: mesh 0 has 36 "
                          "vertices here, 25 in the first file (f1.ply)\n");
   EXPECT_FALSE(std::filesystem::exists(path("out")));
+}
+
+TEST(MeshSequenceNames, OutputFolderIsNamedAfterTheSequence) {
+  EXPECT_EQ(scene_stem("sim/frame_*.ply"), "frame_");
+  const std::string folder = std::filesystem::temp_directory_path().string() + "/";
+  EXPECT_EQ(scene_stem(folder), std::filesystem::path(folder).parent_path().filename().string());
 }
 
 }  // namespace

@@ -36,7 +36,8 @@ TEST_F(RenderContacts, TintedPixelsAreExactlyTheTrianglesCollideListsForTheFrame
   const test::CommandRun collide =
       kinray(std::string("collide ") + kScene + " --self -q --json " + path("contacts.json"));
   ASSERT_EQ(collide.status, 0) << collide.err;
-  const nlohmann::json contacts = nlohmann::json::parse(test::read_text(path("contacts.json")))["contacts"];
+  const nlohmann::json contacts =
+      nlohmann::json::parse(test::read_text(path("contacts.json")))["contacts"];
   ASSERT_GT(contacts.size(), 0u);
   const Scene scene = load_scene(kScene);
   const int frames = 9;
@@ -60,12 +61,16 @@ TEST_F(RenderContacts, TintedPixelsAreExactlyTheTrianglesCollideListsForTheFrame
       for (const nlohmann::json& c : contacts) {
         const double time = c["time"];
         const bool last = f == frames - 1;
-        if (!(time >= times[f] - h / 2 && (time < times[f] + h / 2 || (last && time <= times[f] + h / 2))))
+        if (!(time >= times[f] - h / 2 &&
+              (time < times[f] + h / 2 || (last && time <= times[f] + h / 2))))
           continue;
         const std::vector<uint32_t> v = c["vertices"], objects = c["objects"];
         const bool vf = c["type"] == "vf";
-        holding(scene, objects[0], vf ? std::vector<uint32_t>{v[0]} : std::vector<uint32_t>{v[0], v[1]}, expected);
-        holding(scene, objects[1], vf ? std::vector<uint32_t>{v[1], v[2], v[3]} : std::vector<uint32_t>{v[2], v[3]}, expected);
+        holding(scene, objects[0],
+                vf ? std::vector<uint32_t>{v[0]} : std::vector<uint32_t>{v[0], v[1]}, expected);
+        holding(scene, objects[1],
+                vf ? std::vector<uint32_t>{v[1], v[2], v[3]} : std::vector<uint32_t>{v[2], v[3]},
+                expected);
       }
       frames_with_contacts += !expected.empty();
       char name[32];
@@ -96,7 +101,9 @@ TEST_F(RenderContacts, MotionBlurIsRefused) {
   const test::CommandRun run =
       kinray(std::string("render ") + kScene + " --contacts --shutter 0.5 --out " + path("out"));
   EXPECT_EQ(run.status, 2);
-  EXPECT_EQ(run.err, "kinray: error: --contacts: tints sharp frames; drop --shutter (motion blur) or --contacts\n");
+  EXPECT_EQ(run.err,
+            "kinray: error: --contacts: tints sharp frames; drop --shutter (motion blur) or "
+            "--contacts\n");
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // The OBJ reader of mesh sequences (scenes/obj_reader.h) on arbitrary bytes.
+#include "scenes/obj_reader.h"
+
 #include <string_view>
 
-#include "scenes/obj_reader.h"
 #include "tests/fuzz/fuzz_target.h"
 
 KINRAY_FUZZ_TARGET(obj_reader) {

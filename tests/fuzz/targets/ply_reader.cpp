@@ -1,8 +1,9 @@
 // The PLY reader of mesh sequences (scenes/ply_reader.h) on arbitrary bytes: ascii and binary
 // bodies, any header.
+#include "scenes/ply_reader.h"
+
 #include <string_view>
 
-#include "scenes/ply_reader.h"
 #include "tests/fuzz/fuzz_target.h"
 
 KINRAY_FUZZ_TARGET(ply_reader) {
