@@ -108,6 +108,9 @@ Scene build_scene(const std::string& spec, std::vector<MeshFile>& frames, double
 Scene load_mesh_sequence(const std::string& spec, const ModelOptions& options) {
   if (!std::isfinite(options.keyrate) || options.keyrate < 0)
     throw InputError("--keyrate", "must be a finite number >= 0 (0: 24 keys per second)");
+  if (!options.animation.empty())
+    throw InputError("--animation",
+                     "applies to model files; a mesh sequence's animation is its files");
   if (options.camera == ModelCamera::own)
     throw InputError("--camera", "model: a mesh sequence has no camera of its own");
   const double keyrate = options.keyrate > 0 ? options.keyrate : kSequenceKeyrate;

@@ -188,6 +188,10 @@ TEST_F(MeshSequence, EmptyMixedAndForeignSequencesAreRefused) {
   options.keyrate = -1;
   EXPECT_EQ(error_of((m_dir / "a*.ply").string(), options),
             "--keyrate: must be a finite number >= 0 (0: 24 keys per second)");
+  ModelOptions animation;
+  animation.animation = "walk";
+  EXPECT_EQ(error_of((m_dir / "a*.ply").string(), animation),
+            "--animation: applies to model files; a mesh sequence's animation is its files");
 }
 
 }  // namespace
