@@ -12,6 +12,8 @@
 #include <system_error>
 #include <tuple>
 
+#include "kinetic/check.h"
+#include "renderer/contact_tint.h"
 #include "renderer/memory_estimate.h"
 #include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/light_flag.h"
@@ -108,6 +110,8 @@ void validate(const RenderParams& params) {
   if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
   validate(params.shutter);
   (void)parse_camera_params(params.camera);
+  if (params.contacts && params.shutter.enabled())
+    throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
 }
 
 FrameScheduleParams schedule_params(const RenderParams& params) {
@@ -146,7 +150,11 @@ std::string scene_stem(const std::string& spec) {
   // A file keeps its whole name (it may contain ':'); a built-in name drops its parameters.
   const std::string base =
       std::filesystem::exists(spec, error) ? spec : spec.substr(0, spec.find(':'));
-  std::string stem = std::filesystem::path(base).stem().string();
+  // A mesh sequence: a folder named with a trailing '/', or a glob whose wildcards name nothing.
+  std::string trimmed = base;
+  while (trimmed.size() > 1 && trimmed.back() == '/') trimmed.pop_back();
+  std::erase_if(trimmed, [](char c) { return c == '*' || c == '?' || c == '[' || c == ']'; });
+  std::string stem = std::filesystem::path(trimmed).stem().string();
   for (char& c : stem)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
   return stem.empty() || stem == "." || stem == ".." ? "scene" : stem;
@@ -201,6 +209,11 @@ std::unique_ptr<Backend> RenderJob::make_backend(const std::string& name) {
   return backend;
 }
 
+void RenderJob::set_contact_tint(std::vector<std::vector<uint64_t>> per_frame) {
+  KINRAY_CHECK(per_frame.size() == m_frame_times.size());
+  m_contact_tint = std::move(per_frame);
+}
+
 void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   double start = now_s();
   if (!m_windows.empty()) {
@@ -224,6 +237,7 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
     }
     shade_frame_lit(m_camera_space, m_lights, *tracer, frame, m_params.threads);
   }
+  if (!m_contact_tint.empty()) tint_contacts(m_contact_tint.at(index), frame);
   m_timings.shade += now_s() - start;
 }
 

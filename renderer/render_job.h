@@ -49,6 +49,7 @@ struct RenderParams {
   bool scene_size = false;  ///< no --size given: the scene's own image size when it has one
   std::string chunk;        ///< --chunk I/N: render only the I-th of N slices of the schedule
   std::string frame_range;  ///< --frame-range A:B: render only frames A..B of the schedule
+  bool contacts = false;    ///< --contacts: tint the triangles in contact (set_contact_tint)
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
   CameraParams camera;    ///< --camera, --eye, --target, --fov
 };
@@ -109,6 +110,9 @@ class RenderJob {
   /// Creates backend `name` (empty: params().backend) for this scene; throws InputError for an
   /// unknown backend or bad backend flags.
   [[nodiscard]] std::unique_ptr<Backend> make_backend(const std::string& name = "");
+  /// With --contacts: the sorted triangle keys (contact_tint.h) to tint in each frame of the
+  /// schedule, indexed like frame_times(); render_frame tints them after shading.
+  void set_contact_tint(std::vector<std::vector<uint64_t>> per_frame);
   /// Renders and shades frame `index` into `frame`, adding the time spent to timings(). With
   /// lights, shadow rays go to backend.shadow_tracer() (InputError naming --backend if it has
   /// none); with --shutter the backend renders the frame's window and shades it itself (timed as
@@ -131,6 +135,7 @@ class RenderJob {
   std::vector<double> m_frame_times;
   FrameSlice m_slice;
   std::vector<ShutterWindow> m_windows;
+  std::vector<std::vector<uint64_t>> m_contact_tint;  ///< empty: no --contacts
   RenderTimings m_timings;
   double m_started = 0;  ///< steady-clock seconds when the job was made
 };

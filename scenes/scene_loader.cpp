@@ -8,6 +8,7 @@
 
 #include "scenes/aff_scene.h"
 #include "scenes/error.h"
+#include "scenes/mesh_sequence.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_file.h"
 
@@ -66,6 +67,7 @@ Scene load_scene(const std::string& spec, const ModelOptions& model_options,
                                         : parse_parameters(spec, spec.substr(colon + 1)));
   }
   std::error_code error;
+  if (is_mesh_sequence(spec)) return load_mesh_sequence(spec, model_options);
   if (ends_with_json(spec)) return load_scene_file(spec);
   if (std::filesystem::is_regular_file(spec, error)) {
     if (is_aff_file(spec)) return load_aff(spec, model_options.keyrate);
@@ -91,7 +93,8 @@ std::string describe_scene_spec_syntax() {
   text << "A scene is a built-in name with optional parameters "
           "(NAME[:triangles=N,duration=S,keyrate=K]),\n"
           "a JSON scene file (*.json, see docs/scene_format.md), a BART scene (*.aff, docs/bart.md)\n"
-          "or a model file assimp can import (glTF, FBX, COLLADA, OBJ, ...). Built-in scenes (defaults in brackets):\n";
+          "a model file assimp can import (glTF, FBX, COLLADA, OBJ, ...), or a mesh sequence: a folder\n"
+          "of .ply or .obj files or a quoted glob 'sim/frame_*.ply' (docs/mesh_sequences.md). Built-in scenes (defaults in brackets):\n";
   for (const BuiltinScene& scene : builtin_scenes())
     text << "  " << scene.name << " [triangles=" << scene.defaults.triangles
          << ", duration=" << scene.defaults.duration << ", keyrate=" << scene.defaults.keyrate

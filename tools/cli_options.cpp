@@ -25,8 +25,8 @@ void add_scene_options(CLI::App& command, RenderOptions& options) {
   command
       .add_option(
           "SCENE", options.params.scene,
-          "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene file "
-          "or a model file")
+          "A built-in scene with parameters (wavy-sphere:triangles=40000), a .json scene file, "
+          "a model file, or a mesh sequence (a folder or a quoted glob of .ply/.obj files)")
       ->required();
   command
       .add_option("--animation", options.params.animation,
@@ -35,7 +35,8 @@ void add_scene_options(CLI::App& command, RenderOptions& options) {
   command
       .add_option(
           "--keyrate", options.params.keyrate,
-          "Model files: resample the animation at this many keys per second (0: its own keys)")
+          "Model files: resample the animation at this many keys per second (0: its own keys); "
+          "mesh sequences: one file per key at this rate (0: 24)")
       ->group("Scene");
 }
 

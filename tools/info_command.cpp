@@ -9,6 +9,7 @@
 
 #include "renderer/camera_flags.h"
 #include "scenes/error.h"
+#include "scenes/mesh_sequence.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
@@ -118,6 +119,15 @@ nlohmann::json describe(const std::string& spec, const Scene& scene) {
           {"object_list", objects}};
 }
 
+/// A mesh sequence: its frame count (one key per file), key rate and first and last files.
+nlohmann::json describe_sequence(const std::string& spec, const Scene& scene) {
+  const std::vector<std::string> files = mesh_sequence_files(spec);
+  const Object& object = scene.objects.front();
+  const double keyrate = object.key_count() > 1 ? 1 / (object.key_times[1] - object.key_times[0])
+                                                : 1 / (scene.time_end - scene.time_begin);
+  return {{"frames", files.size()}, {"keyrate", keyrate}, {"first", files.front()}, {"last", files.back()}};
+}
+
 /// Where the camera comes from, then its keys (the first kListedObjects).
 void print_camera(const Scene& scene, const nlohmann::json& info) {
   const CameraSource& source = scene.camera_source;
@@ -194,6 +204,13 @@ void print_text(const Scene& scene, const nlohmann::json& info) {
               info["moving_objects"].get<size_t>(),
               scene.objects.size() - info["moving_objects"].get<size_t>());
   std::printf("materials   %zu (%zu textures)\n", scene.materials.size(), scene.textures.size());
+  if (info.contains("sequence")) {
+    const nlohmann::json& sequence = info["sequence"];
+    std::printf("sequence    mesh sequence with %zu frames (one file per key, %g keys/s): %s .. %s\n",
+                sequence["frames"].get<size_t>(), sequence["keyrate"].get<double>(),
+                sequence["first"].get<std::string>().c_str(),
+                sequence["last"].get<std::string>().c_str());
+  }
   std::printf("keyframes   %zu (the key grid that --inbetweens subdivides)\n",
               info["keyframes"].get<size_t>());
   std::printf("duration    %g s (shot [%g, %g])\n", scene.time_end - scene.time_begin,
@@ -250,7 +267,8 @@ void register_info_command(CLI::App& app) {
   command->add_option("--animation", options->animation,
                       "Model files: the animation to play (name or index)");
   command->add_option("--keyrate", options->keyrate,
-                      "Model files: resample at this many keys per second");
+                      "Model files: resample at this many keys per second; mesh sequences: keys per second "
+                      "(default 24)");
   add_camera_options(*command, options->camera);
   command->add_flag("--json", options->json, "Print JSON instead of text");
   command->footer(describe_scene_spec_syntax());
@@ -266,6 +284,7 @@ void register_info_command(CLI::App& app) {
     apply_camera_params(options->camera, scene);
     scene.validate(options->scene);
     nlohmann::json info = describe(options->scene, scene);
+    if (is_mesh_sequence(options->scene)) info["sequence"] = describe_sequence(options->scene, scene);
     if (!catalog.file.empty()) {
       info["animations"] = describe_animations(catalog);
       info["model_cameras"] = catalog.cameras;

@@ -23,6 +23,7 @@
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/contact_frames.h"
 #include "tools/frame_sequence.h"
 
 namespace kinray {
@@ -66,6 +67,14 @@ void run_render(const RenderParams& flags) {
   status.working("loading " + flags.scene + "...");
   RenderJob job(flags);
   const RenderParams& params = job.params();  // with the scene's own size and frame count
+  size_t contact_frames = 0;
+  if (params.contacts) {
+    status.note("finding contacts...");
+    std::vector<std::vector<uint64_t>> tint =
+        contact_tint_frames(job.scene(), job.frame_times(), job.slice());
+    contact_frames = size_t(std::count_if(tint.begin(), tint.end(), [](const auto& t) { return !t.empty(); }));
+    job.set_contact_tint(std::move(tint));
+  }
   std::unique_ptr<Backend> backend = job.make_backend();
   const bool kinetic = backend->name() == "kinetic";
   if (kinetic)
@@ -139,6 +148,8 @@ void run_render(const RenderParams& flags) {
       std::printf("removed %zu file%s of an earlier render from %s (%s%s)\n", stale.size(),
                   stale.size() == 1 ? "" : "s", out.c_str(), stale.front().c_str(),
                   stale.size() > 1 ? (" .. " + stale.back()).c_str() : "");
+    if (params.contacts)
+      std::printf("contacts: triangles in contact tinted in %zu of %zu frames\n", contact_frames, n);
     if (video) std::printf("video:  %s (%s)\n", params.video.c_str(), video->codec().c_str());
     if (!params.stats.empty()) std::printf("stats:  %s\n", params.stats.c_str());
   }
@@ -159,6 +170,11 @@ void register_render_command(CLI::App& app) {
   command
       ->add_option("--frame-range", options->params.frame_range,
                    "Render farms: only frames A..B of the schedule (A:B, 0-based, both included)")
+      ->group("Frames");
+  command
+      ->add_flag("--contacts", options->params.contacts,
+                 "Tint the triangles in contact (collide --self) during each frame's window "
+                 "[t - h/2, t + h/2), h the frame spacing")
       ->group("Frames");
   command->footer(describe_scene_spec_syntax());
   command->callback([options] { run_render(options->resolve()); });

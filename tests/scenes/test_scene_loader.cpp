@@ -82,8 +82,13 @@ TEST(SceneLoader, MissingAndUnreadableFilesAreNamed) {
   fs::remove(text);
   EXPECT_NE(not_a_scene.find(text.string()), std::string::npos);
   EXPECT_NE(not_a_scene.find("neither a scene file"), std::string::npos);
-  EXPECT_NE(error_of(fs::temp_directory_path().string()).find("not a regular file"),
-            std::string::npos);
+  // a folder is a mesh sequence (scenes/mesh_sequence.h): one without mesh files is refused
+  const fs::path folder =
+      fs::temp_directory_path() / ("kinray_scene_loader_" + std::to_string(getpid()) + "_folder");
+  fs::create_directories(folder);
+  const std::string empty_folder = error_of(folder.string());
+  fs::remove(folder);
+  EXPECT_EQ(empty_folder, folder.string() + ": holds no .ply or .obj files (an empty sequence)");
 }
 
 TEST(SceneLoader, DescribesTheSyntaxAndEveryBuiltin) {
