@@ -85,6 +85,7 @@ typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) c
   en.q = m_motion.vertex(ends[1]);
   en.s = m_now - en.segment.origin;
   en.moving = !m_scene.mesh(m).is_static;
+  en.edge = edge;
   return en;
 }
 
@@ -123,7 +124,7 @@ void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) cons
     t.sign_lo = t.sign_hi = 1;
     return;
   }
-  const EdgeNormal edge = en.normal();
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
   auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
   t.slot = m_columns.locate(sign_at);
@@ -149,7 +150,7 @@ bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en,
     return true;
   }
   if (!front) return false;
-  const EdgeNormal edge = en.normal();
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
   const auto [lo, hi] = m_columns.watched(hint.slot);
   const int sl = edge_sign(edge, m_scene.column_x(lo), y, en.s);
@@ -251,7 +252,7 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const 
   if (st.slot == kBehindEye) {
     t = failure_time(-1, boundary_front(en, b.row), en.segment);
   } else {
-    const EdgeNormal edge = known ? *known : en.normal();
+    const EdgeNormal& edge = known ? *known : m_motion.edge_normal(en.edge);
     const double y = m_scene.row_y(b.row);
     const auto [lo, hi] = m_columns.watched(st.slot);
     t = failure_time(st.sign_lo, edge.perturbed(m_scene.column_x(lo), y), en.segment);
@@ -465,10 +466,18 @@ bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, const TriangleNow& 
                                    const EdgeNormal* known, int known_edge) const {
   const RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
-  // this very instant is still pending and rebuilds the record when processed).
-  return covers_in_row(tn.motion, tn.s, m_triangles[r.triangle].orientation,
-                       m_scene.column_x(column), m_scene.row_y(r.row), r.edge[0], r.edge[1], known,
-                       known_edge);
+  // this very instant is still pending and rebuilds the record when processed). The edge
+  // normals come from the cache (the same values covers_in_row would build from tn.motion).
+  const int o = m_triangles[r.triangle].orientation;
+  if (o == 0) return false;
+  const double x = m_scene.column_x(column), y = m_scene.row_y(r.row);
+  auto sign_of = [&](int e) {
+    if (e == known_edge) return edge_sign(*known, x, y, tn.s);
+    const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
+    return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, tn.s)
+                                             : edge_sign(n.reversed(), x, y, tn.s);
+  };
+  return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
 }
 
 template <class Sort>
@@ -946,7 +955,7 @@ void FrustumBand<Sort>::handle_boundary(uint32_t id) {
   SlotTracker& st = b.tracker;
   st.event = kNoEvent;
   const EdgeNow en = edge_now(b.edge);
-  const EdgeNormal edge = en.normal();
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
   auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
   if (st.slot == kBehindEye) {

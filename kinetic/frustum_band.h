@@ -135,6 +135,8 @@ class FrustumBand {
     MeshSegment segment;
     double s = 0;
     bool moving = true;
+    uint32_t edge = 0;  ///< global edge id
+    /// Built afresh (the audit's independent check); the events read BandMotion's cache.
     [[nodiscard]] EdgeNormal normal() const { return edge_normal(p, q); }
   };
   /// A vertex's slot among the band's row planes, as a step pattern of row sides.
