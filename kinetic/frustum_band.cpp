@@ -462,26 +462,24 @@ void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool 
 }
 
 template <class Sort>
-bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, const TriangleNow& tn,
-                                   const EdgeNormal* known, int known_edge) const {
+bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const {
   const RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
   // this very instant is still pending and rebuilds the record when processed). The edge
-  // normals come from the cache (the same values covers_in_row would build from tn.motion).
+  // normals come from the cache: covers_in_row of the triangle's motion, bit for bit.
   const int o = m_triangles[r.triangle].orientation;
   if (o == 0) return false;
   const double x = m_scene.column_x(column), y = m_scene.row_y(r.row);
   auto sign_of = [&](int e) {
-    if (e == known_edge) return edge_sign(*known, x, y, tn.s);
     const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
-    return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, tn.s)
-                                             : edge_sign(n.reversed(), x, y, tn.s);
+    return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, s)
+                                             : edge_sign(n.reversed(), x, y, s);
   };
   return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
 }
 
 template <class Sort>
-void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered, const TriangleNow& tn) {
+void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered) {
   const RowRecord& r = m_records[rec];
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
@@ -507,7 +505,7 @@ void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered, const 
   if (lo == -2) {
     // Not at an end of the interval: several columns changed at one instant (degenerate).
     ++m_stats.degenerate_rebuilds;
-    rebuild_record(rec, tn, true);
+    rebuild_record(rec, triangle_now(r.triangle), true);
     return;
   }
   set_coverage(rec, lo, hi);
@@ -1025,22 +1023,14 @@ void FrustumBand<Sort>::handle_boundary(uint32_t id) {
   schedule_boundary(id, en, &edge);
   // The column passes from one triangle of the edge to the other: the one that loses it goes
   // first, so the pixel's order never holds both (no depth certificate between them).
+  // Both triangles are on the edge's mesh segment, at its local time en.s.
   const std::array<uint32_t, 2> records = b.records;
-  const uint32_t edge_id = b.edge;
-  std::array<TriangleNow, 2> tn;
   std::array<bool, 2> covered = {false, false};
-  for (size_t k = 0; k < 2; ++k) {
-    if (records[k] == kNoRecord) continue;
-    const RowRecord& r = m_records[records[k]];
-    tn[k] = triangle_now(r.triangle);
-    const int e = m_scene.edge_of_triangle(r.triangle, r.edge[0]) == edge_id ? r.edge[0] : r.edge[1];
-    const EdgeNormal own = edge_direction(r.triangle, e) > 0 ? edge : edge.reversed();
-    covered[k] = covers_now(records[k], column, tn[k], &own, e);
-  }
+  for (size_t k = 0; k < 2; ++k)
+    if (records[k] != kNoRecord) covered[k] = covers_now(records[k], column, en.s);
   for (bool gains : {false, true})
     for (size_t k = 0; k < 2; ++k)
-      if (records[k] != kNoRecord && covered[k] == gains)
-        set_pixel(records[k], column, gains, tn[k]);
+      if (records[k] != kNoRecord && covered[k] == gains) set_pixel(records[k], column, gains);
 }
 
 template <class Sort>
