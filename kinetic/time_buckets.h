@@ -41,7 +41,9 @@ class TimeBuckets {
     const int k = raw(t);
     return k <= m_current ? kHeap : k;
   }
+  /// The index of the overflow bucket (one past the calendar's).
   [[nodiscard]] int overflow() const { return m_count; }
+  /// Bucket k (0 .. overflow()), unsorted; the queue keeps the handles' positions in it.
   [[nodiscard]] std::vector<QueueNode>& operator[](int k) { return m_buckets[size_t(k)]; }
   [[nodiscard]] const std::vector<QueueNode>& operator[](int k) const { return m_buckets[size_t(k)]; }
   /// Events in the buckets and the overflow.
@@ -94,6 +96,7 @@ class TimeBuckets {
     return m_scratch;
   }
 
+  /// No calendar and no events (the state of a new queue).
   void clear() {
     for (auto& b : m_buckets) b.clear();
     m_buckets.resize(1);
@@ -104,13 +107,15 @@ class TimeBuckets {
     m_scale = 0;
     m_end = -std::numeric_limits<double>::infinity();
   }
+  /// Heap memory of the buckets and the scratch list.
   [[nodiscard]] size_t memory_bytes() const {
     size_t bytes = m_buckets.capacity() * sizeof(std::vector<QueueNode>) +
                    m_scratch.capacity() * sizeof(QueueNode);
     for (const auto& b : m_buckets) bytes += b.capacity() * sizeof(QueueNode);
     return bytes;
   }
-  /// The calendar's own consistency, for EventQueue::audit.
+  /// The last bucket moved to the heap (-1: none yet; count(): the calendar is used up), and
+  /// the number of calendar buckets: for EventQueue::audit.
   [[nodiscard]] int current() const { return m_current; }
   [[nodiscard]] int count() const { return m_count; }
   /// The bucket of t before the comparison with the current one (overflow() past the end).
