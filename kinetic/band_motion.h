@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "kinetic/edge_normal_cache.h"
 #include "kinetic/grid_scene.h"
 #include "kinetic/triangle_motion.h"
 
@@ -15,13 +16,17 @@ namespace kinray {
 class BandMotion {
  public:
   explicit BandMotion(const GridScene& scene)
-      : m_scene(&scene), m_segments(scene.mesh_count()), m_vertices(scene.vertex_count()) {}
+      : m_scene(&scene),
+        m_segments(scene.mesh_count()),
+        m_vertices(scene.vertex_count()),
+        m_edges(scene.edge_count()) {}
 
   [[nodiscard]] const GridScene& scene() const { return *m_scene; }
   /// Puts mesh m on `seg` and computes its vertices' motions there.
   void set_segment(uint32_t m, const MeshSegment& seg) {
     m_segments[m] = seg;
     forget_depths();
+    m_edges.invalidate();
     const uint32_t begin = m_scene->vertex_begin(m);
     for (uint32_t v = begin; v < m_scene->vertex_end(m); ++v)
       m_vertices[v] = m_scene->vertex_motion(m, v - begin, seg);
@@ -35,6 +40,13 @@ class BandMotion {
   [[nodiscard]] TriangleMotion triangle(uint32_t tri) const {
     const auto& vs = m_scene->triangle_vertices(tri);
     return TriangleMotion{{m_vertices[vs[0]], m_vertices[vs[1]], m_vertices[vs[2]]}};
+  }
+
+  /// The normal p x q of global edge `edge` in its own direction (GridScene::edge_vertices),
+  /// bit for bit edge_normal() of its end points' motions, built once per segment.
+  [[nodiscard]] const EdgeNormal& edge_normal(uint32_t edge) const {
+    const auto& ends = m_scene->edge_vertices(edge);
+    return m_edges.get(edge, m_vertices[ends[0]], m_vertices[ends[1]]);
   }
 
   /// N and D of triangle tri along pixel (column, row), in the local time of `origin`. A band is
@@ -60,7 +72,8 @@ class BandMotion {
   void forget_depths() { m_memo = {}; }
 
   [[nodiscard]] size_t memory_bytes() const {
-    return m_segments.capacity() * sizeof(MeshSegment) + m_vertices.capacity() * sizeof(PointMotion);
+    return m_segments.capacity() * sizeof(MeshSegment) + m_vertices.capacity() * sizeof(PointMotion) +
+           m_edges.memory_bytes();
   }
 
  private:
@@ -74,6 +87,7 @@ class BandMotion {
   const GridScene* m_scene;
   std::vector<MeshSegment> m_segments;
   std::vector<PointMotion> m_vertices;  ///< by global vertex id
+  mutable EdgeNormalCache m_edges;      ///< by global edge id
   mutable std::array<Memo, 4> m_memo;
   mutable unsigned m_next = 0;
 };

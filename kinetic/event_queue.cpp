@@ -22,8 +22,9 @@ EventQueue::EventQueue(EventQueue&& other) noexcept
       m_slots(std::move(other.m_slots)),
       m_pos(std::move(other.m_pos)),
       m_free(std::exchange(other.m_free, kNoEvent)),
-      m_far(std::move(other.m_far)),
-      m_horizon(std::exchange(other.m_horizon, -std::numeric_limits<double>::infinity())) {}
+      m_far(std::move(other.m_far)) {
+  other.m_far.clear();
+}
 
 EventQueue& EventQueue::operator=(EventQueue&& other) noexcept {
   if (this != &other) {
@@ -35,7 +36,7 @@ EventQueue& EventQueue::operator=(EventQueue&& other) noexcept {
     m_pos = std::move(other.m_pos);
     m_free = std::exchange(other.m_free, kNoEvent);
     m_far = std::move(other.m_far);
-    m_horizon = std::exchange(other.m_horizon, -std::numeric_limits<double>::infinity());
+    other.m_far.clear();
   }
   return *this;
 }
@@ -68,12 +69,12 @@ EventHandle EventQueue::push(const EventKey& key, uint64_t payload) {
   m_slots[h].key = key;
   m_slots[h].payload = payload;
   const Node node{key.time, h, uint32_t(payload)};
-  if (key.time > m_horizon) {
-    add_far(node);
-    settle();
+  const int k = m_far.which(key.time);
+  if (k == TimeBuckets::kHeap) {
+    add_heap(node);
   } else {
-    if (m_size == m_capacity) grow(m_capacity < 16 ? 16 : 2 * m_capacity);
-    sift_up(m_size++, node);
+    add_far(k, node);
+    settle();
   }
   return h;
 }
@@ -81,24 +82,28 @@ EventHandle EventQueue::push(const EventKey& key, uint64_t payload) {
 void EventQueue::update(EventHandle h, const EventKey& key) {
   KINRAY_CHECK(contains(h));
   KINRAY_CHECK_MSG(!std::isnan(key.time), "event time is NaN");
+  const double old_time = m_slots[h].key.time;
   const bool up = key < m_slots[h].key;
   m_slots[h].key = key;
   const uint32_t pos = m_pos[h];
   const Node node{key.time, h, uint32_t(m_slots[h].payload)};
-  const bool far = key.time > m_horizon;
+  const int k = m_far.which(key.time);
   if ((pos & kFar) != 0) {
-    if (far) {
-      m_far[pos & ~kFar].time = key.time;
+    const int old_k = m_far.raw(old_time);
+    if (k == old_k) {
+      m_far[k][pos & ~kFar].time = key.time;
       return;
     }
-    detach_far(pos & ~kFar);
-    if (m_size == m_capacity) grow(m_capacity < 16 ? 16 : 2 * m_capacity);
-    sift_up(m_size++, node);
+    detach_far(old_k, pos & ~kFar);
+    if (k == TimeBuckets::kHeap)
+      add_heap(node);
+    else
+      add_far(k, node);
     return;
   }
-  if (far) {
+  if (k != TimeBuckets::kHeap) {
     detach_heap(pos);
-    add_far(node);
+    add_far(k, node);
     settle();
   } else if (up) {
     sift_up(pos, node);
@@ -111,7 +116,7 @@ void EventQueue::erase(EventHandle h) {
   KINRAY_CHECK(contains(h));
   const uint32_t pos = m_pos[h];
   if ((pos & kFar) != 0)
-    detach_far(pos & ~kFar);
+    detach_far(m_far.raw(m_slots[h].key.time), pos & ~kFar);
   else
     detach_heap(pos);
   free_handle(h);
@@ -126,41 +131,52 @@ void EventQueue::pop() {
   settle();
 }
 
-void EventQueue::detach_far(uint32_t i) {
-  const Node last = m_far.back();
-  m_far.pop_back();
-  if (i == m_far.size()) return;
-  m_far[i] = last;
+void EventQueue::detach_far(int k, uint32_t i) {
+  std::vector<Node>& bucket = m_far[k];
+  const Node last = bucket.back();
+  bucket.pop_back();
+  m_far.removed();
+  if (i == bucket.size()) return;
+  bucket[i] = last;
   m_pos[last.handle] = kFar | i;
 }
 
 void EventQueue::refill() {
-  // The new horizon: a low quantile of a strided sample of the far times (all later than the old
-  // horizon, and at least the sampled event itself moves).
-  constexpr size_t kSample = 64, kRank = kSample / 8 - 1;
-  const size_t n = m_far.size();
-  double sample[kSample] = {};
-  const size_t count = n < kSample ? n : kSample;
-  for (size_t k = 0; k < count; ++k) sample[k] = m_far[k * n / count].time;
-  const size_t rank = count < kSample ? 0 : kRank;
-  std::nth_element(sample, sample + rank, sample + count);
-  m_horizon = sample[rank];
-  // Move every far event at or before it to the heap (empty here), then heapify.
-  size_t kept = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const Node node = m_far[i];
-    if (node.time <= m_horizon) {
-      if (m_size == m_capacity) grow(m_capacity < 16 ? 16 : 2 * m_capacity);
-      place(m_size++, node);
-    } else {
-      m_far[kept] = node;
-      m_pos[node.handle] = kFar | uint32_t(kept);
-      ++kept;
+  // The next non-empty bucket, or a new calendar over the overflow (whose bucket 0, holding its
+  // earliest event, is never empty).
+  int k = m_far.advance();
+  if (k == TimeBuckets::kHeap) {
+    for (const Node& node : m_far.relay()) {
+      const int b = m_far.which(node.time);
+      KINRAY_DCHECK(b != TimeBuckets::kHeap);
+      add_far(b, node);
     }
+    k = m_far.advance();
+    KINRAY_CHECK(k != TimeBuckets::kHeap);
   }
-  m_far.resize(kept);
+  // Its events go to the heap (empty here), which is then heapified.
+  std::vector<Node>& bucket = m_far[k];
+  if (m_size + bucket.size() > m_capacity) grow(std::max<size_t>(16, 2 * (m_size + bucket.size())));
+  for (const Node& node : bucket) place(m_size++, node);
+  m_far.removed(bucket.size());
+  bucket.clear();
   if (m_size > 1)
     for (uint32_t r = (m_size - 2) / kArity + 1; r-- > 0;) sift_down(r, m_heap[r + kOffset]);
+}
+
+void EventQueue::rebalance() {
+  const int overflow = m_far.overflow();
+  for (uint32_t r = 0; r < m_size; ++r) add_far(overflow, m_heap[r + kOffset]);
+  m_size = 0;
+  for (int k = std::max(m_far.current() + 1, 0); k < overflow; ++k) {
+    for (const Node& node : m_far[k]) {
+      m_far.removed();
+      add_far(overflow, node);
+    }
+    m_far[k].clear();
+  }
+  m_far.close();
+  refill();
 }
 
 void EventQueue::detach_heap(uint32_t r) {
@@ -211,7 +227,6 @@ void EventQueue::sift_down(uint32_t r, Node node) {
 void EventQueue::clear() {
   m_size = 0;
   m_far.clear();
-  m_horizon = -std::numeric_limits<double>::infinity();
   m_slots.clear();
   m_pos.clear();
   m_free = kNoEvent;
@@ -226,7 +241,7 @@ void EventQueue::reserve(size_t n) {
 size_t EventQueue::memory_bytes() const {
   return sizeof(*this) + (m_capacity + kOffset + 1) * sizeof(Node) +
          m_slots.capacity() * sizeof(Slot) + m_pos.capacity() * sizeof(uint32_t) +
-         m_far.capacity() * sizeof(Node);
+         m_far.memory_bytes();
 }
 
 void EventQueue::audit() const {
@@ -237,23 +252,30 @@ void EventQueue::audit() const {
     KINRAY_CHECK(node.time == m_slots[h].key.time);
     KINRAY_CHECK(node.hint == uint32_t(m_slots[h].payload));
     if (r > 0) KINRAY_CHECK(!less(node, m_heap[(r - 1) / kArity + kOffset]));
-    KINRAY_CHECK(node.time <= m_horizon);
+    // Before every bucket event: in the current bucket or earlier.
+    KINRAY_CHECK(m_far.raw(node.time) <= m_far.current());
   }
-  KINRAY_CHECK(m_size > 0 || m_far.empty());
-  for (uint32_t i = 0; i < m_far.size(); ++i) {
-    const Node& node = m_far[i];
-    const EventHandle h = node.handle;
-    KINRAY_CHECK(h < m_slots.size() && m_pos[h] == (kFar | i));
-    KINRAY_CHECK(node.time == m_slots[h].key.time);
-    KINRAY_CHECK(node.hint == uint32_t(m_slots[h].payload));
-    KINRAY_CHECK(node.time > m_horizon);
+  KINRAY_CHECK(m_size > 0 || m_far.size() == 0);
+  size_t far_count = 0;
+  for (int k = 0; k <= m_far.overflow(); ++k) {
+    KINRAY_CHECK(m_far[k].empty() || k > m_far.current());
+    for (uint32_t i = 0; i < m_far[k].size(); ++i) {
+      const Node& node = m_far[k][i];
+      const EventHandle h = node.handle;
+      KINRAY_CHECK(h < m_slots.size() && m_pos[h] == (kFar | i));
+      KINRAY_CHECK(node.time == m_slots[h].key.time);
+      KINRAY_CHECK(node.hint == uint32_t(m_slots[h].payload));
+      KINRAY_CHECK(m_far.raw(node.time) == k);
+      ++far_count;
+    }
   }
+  KINRAY_CHECK(far_count == m_far.size());
   size_t free_count = 0;
   for (uint32_t h = m_free; h != kNoEvent; h = static_cast<uint32_t>(m_slots[h].payload)) {
     KINRAY_CHECK(h < m_slots.size() && m_pos[h] == kFreeSlot);
     KINRAY_CHECK(++free_count <= m_slots.size());
   }
-  KINRAY_CHECK(free_count + m_size + m_far.size() == m_slots.size());
+  KINRAY_CHECK(free_count + m_size + far_count == m_slots.size());
 }
 
 }  // namespace kinray

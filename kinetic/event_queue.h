@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kinetic/check.h"
+#include "kinetic/time_buckets.h"
 
 namespace kinray {
 
@@ -37,12 +38,11 @@ inline constexpr EventHandle kNoEvent = ~0u;
 /// recycled by later pushes.
 ///
 /// Most certificates fail long after the events being processed (a boundary crosses its next
-/// column centre frames later), so only the events up to a horizon are kept in the heap: the rest
-/// wait unsorted in a far list (push, update and erase there are O(1)). When the heap runs dry the
-/// horizon moves on to about the earliest eighth of the far list (a quantile of a sample of it),
-/// whose events are then heapified. The heap stays small enough for the cache, and the order of
-/// the events is exactly that of one heap: every far event is later than the horizon, every heap
-/// event no later.
+/// column centre frames later), so only the earliest events are kept in the heap: the rest wait
+/// unsorted in the time buckets of a calendar (time_buckets.h), where push, update and erase are
+/// O(1). When the heap runs dry the next bucket is heapified. The heap holds a handful of events,
+/// and the order of the events is exactly that of one heap: every bucket event is later than
+/// every heap event.
 class EventQueue {
  public:
   EventQueue() = default;
@@ -59,10 +59,10 @@ class EventQueue {
     KINRAY_DCHECK(contains(h));
     m_slots[h].payload = payload;
     const uint32_t pos = m_pos[h];
-    ((pos & kFar) != 0 ? m_far[pos & ~kFar] : m_heap[pos + kOffset]).hint = uint32_t(payload);
+    ((pos & kFar) != 0 ? far_node(h) : m_heap[pos + kOffset]).hint = uint32_t(payload);
   }
 
-  [[nodiscard]] bool empty() const { return m_size == 0 && m_far.empty(); }
+  [[nodiscard]] bool empty() const { return m_size == 0 && m_far.size() == 0; }
   [[nodiscard]] size_t size() const { return m_size + m_far.size(); }
   [[nodiscard]] const EventKey& top_key() const { return m_slots[top()].key; }
   [[nodiscard]] uint64_t top_payload() const { return m_slots[top()].payload; }
@@ -105,7 +105,7 @@ class EventQueue {
 
  private:
   static constexpr uint32_t kFreeSlot = ~0u;
-  static constexpr uint32_t kFar = 1u << 31;  ///< m_pos bit: the index is into m_far
+  static constexpr uint32_t kFar = 1u << 31;  ///< m_pos bit: the index is into a time bucket
  public:
   static constexpr uint32_t kArity = 8;  ///< children per node
 
@@ -113,11 +113,7 @@ class EventQueue {
   // Heap entry r is stored at m_heap[r + kOffset]; the children of r, 8r+1 .. 8r+8, are then
   // stored at 8(r+1) .. 8(r+1)+7: one 128-byte aligned group (two cache lines).
   static constexpr uint32_t kOffset = kArity - 1;
-  struct Node {
-    double time;
-    EventHandle handle;
-    uint32_t hint;  ///< the payload's low 32 bits, readable at the top without the slot
-  };
+  using Node = QueueNode;
   struct alignas(32) Slot {
     EventKey key;
     uint64_t payload = 0;  ///< the event's payload, or the next free slot when free
@@ -134,20 +130,38 @@ class EventQueue {
   void sift_down(uint32_t r, Node node);
   /// Takes the node at heap index r out of the heap (its handle stays allocated).
   void detach_heap(uint32_t r);
-  /// Takes the node at far index i out of the far list (its handle stays allocated).
-  void detach_far(uint32_t i);
-  void add_far(const Node& node) {
-    m_pos[node.handle] = kFar | uint32_t(m_far.size());
-    m_far.push_back(node);
+  /// The far node of handle h (in the bucket of its key's time).
+  Node& far_node(EventHandle h) {
+    return m_far[m_far.raw(m_slots[h].key.time)][m_pos[h] & ~kFar];
   }
+  /// Takes the node at index i of bucket k out of it (its handle stays allocated).
+  void detach_far(int k, uint32_t i);
+  /// Puts a node with a handle into bucket k (not the heap).
+  void add_far(int k, const Node& node) {
+    std::vector<Node>& bucket = m_far[k];
+    m_pos[node.handle] = kFar | uint32_t(bucket.size());
+    bucket.push_back(node);
+    m_far.added();
+  }
+  /// Puts a node into the heap; a new calendar when the heap has grown out of proportion.
+  void add_heap(const Node& node) {
+    if (m_size == m_capacity) grow(m_capacity < 16 ? 16 : 2 * m_capacity);
+    sift_up(m_size++, node);
+    if (m_size > kLargeHeap && m_size > m_far.size() / 16) [[unlikely]] rebalance();
+  }
+  /// Every event back to the overflow and a new calendar from the earliest: for a heap that
+  /// the events earlier than the calendar's start have filled (the first calendar is laid over
+  /// the first event pushed). It costs O(n) once the heap holds a sixteenth of the events.
+  void rebalance();
+  static constexpr uint32_t kLargeHeap = 1024;
   void free_handle(EventHandle h) {
     m_pos[h] = kFreeSlot;
     m_slots[h].payload = m_free;
     m_free = h;
   }
-  /// Restores "the heap is empty only if the far list is" by moving the horizon on.
+  /// Restores "the heap is empty only if the buckets are" by moving to the next bucket.
   void settle() {
-    if (m_size == 0 && !m_far.empty()) refill();
+    if (m_size == 0 && m_far.size() != 0) refill();
   }
   void refill();
   void grow(size_t capacity);
@@ -158,9 +172,7 @@ class EventQueue {
   std::vector<Slot> m_slots;     ///< per handle: key and payload (two slots per cache line)
   std::vector<uint32_t> m_pos;  ///< per handle: heap index r, kFar | far index, or kFreeSlot
   uint32_t m_free = kNoEvent;
-  std::vector<Node> m_far;  ///< the events later than m_horizon, unsorted
-  /// Heap events are at or before it, far events after it; it only moves forward.
-  double m_horizon = -std::numeric_limits<double>::infinity();
+  TimeBuckets m_far;  ///< the events later than the heap's, by time buckets
 };
 
 }  // namespace kinray

@@ -29,6 +29,18 @@ int crossing_edges(const std::array<int, 3>& sides, int out[2]) {
   return n;
 }
 
+// Sorts the 4 or 5 cuts of a row or a band in place: an insertion sort, inline (std::sort's
+// call and introsort set-up cost more than the sort itself here; the result is the same).
+template <size_t N>
+void sort_cuts(int (&cuts)[N]) {
+  for (size_t i = 1; i < N; ++i) {
+    const int v = cuts[i];
+    size_t j = i;
+    for (; j > 0 && cuts[j - 1] > v; --j) cuts[j] = cuts[j - 1];
+    cuts[j] = v;
+  }
+}
+
 }  // namespace
 
 template <class Sort>
@@ -85,6 +97,7 @@ typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) c
   en.q = m_motion.vertex(ends[1]);
   en.s = m_now - en.segment.origin;
   en.moving = !m_scene.mesh(m).is_static;
+  en.edge = edge;
   return en;
 }
 
@@ -123,7 +136,7 @@ void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) cons
     t.sign_lo = t.sign_hi = 1;
     return;
   }
-  const EdgeNormal edge = en.normal();
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
   auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
   t.slot = m_columns.locate(sign_at);
@@ -149,7 +162,7 @@ bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en,
     return true;
   }
   if (!front) return false;
-  const EdgeNormal edge = en.normal();
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
   const auto [lo, hi] = m_columns.watched(hint.slot);
   const int sl = edge_sign(edge, m_scene.column_x(lo), y, en.s);
@@ -180,7 +193,7 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
     // A boundary behind the eye changes no coverage where it crosses (no cut).
     int cuts[4] = {0, std::max(m_boundaries[r.boundary[0]].tracker.slot, 0),
                    std::max(m_boundaries[r.boundary[1]].tracker.slot, 0), m_width};
-    std::sort(cuts, cuts + 4);
+    sort_cuts(cuts);
     for (int k = 0; k + 1 < 4; ++k) {
       const int a = cuts[k], b = cuts[k + 1];
       if (a >= b) continue;
@@ -251,7 +264,7 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const 
   if (st.slot == kBehindEye) {
     t = failure_time(-1, boundary_front(en, b.row), en.segment);
   } else {
-    const EdgeNormal edge = known ? *known : en.normal();
+    const EdgeNormal& edge = known ? *known : m_motion.edge_normal(en.edge);
     const double y = m_scene.row_y(b.row);
     const auto [lo, hi] = m_columns.watched(st.slot);
     t = failure_time(st.sign_lo, edge.perturbed(m_scene.column_x(lo), y), en.segment);
@@ -461,18 +474,24 @@ void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool 
 }
 
 template <class Sort>
-bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, const TriangleNow& tn,
-                                   const EdgeNormal* known, int known_edge) const {
+bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const {
   const RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
-  // this very instant is still pending and rebuilds the record when processed).
-  return covers_in_row(tn.motion, tn.s, m_triangles[r.triangle].orientation,
-                       m_scene.column_x(column), m_scene.row_y(r.row), r.edge[0], r.edge[1], known,
-                       known_edge);
+  // this very instant is still pending and rebuilds the record when processed). The edge
+  // normals come from the cache: covers_in_row of the triangle's motion, bit for bit.
+  const int o = m_triangles[r.triangle].orientation;
+  if (o == 0) return false;
+  const double x = m_scene.column_x(column), y = m_scene.row_y(r.row);
+  auto sign_of = [&](int e) {
+    const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
+    return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, s)
+                                             : edge_sign(n.reversed(), x, y, s);
+  };
+  return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
 }
 
 template <class Sort>
-void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered, const TriangleNow& tn) {
+void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered) {
   const RowRecord& r = m_records[rec];
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
@@ -498,7 +517,7 @@ void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered, const 
   if (lo == -2) {
     // Not at an end of the interval: several columns changed at one instant (degenerate).
     ++m_stats.degenerate_rebuilds;
-    rebuild_record(rec, tn, true);
+    rebuild_record(rec, triangle_now(r.triangle), true);
     return;
   }
   set_coverage(rec, lo, hi);
@@ -573,7 +592,7 @@ bool FrustumBand<Sort>::meets_rows(uint32_t tri, const std::array<RowPattern, 3>
   if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return false;
   // The signs are constant between consecutive slots: one row of each run decides.
   int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
-  std::sort(cuts, cuts + 5);
+  sort_cuts(cuts);
   for (int k = 0; k + 1 < 5; ++k) {
     const int a = cuts[k];
     if (a >= cuts[k + 1]) continue;
@@ -620,7 +639,7 @@ void FrustumBand<Sort>::unwatch(uint32_t tri) {
 template <class Sort>
 void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p) {
   int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
-  std::sort(cuts, cuts + 5);
+  sort_cuts(cuts);
   std::optional<TriangleNow> tn;
   for (int k = 0; k + 1 < 5; ++k) {
     const int a = cuts[k], b = cuts[k + 1];
@@ -952,7 +971,7 @@ void FrustumBand<Sort>::handle_boundary(uint32_t id) {
   SlotTracker& st = b.tracker;
   st.event = kNoEvent;
   const EdgeNow en = edge_now(b.edge);
-  const EdgeNormal edge = en.normal();
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
   auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
   if (st.slot == kBehindEye) {
@@ -1022,22 +1041,14 @@ void FrustumBand<Sort>::handle_boundary(uint32_t id) {
   schedule_boundary(id, en, &edge);
   // The column passes from one triangle of the edge to the other: the one that loses it goes
   // first, so the pixel's order never holds both (no depth certificate between them).
+  // Both triangles are on the edge's mesh segment, at its local time en.s.
   const std::array<uint32_t, 2> records = b.records;
-  const uint32_t edge_id = b.edge;
-  std::array<TriangleNow, 2> tn;
   std::array<bool, 2> covered = {false, false};
-  for (size_t k = 0; k < 2; ++k) {
-    if (records[k] == kNoRecord) continue;
-    const RowRecord& r = m_records[records[k]];
-    tn[k] = triangle_now(r.triangle);
-    const int e = m_scene.edge_of_triangle(r.triangle, r.edge[0]) == edge_id ? r.edge[0] : r.edge[1];
-    const EdgeNormal own = edge_direction(r.triangle, e) > 0 ? edge : edge.reversed();
-    covered[k] = covers_now(records[k], column, tn[k], &own, e);
-  }
+  for (size_t k = 0; k < 2; ++k)
+    if (records[k] != kNoRecord) covered[k] = covers_now(records[k], column, en.s);
   for (bool gains : {false, true})
     for (size_t k = 0; k < 2; ++k)
-      if (records[k] != kNoRecord && covered[k] == gains)
-        set_pixel(records[k], column, gains, tn[k]);
+      if (records[k] != kNoRecord && covered[k] == gains) set_pixel(records[k], column, gains);
 }
 
 template <class Sort>

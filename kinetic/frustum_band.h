@@ -137,6 +137,8 @@ class FrustumBand {
     MeshSegment segment;
     double s = 0;
     bool moving = true;
+    uint32_t edge = 0;  ///< global edge id
+    /// Built afresh (the audit's independent check); the events read BandMotion's cache.
     [[nodiscard]] EdgeNormal normal() const { return edge_normal(p, q); }
   };
   /// A vertex's slot among the band's row planes, as a step pattern of row sides.
@@ -182,15 +184,13 @@ class FrustumBand {
   void rebuild_record(uint32_t rec, const TriangleNow& tn, bool full);
   /// Recomputes the record's covered interval (from its boundary slots, or every column).
   void rescan_record(uint32_t rec, const TriangleNow& tn, bool full);
-  /// Does the record's triangle cover `column` just after now? `known` is edge `known_edge`'s
-  /// normal if already built.
-  [[nodiscard]] bool covers_now(uint32_t rec, int column, const TriangleNow& tn,
-                                const EdgeNormal* known = nullptr, int known_edge = -1) const;
+  /// Does the record's triangle cover `column` just after now (local time s on its segment)?
+  [[nodiscard]] bool covers_now(uint32_t rec, int column, double s) const;
   /// Brings one column of a record to `covered` (the interval moves by one column at an end).
-  void set_pixel(uint32_t rec, int column, bool covered, const TriangleNow& tn);
+  void set_pixel(uint32_t rec, int column, bool covered);
   /// Re-evaluates one column of a record.
   void update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
-    set_pixel(rec, column, covers_now(rec, column, tn), tn);
+    set_pixel(rec, column, covers_now(rec, column, tn.s));
   }
 
   // Boundaries.

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <set>
@@ -121,8 +123,8 @@ TEST(EventQueue, RandomOperationsAgainstMultiset) {
 }
 
 // A kinetic simulation's pattern: most events are rescheduled far after the one being processed,
-// so the queue keeps them in its far list and moves its horizon on as the heap runs dry; the
-// events still come out in exact (time, kind, a, b) order, ties included.
+// so the queue keeps them in its time buckets and heapifies the next one as the heap runs dry;
+// the events still come out in exact (time, kind, a, b) order, ties included.
 TEST(EventQueue, RescheduledFarEventsComeOutInOrder) {
   std::mt19937_64 rng(777);
   std::exponential_distribution<double> later(1.0);
@@ -186,6 +188,70 @@ TEST(EventQueue, RescheduledFarEventsComeOutInOrder) {
     const auto& [time, kind, a, b, h] = *model.begin();
     ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
     model.erase({time, kind, a, b, q.top()});
+    q.pop();
+  }
+  q.audit();
+}
+
+// The calendar of time buckets under the distributions it handles worst: one burst of equal
+// times (a zero-width calendar), times spread over twenty decades (most buckets empty, the rest
+// crowded), and infinite times (always past the calendar); updates move events between buckets,
+// into the heap and back out. The pops follow the sorted model exactly.
+TEST(EventQueue, CalendarKeepsTheOrderOverAnySpreadOfTimes) {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> decade(-10, 10);
+  const double inf = std::numeric_limits<double>::infinity();
+  EventQueue q;
+  std::set<std::tuple<double, uint32_t, uint32_t, uint64_t, EventHandle>> model;
+  std::vector<EventHandle> live;
+  double now = 0;
+  uint64_t serial = 0;  // unique keys: the order is total, handles never break a tie
+  auto key_at = [&](int mode) {
+    const double t = mode == 0 ? now : (mode == 1 ? inf : now + std::pow(10.0, decade(rng)));
+    return EventKey{t, static_cast<uint32_t>(rng() % 2), static_cast<uint32_t>(rng() % 2), ++serial};
+  };
+  auto push = [&](const EventKey& k) {
+    const EventHandle h = q.push(k, 0);
+    live.push_back(h);
+    model.insert({k.time, k.kind, k.a, k.b, h});
+  };
+  for (int i = 0; i < 3000; ++i) push(EventKey{1.0, 0, uint32_t(i), ++serial});  // one instant
+  for (int i = 0; i < 20000; ++i) push(key_at(i % 50 == 0 ? 1 : 2));
+  for (int step = 0; step < 100000; ++step) {
+    const int op = static_cast<int>(rng() % 8);
+    if (op < 5) {
+      const auto& [time, kind, a, b, h] = *model.begin();
+      ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+      ASSERT_EQ(q.top(), h);
+      if (std::isfinite(time)) now = time;
+      model.erase(model.begin());
+      live.erase(std::find(live.begin(), live.end(), q.top()));
+      q.pop();
+      push(key_at(op == 0 ? 0 : (op == 1 ? 1 : 2)));
+    } else {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      const EventKey k = key_at(op == 5 ? 0 : 2);
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      if (op == 7) {
+        q.erase(h);
+        live[i] = live.back();
+        live.pop_back();
+        push(k);
+      } else {
+        q.update(h, k);
+        model.insert({k.time, k.kind, k.a, k.b, h});
+      }
+    }
+    ASSERT_EQ(q.size(), model.size());
+    if (step % 4999 == 0) q.audit();
+  }
+  while (!q.empty()) {
+    const auto& [time, kind, a, b, h] = *model.begin();
+    ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+    ASSERT_EQ(q.top(), h);
+    model.erase(model.begin());
     q.pop();
   }
   q.audit();
