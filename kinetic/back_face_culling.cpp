@@ -177,7 +177,7 @@ int back_face_cull_sign(const GridMesh& mesh, int threads, WorkProgress* progres
   // the determinants taking Q in k of the three places and P in the others. Each block of
   // triangles proves one sign over all segments (0: none), then the blocks must agree.
   std::vector<int> block_sign(block_count(triangles.size()), 0);
-  const size_t segments = keys > 1 ? keys - 1 : 1;
+  const size_t segments = culling_proof_segments(mesh);
   parallel_for_dynamic(block_sign.size(), threads, [&](size_t block) {
     int sigma = 0;
     const size_t end = std::min(triangles.size(), (block + 1) * kBlock);

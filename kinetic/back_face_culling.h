@@ -29,6 +29,7 @@
 // solid that is not star-shaped around its vertex centroid (a torus, an L-shaped box whose
 // centroid lies on a face plane) keeps every face.
 #include <array>
+#include <cstddef>
 
 #include "kinetic/grid_input.h"
 #include "kinetic/work_progress.h"
@@ -38,9 +39,17 @@ namespace kinray {
 /// 0 when culling mesh `mesh` is not proved sound, else the sign of O
 /// (TriangleMotion::orientation, det(v0, v1, v2)) of the triangles that face the eye. The proof
 /// runs on `threads` workers (0: all cores); its answer does not depend on them. When given,
-/// `progress` counts the (triangle, segment) pairs examined.
+/// `progress` counts the (triangle, segment) pairs examined: at most the triangles times
+/// culling_proof_segments(mesh).
 [[nodiscard]] int back_face_cull_sign(const GridMesh& mesh, int threads = 1,
                                       WorkProgress* progress = nullptr);
+
+/// The segments the proof examines each triangle on: every segment between keys (one constant
+/// segment for a standing mesh).
+[[nodiscard]] inline size_t culling_proof_segments(const GridMesh& mesh) {
+  const size_t keys = mesh.is_static ? 1 : mesh.key_count();
+  return keys > 1 ? keys - 1 : 1;
+}
 
 /// Sign (+1 or -1) that the cubic with Bernstein coefficients `b` on [0, 1] keeps strictly, each
 /// coefficient beyond `margin` in absolute value, after at most `depth` halvings; 0 if unproved.

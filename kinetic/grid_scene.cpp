@@ -89,9 +89,9 @@ GridScene::GridScene(GridInput input, int threads, WorkProgress* progress)
 
   m_cull_sign.resize(meshes);
   if (progress != nullptr) {
-    uint64_t work = 0;  // (triangle, segment) pairs, as back_face_cull_sign counts them
+    uint64_t work = 0;
     for (const GridMesh& mesh : m_input.meshes)
-      work += mesh.triangles.size() * (mesh.is_static || mesh.key_count() < 2 ? 1 : mesh.key_count() - 1);
+      work += mesh.triangles.size() * culling_proof_segments(mesh);
     progress->begin("back-face culling proof", work);
   }
   for (uint32_t m = 0; m < meshes; ++m)
