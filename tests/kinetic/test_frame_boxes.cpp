@@ -35,21 +35,12 @@ void expect_frame_queries_match(const Tree& tree, const TreeFrame& frame, std::m
 
 TEST(FrameBoxes, QueriesMatchBruteForceAndTheLazyTraversal) {
   const test::TestScene scene = test::mixed_tree_scene(6);
-  KineticBvh aabb(scene.input().meshes, 0, KineticBvh::Config{TreeShape::aabb, true});
-  KineticBvh box(scene.input().meshes, 0, KineticBvh::Config{TreeShape::boxtree, true});
-  BottomUpBvh bottom_up(scene.input().meshes, 0);
   std::mt19937 rng(17);
-  std::uniform_real_distribution<double> dt(0, 0.25);
   int hits = 0;
-  for (double t = 0; t < 3.4; t += dt(rng)) {
-    aabb.advance_to(t);
-    box.advance_to(t);
-    bottom_up.update(t);
-    const TreeFrame frame(aabb.meshes(), t);
-    expect_frame_queries_match(aabb, frame, rng, hits);
-    expect_frame_queries_match(box, frame, rng, hits);
-    expect_frame_queries_match(bottom_up, frame, rng, hits);
-  }
+  test::for_each_tree_at_random_times(scene, rng, 0.25,
+                                      [&](const auto& tree, const TreeFrame& frame) {
+                                        expect_frame_queries_match(tree, frame, rng, hits);
+                                      });
   EXPECT_GT(hits, 1000);
 }
 

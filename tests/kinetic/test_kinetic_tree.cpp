@@ -127,21 +127,12 @@ void expect_queries_match_brute_force(const Tree& tree, const TreeFrame& frame, 
 
 TEST(KineticTree, QueriesMatchBruteForceAtRandomTimes) {
   const test::TestScene scene = test::mixed_tree_scene(5);
-  KineticBvh aabb = make_tree(scene, TreeShape::aabb);
-  KineticBvh box = make_tree(scene, TreeShape::boxtree);
-  BottomUpBvh bottom_up(scene.input().meshes, 0);
   std::mt19937 rng(99);
-  std::uniform_real_distribution<double> dt(0, 0.2);
   int hits = 0;
-  for (double t = 0; t < 3.4; t += dt(rng)) {
-    aabb.advance_to(t);
-    box.advance_to(t);
-    bottom_up.update(t);
-    const TreeFrame frame(aabb.meshes(), t);
-    expect_queries_match_brute_force(aabb, frame, rng, hits);
-    expect_queries_match_brute_force(box, frame, rng, hits);
-    expect_queries_match_brute_force(bottom_up, frame, rng, hits);
-  }
+  test::for_each_tree_at_random_times(scene, rng, 0.2,
+                                      [&](const auto& tree, const TreeFrame& frame) {
+                                        expect_queries_match_brute_force(tree, frame, rng, hits);
+                                      });
   EXPECT_GT(hits, 1000);  // the rays do meet the triangles
 }
 

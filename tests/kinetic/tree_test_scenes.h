@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "grid_test_scenes.h"
+#include "kinetic/tree/bottom_up_bvh.h"
+#include "kinetic/tree/kinetic_bvh.h"
 #include "kinetic/tree/tree_query.h"
 
 namespace kinray::test {
@@ -76,6 +78,27 @@ inline TreeRay random_tree_ray(std::mt19937& rng) {
   if (rng() % 3 == 0) ray.direction *= 0.3;  // a segment that may stop short of the triangles
   ray.s_max = rng() % 2 == 0 ? 1.0 : kInfinityTime;
   return ray;
+}
+
+/// An audited kinetic AABB tree, an audited kinetic BoxTree and the bottom-up tree of `scene`
+/// (a mixed_tree_scene), advanced together over its shot at random steps of up to `max_step`;
+/// check(tree, frame) is called on each of the three at every step.
+template <class Check>
+void for_each_tree_at_random_times(const TestScene& scene, std::mt19937& rng, double max_step,
+                                   Check&& check) {
+  KineticBvh aabb(scene.input().meshes, 0, KineticBvh::Config{TreeShape::aabb, true});
+  KineticBvh box(scene.input().meshes, 0, KineticBvh::Config{TreeShape::boxtree, true});
+  BottomUpBvh bottom_up(scene.input().meshes, 0);
+  std::uniform_real_distribution<double> dt(0, max_step);
+  for (double t = 0; t < 3.4; t += dt(rng)) {
+    aabb.advance_to(t);
+    box.advance_to(t);
+    bottom_up.update(t);
+    const TreeFrame frame(aabb.meshes(), t);
+    check(aabb, frame);
+    check(box, frame);
+    check(bottom_up, frame);
+  }
 }
 
 }  // namespace kinray::test
