@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "kinetic/fork_gate.h"
 #include "kinetic/thread_pool.h"
 
 namespace kinray {
@@ -45,6 +46,7 @@ void parallel_chunks(size_t n, int threads, F&& f) {
   std::mutex error_mutex;
   std::exception_ptr error;
   const auto guarded = [&](size_t w) {
+    const ThreadBusy busy;
     try {
       f(n * w / workers, n * (w + 1) / workers);
     } catch (...) {
@@ -54,7 +56,7 @@ void parallel_chunks(size_t n, int threads, F&& f) {
   };
   std::vector<std::thread> pool;
   pool.reserve(workers - 1);
-  for (size_t w = 1; w < workers; ++w) pool.emplace_back(guarded, w);
+  for (size_t w = 1; w < workers; ++w) pool.push_back(start_thread([&guarded, w] { guarded(w); }));
   guarded(0);
   for (auto& thread : pool) thread.join();
   if (error) std::rethrow_exception(error);

@@ -3,6 +3,8 @@
 #include <atomic>
 #include <exception>
 
+#include "kinetic/fork_gate.h"
+
 namespace kinray {
 
 namespace {
@@ -44,6 +46,7 @@ size_t ThreadPool::worker_count() const {
 }
 
 void ThreadPool::execute(Run& run) {
+  const ThreadBusy busy;
   const bool outer = t_in_task;
   t_in_task = true;
   for (size_t k = run.next.fetch_add(1, std::memory_order_relaxed); k < run.tasks;
@@ -71,7 +74,7 @@ bool ThreadPool::try_run(size_t tasks, size_t helpers, Task task, void* context)
   {
     std::lock_guard lock(m_mutex);
     // A worker that cannot be started (std::system_error) leaves the pool as it was.
-    while (m_workers.size() < helpers) m_workers.emplace_back([this] { work(); });
+    while (m_workers.size() < helpers) m_workers.push_back(start_thread([this] { work(); }));
     m_run = &run;
     ++m_generation;
   }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "kinetic/fork_gate.h"
+
 namespace kinray {
 namespace {
 
@@ -98,9 +100,10 @@ void Progress::working(const std::string& text, const WorkProgress* work) {
   stop_ticker();
   draw(text);
   m_ticking = true;
-  m_ticker = std::thread([this, text, work, start = Clock::now()] {
+  m_ticker = start_thread([this, text, work, start = Clock::now()] {
     std::unique_lock lock(m_mutex);
     while (!m_wake.wait_for(lock, std::chrono::milliseconds(250), [this] { return !m_ticking; })) {
+      const ThreadBusy busy;  // a model is read in a forked child meanwhile (model_guard.h)
       const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
       const char* step = work ? work->step.load(std::memory_order_relaxed) : nullptr;
       const std::string line =

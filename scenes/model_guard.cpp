@@ -16,6 +16,8 @@
 #include <fstream>
 #include <iostream>
 
+#include "kinetic/fork_gate.h"
+
 namespace kinray {
 
 size_t reader_address_space() {
@@ -35,7 +37,11 @@ std::optional<std::string> run_in_child(const std::function<std::string()>& work
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);
+  // Meanwhile no other thread of ours holds a lock the child may need. Only the parent lets go
+  // of the gate: the child leaves by _exit, and there the gate's recorded owner is not itself.
+  std::optional<NoThreadBusy> quiet(std::in_place);
   const pid_t child = fork();
+  if (child != 0) quiet.reset();
   if (child < 0) {
     close(fds[0]);
     close(fds[1]);

@@ -10,11 +10,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <latch>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "kinetic/parallel.h"
 #include "scenes/error.h"
 #include "scenes/model_guard.h"
 #include "scenes/model_import.h"
@@ -287,6 +291,31 @@ TEST(ModelGuard, ChildCrashesAndHangsBecomeMessages) {
   ASSERT_TRUE(hang.has_value());
   EXPECT_NE(hang->find("did not finish"), std::string::npos) << *hang;
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
+TEST(ModelGuard, TheChildIsForkedOnlyWhenNoThreadOfOursIsWorking) {
+  // A pool task holds a lock that the child's work needs. Forked while the task held it, the
+  // child would wait for it for ever (the task's thread does not exist in the child): it must
+  // be forked after the task.
+  std::mutex held_by_task;
+  std::latch task_holds_it(1);
+  std::thread loop([&] {
+    parallel_for(2, 2, [&](size_t k) {
+      if (k != 0) return;
+      const std::lock_guard lock(held_by_task);
+      task_holds_it.count_down();
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    });
+  });
+  task_holds_it.wait();
+  const auto verdict = run_in_child(
+      [&] {
+        const std::lock_guard lock(held_by_task);
+        return std::string();
+      },
+      5);
+  loop.join();
+  EXPECT_EQ(verdict, std::nullopt) << *verdict;
 }
 
 TEST(ModelGuard, ChildOverItsAddressSpaceLimitFailsWithBadAlloc) {
