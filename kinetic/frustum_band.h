@@ -36,6 +36,8 @@
 
 namespace kinray {
 
+struct FrustumBandTestAccess;
+
 /// EventKey::kind of the grid's events; at equal times they are processed in this order, so a
 /// flightplan update (which recomputes certificates) precedes the failures computed on the old
 /// segment that end there.
@@ -261,6 +263,9 @@ class FrustumBand {
   void audit_pixel(int column, int row, double t) const;
   /// The brute-force audit, one member function per invariant (frustum_band_audit.cpp).
   class Audit;
+  /// Tests corrupt a band's state through this to see the audit report it
+  /// (tests/kinetic/test_frustum_band.cpp); nothing else uses it.
+  friend struct FrustumBandTestAccess;
   void pixel_erase(uint32_t tri, int column, int row);
 
   // Meshes.
