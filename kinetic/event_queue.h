@@ -1,5 +1,5 @@
 #pragma once
-// An addressable 4-ary min-heap of events with stable handles.
+// An addressable 8-ary min-heap of events with stable handles, over a calendar of time buckets.
 
 #include <cstddef>
 #include <cstdint>

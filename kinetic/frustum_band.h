@@ -13,6 +13,11 @@
 //     insert / delete events of meshes that appear and disappear.
 // Rows depend on nothing outside their band, so bands run in parallel and the frames do not
 // depend on how the rows are split. See docs/kinetic_grid.md.
+//
+// The member functions are defined by part, one file each: frustum_band_events.cpp (event loop),
+// _geometry (motion just after now), _schedule (failure times), _records, _boundaries,
+// _vertex_rows, _orientation (orientation and the culling watch), _meshes (insert, remove,
+// flightplan switch), _audit and _readout.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -30,6 +35,8 @@
 #include "kinetic/work_progress.h"
 
 namespace kinray {
+
+struct FrustumBandTestAccess;
 
 /// EventKey::kind of the grid's events; at equal times they are processed in this order, so a
 /// flightplan update (which recomputes certificates) precedes the failures computed on the old
@@ -67,10 +74,6 @@ class FrustumBand {
   void start(double t0);
   /// Processes every event with time <= t in (time, kind, ids) order.
   void advance_to(double t);
-  /// Time of the last event processed (or the start).
-  [[nodiscard]] double event_time() const { return m_now; }
-  /// Time of the next pending event (+infinity when none).
-  [[nodiscard]] double next_event_time() const;
 
   /// The front triangle (global id) of pixel (column, row) of this band.
   [[nodiscard]] std::optional<uint32_t> front(int column, int row) const {
@@ -95,7 +98,8 @@ class FrustumBand {
   /// Brute-force check of every invariant just after t (t >= the last event, before the next):
   /// records and their ties, slots and covered intervals against the sign rule, the rows each
   /// triangle meets, vertex slots, orientation signs, each pixel's set of triangles, and every
-  /// pixel order's own audit. Returns the problems found (at most `limit`).
+  /// pixel order's own audit. Returns the problems found (at most `limit`), each naming the band,
+  /// t, the invariant and where (triangle and row, edge, vertex or pixel); never aborts.
   [[nodiscard]] std::vector<std::string> audit(double t, size_t limit = 20) const;
   [[nodiscard]] GridStats stats() const;
   /// Motion blur: appends every later change of a pixel's front to `log` (nullptr: none).
@@ -254,8 +258,14 @@ class FrustumBand {
     return changed;
   }
   void pixel_insert(uint32_t tri, int column, int row);
-  /// The pixel order's audit; a failure is rethrown with the band, the pixel and the time.
+  /// Audit mode, after each change of a pixel order: the order's own audit; a problem is thrown
+  /// as KineticAuditFailure with the band, the pixel and the time.
   void audit_pixel(int column, int row, double t) const;
+  /// The brute-force audit, one member function per invariant (frustum_band_audit.cpp).
+  class Audit;
+  /// Tests corrupt a band's state through this to see the audit report it
+  /// (tests/kinetic/test_frustum_band.cpp); nothing else uses it.
+  friend struct FrustumBandTestAccess;
   void pixel_erase(uint32_t tri, int column, int row);
 
   // Meshes.
@@ -267,6 +277,10 @@ class FrustumBand {
   void handle(const EventKey& key, uint64_t payload);
   void handle_flightplans(uint32_t first_mesh);
   void handle_boundary(uint32_t id);
+  /// A boundary event of a point behind the eye: it may come back in front, into the off slot.
+  void handle_boundary_behind_eye(uint32_t id, const EdgeNow& en, const EdgeNormal& edge);
+  /// A boundary crossed `column`: the column passes between the records it bounds.
+  void pass_column(uint32_t id, int column, double s);
   void handle_vertex(uint32_t v);
   void handle_orientation(uint32_t tri);
   void handle_swap(const EventKey& key, uint64_t payload);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -136,12 +137,21 @@ class KineticHeap {
   }
 
   /// Every parent-child certificate recomputed at t holds just after t or is pending at t.
-  void audit(double t) const {
-    if (!m_nodes.empty()) KINRAY_CHECK(m_nodes[0].event == kNoEvent);
+  /// The first problem found, or nothing; never aborts, so the owner can add where it was found.
+  [[nodiscard]] std::optional<std::string> audit_problem(double t) const {
+    if (!m_nodes.empty() && m_nodes[0].event != kNoEvent)
+      return std::string("kinetic heap: the root has an event");
     for (uint32_t i = 1; i < m_nodes.size(); ++i) {
-      if (m_nodes[i].event != kNoEvent) KINRAY_CHECK(m_core.queue().payload(m_nodes[i].event) == i);
-      m_core.audit_pair(m_nodes[parent(i)].id, m_nodes[i].id, m_nodes[i].event, t);
+      if (m_nodes[i].event != kNoEvent && m_core.queue().payload(m_nodes[i].event) != i)
+        return "kinetic heap: node " + std::to_string(i) + " has an event of another node";
+      if (auto problem = m_core.pair_problem(m_nodes[parent(i)].id, m_nodes[i].id, m_nodes[i].event, t))
+        return problem;
     }
+    return std::nullopt;
+  }
+  /// Throws KineticAuditFailure with audit_problem(t), if any.
+  void audit(double t) const {
+    if (std::optional<std::string> problem = audit_problem(t)) throw KineticAuditFailure(*problem);
   }
 
   void clear() {

@@ -109,6 +109,7 @@ concept KineticSort =
       { cs.size() } -> std::convertible_to<size_t>;
       { cs.contains(id) } -> std::same_as<bool>;
       cs.audit(t);
+      { cs.audit_problem(t) } -> std::same_as<std::optional<std::string>>;
       { cs.stats() } -> std::same_as<const KineticSortStats&>;
     };
 
@@ -285,9 +286,11 @@ class SortCore {
     }
   }
 
-  /// Audit of one certificate of (a, b) whose event is `handle`, at time t; throws
-  /// KineticAuditFailure with the pair, the key values and the certificate.
-  void audit_pair(uint32_t a, uint32_t b, EventHandle handle, double t) const {
+  /// Audit of one certificate of (a, b) whose event is `handle`, at time t: the problem, naming
+  /// the pair, the key values and the certificate, or nothing if it holds. Never aborts or throws,
+  /// so the owner can add where it was found.
+  [[nodiscard]] std::optional<std::string> pair_problem(uint32_t a, uint32_t b, EventHandle handle,
+                                                        double t) const {
     const OrderCertificate c = m_keys->order_certificate(a, b, t);
     const bool pending = handle != kNoEvent;
     const double at = pending ? m_queue->key(handle).time : std::numeric_limits<double>::infinity();
@@ -308,22 +311,21 @@ class SortCore {
       else if (s.failure && !(at <= s.time + 1e-7 * (1 + std::abs(s.time))))
         problem = "certificate failure scheduled too late";
     }
-    if (problem) {
-      char text[512];
-      int n = std::snprintf(text, sizeof text,
-                            "kinetic sort audit (owner %u) at t = %.17g: pair (%u, %u): %s; key "
-                            "values %.17g, %.17g; scheduled %.17g, recomputed %.17g, origin %.17g, "
-                            "end %.17g, f degree %d:",
-                            m_owner, t, a, b, problem, m_keys->value(a, t), m_keys->value(b, t), at,
-                            s.time, c.origin, c.end, c.f.degree);
-      std::string message(text, size_t(std::clamp(n, 0, int(sizeof text) - 1)));
-      for (int k = 0; k <= c.f.degree; ++k) {
-        n = std::snprintf(text, sizeof text, " %.17g", c.f.c[size_t(k)]);
-        message.append(text, size_t(std::clamp(n, 0, int(sizeof text) - 1)));
-      }
-      if (c.exact) message += " (decided exactly)";
-      throw KineticAuditFailure(message);
+    if (problem == nullptr) return std::nullopt;
+    char text[512];
+    int n = std::snprintf(text, sizeof text,
+                          "kinetic sort audit (owner %u) at t = %.17g: pair (%u, %u): %s; key "
+                          "values %.17g, %.17g; scheduled %.17g, recomputed %.17g, origin %.17g, "
+                          "end %.17g, f degree %d:",
+                          m_owner, t, a, b, problem, m_keys->value(a, t), m_keys->value(b, t), at,
+                          s.time, c.origin, c.end, c.f.degree);
+    std::string message(text, size_t(std::clamp(n, 0, int(sizeof text) - 1)));
+    for (int k = 0; k <= c.f.degree; ++k) {
+      n = std::snprintf(text, sizeof text, " %.17g", c.f.c[size_t(k)]);
+      message.append(text, size_t(std::clamp(n, 0, int(sizeof text) - 1)));
     }
+    if (c.exact) message += " (decided exactly)";
+    return message;
   }
 
  private:

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <span>
 #include <utility>
 #include <vector>
@@ -142,13 +143,22 @@ class KineticSortedList {
 
   /// Every adjacent certificate recomputed at t: holds just after t, or its event is pending at t
   /// (simultaneous events); key values in order; no failure scheduled later than recomputed.
-  void audit(double t) const {
+  /// The first problem found, or nothing; never aborts, so the owner can add where it was found.
+  [[nodiscard]] std::optional<std::string> audit_problem(double t) const {
     for (size_t i = 0; i + 1 < m_entries.size(); ++i)
-      m_core.audit_pair(m_entries[i].id, m_entries[i + 1].id, m_entries[i].event, t);
+      if (auto problem = m_core.pair_problem(m_entries[i].id, m_entries[i + 1].id, m_entries[i].event, t))
+        return problem;
     for (size_t i = 0; i < m_entries.size(); ++i)
-      if (m_entries[i].event != kNoEvent)
-        KINRAY_CHECK(i + 1 < m_entries.size() && m_core.queue().payload(m_entries[i].event) == i);
-    KINRAY_CHECK(m_core.stats().certificates_live >= (m_entries.empty() ? 0 : m_entries.size() - 1));
+      if (m_entries[i].event != kNoEvent &&
+          !(i + 1 < m_entries.size() && m_core.queue().payload(m_entries[i].event) == i))
+        return "kinetic sorted list: entry " + std::to_string(i) + " has an event of another certificate";
+    if (!(m_core.stats().certificates_live >= (m_entries.empty() ? 0 : m_entries.size() - 1)))
+      return std::string("kinetic sorted list: fewer live certificates counted than adjacent pairs");
+    return std::nullopt;
+  }
+  /// Throws KineticAuditFailure with audit_problem(t), if any.
+  void audit(double t) const {
+    if (std::optional<std::string> problem = audit_problem(t)) throw KineticAuditFailure(*problem);
   }
 
   /// Removes every event of this structure from the queue and empties it.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -114,22 +115,32 @@ class KineticTournament {
 
   /// Every match recomputed at t: the winner is one of the two children's winners and beats the
   /// other just after t, or the match's event is pending at t.
-  void audit(double t) const {
-    if (m_capacity == 0) return;
+  /// The first problem found, or nothing; never aborts, so the owner can add where it was found.
+  [[nodiscard]] std::optional<std::string> audit_problem(double t) const {
+    if (m_capacity == 0) return std::nullopt;
     for (uint32_t leaf = m_capacity; leaf < 2 * m_capacity; ++leaf)
-      KINRAY_CHECK((leaf < m_capacity + m_size) == (m_nodes[leaf].winner != kNone));
+      if ((leaf < m_capacity + m_size) != (m_nodes[leaf].winner != kNone))
+        return "kinetic tournament: leaf " + std::to_string(leaf) + " does not match the size";
     for (uint32_t k = m_capacity - 1; k >= 1; --k) {
       const uint32_t l = m_nodes[2 * k].winner, r = m_nodes[2 * k + 1].winner;
       const Node& node = m_nodes[k];
+      const std::string at = "kinetic tournament: match " + std::to_string(k);
       if (l == kNone || r == kNone) {
-        KINRAY_CHECK(node.winner == (l == kNone ? r : l) && node.event == kNoEvent);
+        if (!(node.winner == (l == kNone ? r : l) && node.event == kNoEvent))
+          return at + " with one player has a wrong winner or an event";
         continue;
       }
-      KINRAY_CHECK(node.winner == l || node.winner == r);
-      if (node.event != kNoEvent) KINRAY_CHECK(m_core.queue().payload(node.event) == k);
+      if (!(node.winner == l || node.winner == r)) return at + ": the winner is neither player";
+      if (node.event != kNoEvent && m_core.queue().payload(node.event) != k)
+        return at + ": its event belongs to another match";
       const uint32_t loser = node.winner == l ? r : l;
-      m_core.audit_pair(node.winner, loser, node.event, t);
+      if (auto problem = m_core.pair_problem(node.winner, loser, node.event, t)) return problem;
     }
+    return std::nullopt;
+  }
+  /// Throws KineticAuditFailure with audit_problem(t), if any.
+  void audit(double t) const {
+    if (std::optional<std::string> problem = audit_problem(t)) throw KineticAuditFailure(*problem);
   }
 
   void clear() {

@@ -481,5 +481,32 @@ TEST(KineticSortAudit, FailureIsAnExceptionWithThePairAndTheKeyValues) {
   }
 }
 
+// The same broken order through audit_problem: every sort returns the problem (to which an owner
+// adds where it was found) and neither throws nor aborts; nothing when the order holds.
+template <class Sort>
+void expect_audit_problem_reported() {
+  PolynomialKeys keys;
+  const uint32_t a = keys.add(Polynomial{0.0, 1.0});  // key t
+  const uint32_t b = keys.add(Polynomial{1.0});       // key 1: a before b until t = 1
+  Simulator sim;
+  Sort sort(keys, sim.queue(), kOwner, KineticSortConfig{kKind, false});
+  sort.insert(a, 0);
+  sort.insert(b, 0);
+  EXPECT_EQ(sort.audit_problem(0.5), std::nullopt);
+  keys.set_motion(b, Polynomial{-1.0}, 0);  // moved without replace_motion: the order is stale
+  std::optional<std::string> problem;
+  ASSERT_NO_THROW(problem = sort.audit_problem(0.5));
+  ASSERT_TRUE(problem.has_value());
+  EXPECT_NE(problem->find("pair (0, 1)"), std::string::npos) << *problem;
+  EXPECT_NE(problem->find("certificate broken"), std::string::npos) << *problem;
+  EXPECT_THROW(sort.audit(0.5), KineticAuditFailure);
+}
+
+TEST(KineticSortAudit, ProblemIsReturnedNotThrownByEverySort) {
+  expect_audit_problem_reported<KineticSortedList<PolynomialKeys>>();
+  expect_audit_problem_reported<KineticTournament<PolynomialKeys>>();
+  expect_audit_problem_reported<KineticHeap<PolynomialKeys>>();
+}
+
 }  // namespace
 }  // namespace kinray
