@@ -8,6 +8,7 @@
 #include "kinetic/collision/interval_ccd.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "kinetic/collision/exact_ccd.h"
@@ -40,13 +41,43 @@ struct RelativeMotion {
 /// All relative motions of the four points, computed once per pair.
 class PairMotion {
  public:
-  PairMotion(ContactType type, const PrimitiveMotion& m) : m_type(type) {
+  PairMotion(ContactType type, const PrimitiveMotion& m) : m_type(type), m_motion(m) {
     for (int p = 0; p < 4; ++p)
       for (int q = 0; q < 4; ++q)
         if (p != q) m_rel[p][q].emplace(m, p, q);
   }
 
   [[nodiscard]] IntervalVec at(int p, int q, Interval t) const { return m_rel[p][q]->over(t); }
+
+  /// A plane strictly between the two primitives all over t: no contact there, whatever the
+  /// cubic does. Catches what the signs cannot: coplanar motion and parallel edges apart. The
+  /// candidate normals come from the geometry at t's middle; any fixed normal is sound, the
+  /// enclosures of the gaps decide.
+  [[nodiscard]] bool separated(Interval t) const {
+    const int first = m_type == ContactType::vertex_face ? 1 : 2;
+    const std::array<Eigen::Vector3d, 4> p = m_motion.at(0.5 * (t.lo + t.hi));
+    Eigen::Vector3d ca = Eigen::Vector3d::Zero(), cb = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 4; ++i) (i < first ? ca : cb) += p[i];
+    const Eigen::Vector3d w = cb / (4 - first) - ca / first;
+    Eigen::Vector3d axes[3] = {w, w, w};
+    if (m_type == ContactType::edge_edge) {
+      // perpendicular to one edge: parallel edges side by side
+      for (int e = 0; e < 2; ++e) {
+        const Eigen::Vector3d d = p[2 * e + 1] - p[2 * e];
+        if (d.squaredNorm() > 0) axes[1 + e] = w - (w.dot(d) / d.squaredNorm()) * d;
+      }
+    }
+    for (const Eigen::Vector3d& axis : axes) {
+      if (!axis.allFinite() || axis.squaredNorm() == 0) continue;
+      const IntervalVec n = {Interval::point(axis.x()), Interval::point(axis.y()),
+                             Interval::point(axis.z())};
+      bool apart = true;
+      for (int i = 0; i < first && apart; ++i)
+        for (int j = first; j < 4 && apart; ++j) apart = dot(n, at(i, j, t)).certainly_positive();
+      if (apart) return true;
+    }
+    return false;
+  }
 
   [[nodiscard]] Interval cubic(Interval t) const {
     return det(at(0, 1, t), at(0, 2, t), at(0, 3, t));
@@ -87,6 +118,7 @@ class PairMotion {
 
  private:
   ContactType m_type;
+  const PrimitiveMotion& m_motion;
   std::optional<RelativeMotion> m_rel[4][4];
 };
 
@@ -102,6 +134,7 @@ bool classify(const PairMotion& pair, Interval t, int depth, int& budget,
   if (pair.cubic(t).certainly_nonzero()) return true;
   const int condition = pair.condition(t);
   if (condition < 0) return true;
+  if (condition == 0 && pair.separated(t)) return true;
   if (condition > 0 && pair.cubic_derivative(t).certainly_nonzero()) {
     const int at_lo = pair.cubic(Interval::point(t.lo)).certain_sign();
     const int at_hi = pair.cubic(Interval::point(t.hi)).certain_sign();
