@@ -149,6 +149,24 @@ bool classify(const PairMotion& pair, Interval t, int depth, int& budget,
          classify(pair, {mid, t.hi}, depth + 1, budget, contacts);
 }
 
+/// The sign of the cubic at local time g in long double intervals (64-bit significands on
+/// x86-64): near a root, where the double enclosure holds zero, these 11 more bits usually
+/// still decide; 0 when they do not either.
+int extended_cubic_sign(const PrimitiveMotion& m, double g) {
+  using L = long double;
+  using LInterval = detail::BasicInterval<L>;
+  detail::BasicIntervalVec<L> d[3];
+  for (int q = 1; q <= 3; ++q) {
+    LInterval* out[3] = {&d[q - 1].x, &d[q - 1].y, &d[q - 1].z};
+    for (int k = 0; k < 3; ++k) {
+      const LInterval a = LInterval::around(L(m.start[q][k]) - L(m.start[0][k]));
+      const LInterval b = LInterval::around(L(m.end[q][k]) - L(m.end[0][k])) - a;
+      *out[k] = a + LInterval::point(g) * b;
+    }
+  }
+  return det(d[0], d[1], d[2]).certain_sign();
+}
+
 /// floor(t* / e) e for the only root t* of the cubic inside (t.lo, t.hi), by bisection over
 /// the grid points k e: each is signed in doubles when its enclosure allows, else exactly.
 double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion, Interval t,
@@ -168,6 +186,7 @@ double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion,
       continue;
     }
     int s = pair.cubic(Interval::point(g)).certain_sign();
+    if (s == 0) s = extended_cubic_sign(motion, g);
     if (s == 0) {
       ++counters.exact_signs;
       if (!cubic) cubic = coplanarity_polynomial(to_rational(motion));
