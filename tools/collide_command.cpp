@@ -99,6 +99,9 @@ nlohmann::json stats_json(const SceneContacts& r) {
                           {"primitive_tests", p.tests},
                           {"box_rejections", p.box_rejections},
                           {"cubic_rejections", p.cubic_rejections},
+                          {"interval_rejections", p.interval_rejections},
+                          {"interval_contacts", p.interval_contacts},
+                          {"exact_signs", p.exact_signs},
                           {"exact_decisions", p.exact_decisions},
                           {"primitive_pairs_in_contact", p.contacts}};
   if (r.ksl) stats["ksl"] = ksl_json(*r.ksl);

@@ -154,8 +154,37 @@ class EdgesMeet final : public ContactCondition {
   mutable std::vector<PointOnSegment> m_ends;
 };
 
-double rounded_down(const mpq_class& t) {
-  return mpq_get_d(t.get_mpq_t());  // truncates towards zero, and t >= 0
+/// floor(x / kContactTimeEarliness) (x >= 0)
+mpz_class grid_floor(const mpq_class& x) {
+  mpz_class k;
+  const mpq_class scaled = x / mpq_class(kContactTimeEarliness);
+  mpz_fdiv_q(k.get_mpz_t(), scaled.get_num_mpz_t(), scaled.get_den_mpz_t());
+  return k;
+}
+
+/// The root rounded down to the grid of kContactTimeEarliness, by bisection over the grid
+/// points between the ends of its isolating interval (the answer depends on the root alone).
+double on_grid(const IsolatedRoot& root) {
+  const mpq_class e = kContactTimeEarliness;
+  mpz_class a = grid_floor(root.lo);
+  if (!root.is_rational()) {
+    mpz_class b = grid_floor(root.hi) + 1;  // a e <= lo < t* < hi < b e
+    const int sign_lo = sgn(root.poly(root.lo));
+    while (b - a > 1) {
+      const mpz_class m = (a + b) / 2;  // non-negative: truncation is floor
+      const mpq_class g = mpq_class(m) * e;
+      if (g <= root.lo) {
+        a = m;
+      } else if (g >= root.hi) {
+        b = m;
+      } else {
+        const int s = sgn(root.poly(g));
+        if (s == 0) return g.get_d();  // a grid point, exactly a double
+        (s == sign_lo ? a : b) = m;
+      }
+    }
+  }
+  return mpq_class(mpq_class(a) * e).get_d();  // k e with k <= 2^48: exactly a double
 }
 
 }  // namespace
@@ -170,10 +199,16 @@ RationalMotion to_rational(const PrimitiveMotion& motion) {
   return m;
 }
 
+RationalPolynomial coplanarity_polynomial(const RationalMotion& motion) {
+  std::array<PolyVec, 4> p;
+  for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
+  return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+}
+
 std::vector<double> exact_contact_times(ContactType type, const RationalMotion& motion) {
   std::array<PolyVec, 4> p;
   for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  const RationalPolynomial coplanarity = dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+  const RationalPolynomial coplanarity = coplanarity_polynomial(motion);
   std::unique_ptr<const ContactCondition> owned;
   if (type == ContactType::vertex_face)
     owned = std::make_unique<VertexInTriangle>(p);
@@ -196,12 +231,10 @@ std::vector<double> exact_contact_times(ContactType type, const RationalMotion& 
   }
 
   std::vector<double> times;
-  const mpq_class width = kContactTimeEarliness;
   for (IsolatedRoot& root : candidates) {
     const SignOracle sign_of = [&root](const RationalPolynomial& g) { return sign_at(g, root); };
     if (!condition.holds(sign_of)) continue;
-    root.refine_to(width);
-    times.push_back(rounded_down(root.lo));
+    times.push_back(on_grid(root));
   }
   std::ranges::sort(times);
   times.erase(std::unique(times.begin(), times.end()), times.end());

@@ -1,13 +1,16 @@
-// Floating-point filters in front of the exact decision. Both filters only ever say "no
-// contact", and only when the rounding error of the doubles cannot change the answer.
+// Floating-point filters in front of the exact decision. The first two only ever say "no
+// contact", and only when the rounding error of the doubles cannot change the answer; the
+// interval decision also certifies contacts; the rest is decided in rationals.
 #include "kinetic/collision/primitive_ccd.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "kinetic/check.h"
 #include "kinetic/collision/exact_ccd.h"
+#include "kinetic/collision/interval_ccd.h"
 
 namespace kinray {
 namespace {
@@ -77,6 +80,9 @@ PrimitiveCcdCounters& PrimitiveCcdCounters::operator+=(const PrimitiveCcdCounter
   tests += o.tests;
   box_rejections += o.box_rejections;
   cubic_rejections += o.cubic_rejections;
+  interval_rejections += o.interval_rejections;
+  interval_contacts += o.interval_contacts;
+  exact_signs += o.exact_signs;
   exact_decisions += o.exact_decisions;
   contacts += o.contacts;
   return *this;
@@ -97,6 +103,15 @@ std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motio
   if (coplanarity_certainly_nonzero(motion)) {
     ++count.cubic_rejections;
     return {};
+  }
+  IntervalCcdCounters interval;
+  std::optional<std::vector<double>> certified = interval_contact_times(type, motion, interval);
+  count.interval_rejections += interval.rejections;
+  count.interval_contacts += interval.contacts;
+  count.exact_signs += interval.exact_signs;
+  if (certified) {
+    count.contacts += !certified->empty();
+    return *std::move(certified);
   }
   ++count.exact_decisions;
   std::vector<double> times = exact_contact_times(type, to_rational(motion));
