@@ -29,7 +29,7 @@ BackendConfig small_config(int width, int height, const std::string& sort = "lis
   c.width = width;
   c.height = height;
   c.threads = 2;
-  c.sort = sort;
+  c.sort = find_enum(kDepthSortNames, sort).value();
   c.audit = audit;
   return c;
 }
