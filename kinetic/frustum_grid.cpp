@@ -32,22 +32,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-DepthSortKind parse_depth_sort(const std::string& name) {
-  if (name == "list") return DepthSortKind::kList;
-  if (name == "tournament") return DepthSortKind::kTournament;
-  if (name == "heap") return DepthSortKind::kHeap;
-  throw std::invalid_argument("unknown depth sort '" + name + "' (list, tournament or heap)");
-}
-
-const char* depth_sort_name(DepthSortKind kind) {
-  switch (kind) {
-    case DepthSortKind::kList: return "list";
-    case DepthSortKind::kTournament: return "tournament";
-    case DepthSortKind::kHeap: return "heap";
-  }
-  return "?";
-}
-
 // The virtual calls are per advance or per read-out, never per event.
 class FrustumGrid::Bands {
  public:

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetic/depth_sort_kind.h"
 #include "kinetic/front_change_log.h"
 #include "kinetic/grid_input.h"
 #include "kinetic/grid_scene.h"
@@ -26,12 +27,6 @@
 #include "kinetic/work_progress.h"
 
 namespace kinray {
-
-/// The per-pixel kinetic depth order.
-enum class DepthSortKind { kList, kTournament, kHeap };
-/// "list", "tournament" or "heap"; throws std::invalid_argument otherwise.
-[[nodiscard]] DepthSortKind parse_depth_sort(const std::string& name);
-[[nodiscard]] const char* depth_sort_name(DepthSortKind kind);
 
 struct FrustumGridConfig {
   int threads = 0;  ///< worker threads; 0: all cores

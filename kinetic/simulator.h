@@ -28,7 +28,7 @@ class Simulator {
   /// t < now() are bugs (KINRAY_CHECK).
   template <class F>
   void advance_to(double t, F&& handle) {
-    KINRAY_CHECK(t >= m_now);
+    KINRAY_CHECK_GE(t, m_now);
     while (!m_queue.empty() && m_queue.top_key().time <= t) {
       const EventKey key = m_queue.top_key();
       const uint64_t payload = m_queue.top_payload();

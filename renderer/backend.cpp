@@ -29,7 +29,7 @@ const BackendEntry kBackends[] = {
 }  // namespace
 
 void Backend::render_shutter(const ShutterWindow&, Frame&) {
-  throw InputError("--shutter", "the " + name() + " backend has no motion blur");
+  throw OptionError("shutter", "the " + name() + " backend has no motion blur");
 }
 
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
@@ -42,10 +42,10 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpace
     }
     std::unique_ptr<Backend> backend = entry.make(scene, config);
     if (config.shutter.enabled() && !backend->has_motion_blur())
-      throw InputError("--shutter", "the " + name + " backend has no motion blur (kinetic and embree have)");
+      throw OptionError("shutter", "the " + name + " backend has no motion blur (kinetic and embree have)");
     return backend;
   }
-  throw InputError("--backend", "unknown backend '" + name + "' (available: " + names + ")");
+  throw OptionError("backend", "unknown backend '" + name + "' (available: " + names + ")");
 }
 
 }  // namespace kinray

@@ -6,7 +6,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "kinetic/depth_sort_kind.h"
 #include "kinetic/work_progress.h"
+#include "renderer/embree_build.h"
 #include "renderer/frame.h"
 #include "renderer/shadow_tracer.h"
 #include "renderer/shutter.h"
@@ -14,13 +16,14 @@
 
 namespace kinray {
 
-/// Options every backend understands; the command line maps one flag to one field.
+/// Options every backend understands; the command line maps one flag to one field. A backend
+/// rejects a bad value with an OptionError naming the field (scenes/error.h), never a flag.
 struct BackendConfig {
   int width = 512, height = 512;
   int threads = 0;              ///< 0: all cores
-  std::string embree_mode = "refit";   ///< embree: rebuild | refit
-  int embree_packet = 1;        ///< embree: 1 (single rays), 4, 8 or 16
-  std::string sort = "list";    ///< kinetic: list | tournament | heap
+  EmbreeBuild embree_build = EmbreeBuild::kRefit;  ///< embree: rebuild | refit the BVH
+  int embree_packet = 1;        ///< embree: one of kEmbreePacketWidths
+  DepthSortKind sort = DepthSortKind::kList;  ///< kinetic: per-pixel depth order
   bool audit = false;           ///< kinetic: audit every certificate between events
   ShadowTree shadow_tree = ShadowTree::aabb;  ///< kinetic: what traces shadow rays (--shadow-tree)
   ShutterParams shutter;        ///< motion blur: samples (sampling backends), order (kinetic)
@@ -35,8 +38,8 @@ class Backend {
   virtual void render(double t, Frame& frame) = 0;
   /// Motion blur (renderer/shutter.h): frame.color is the time average of the shaded radiance over
   /// the window; object, prim and depth are those of render(window.time). Windows' open times
-  /// must not decrease between calls for the kinetic backend. Throws InputError naming --shutter
-  /// when this backend has no motion blur.
+  /// must not decrease between calls for the kinetic backend. Throws OptionError naming the
+  /// shutter when this backend has no motion blur.
   virtual void render_shutter(const ShutterWindow& window, Frame& frame);
   /// True if render_shutter is implemented (make_backend rejects --shutter otherwise).
   [[nodiscard]] virtual bool has_motion_blur() const { return false; }
@@ -51,7 +54,8 @@ class Backend {
 };
 
 /// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.
-/// Throws InputError for an unknown or unavailable backend, or --shutter for one without motion blur.
+/// Throws OptionError naming "backend" for an unknown or unavailable backend, "shutter" for one
+/// without motion blur, or the field of `config` a backend rejects.
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config);
 

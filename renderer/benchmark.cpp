@@ -149,7 +149,7 @@ void measure_peers(const BenchParams& bench, RenderJob& job, const std::vector<d
 /// has): what initialisation is set beside. Median over repetitions, in ms.
 double measure_first_build(const BenchParams& bench, RenderJob& job, double time) {
   const std::vector<int> widths = embree_packet_widths(job.params().threads);
-  const EmbreeMode mode{"rebuild", *std::prev(std::upper_bound(widths.begin(), widths.end(), 8))};
+  const EmbreeMode mode{EmbreeBuild::kRebuild, *std::prev(std::upper_bound(widths.begin(), widths.end(), 8))};
   std::vector<double> first;
   for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
     const auto start = Clock::now();
@@ -177,7 +177,7 @@ double BenchPoint::events_per_key_interval() const {
 
 std::unique_ptr<Backend> make_embree_backend(const RenderJob& job, const EmbreeMode& mode) {
   BackendConfig config = backend_config(job.params());
-  config.embree_mode = mode.build;
+  config.embree_build = mode.build;
   config.embree_packet = mode.packet;
   return make_backend("embree", job.camera_space(), config);
 }
@@ -283,7 +283,12 @@ std::vector<EmbreeMode> default_embree_modes(int threads) {
   const std::vector<int> widths = embree_packet_widths(threads);
   std::vector<EmbreeMode> modes;
   for (const EmbreeMode& mode : std::initializer_list<EmbreeMode>{
-           {"rebuild", 1}, {"rebuild", 8}, {"refit", 1}, {"refit", 4}, {"refit", 8}, {"refit", 16}})
+           {EmbreeBuild::kRebuild, 1},
+           {EmbreeBuild::kRebuild, 8},
+           {EmbreeBuild::kRefit, 1},
+           {EmbreeBuild::kRefit, 4},
+           {EmbreeBuild::kRefit, 8},
+           {EmbreeBuild::kRefit, 16}})
     if (std::find(widths.begin(), widths.end(), mode.packet) != widths.end()) modes.push_back(mode);
   return modes;
 }
@@ -294,10 +299,10 @@ std::vector<EmbreeMode> parse_embree_modes(const std::string& text) {
   for (std::string item; std::getline(in, item, ',');) {
     const size_t slash = item.find('/');
     EmbreeMode mode;
-    mode.build = item.substr(0, slash);
+    const std::optional<EmbreeBuild> build = find_enum(kEmbreeBuildNames, item.substr(0, slash));
+    if (build) mode.build = *build;
     if (slash != std::string::npos) mode.packet = parse_int_list(item.substr(slash + 1), "--embree-modes").front();
-    if ((mode.build != "rebuild" && mode.build != "refit") ||
-        (mode.packet != 1 && mode.packet != 4 && mode.packet != 8 && mode.packet != 16))
+    if (!build || !is_embree_packet_width(mode.packet))
       throw InputError("--embree-modes", "expected BUILD/PACKET items with BUILD rebuild or refit and PACKET 1, 4, 8 or 16, got '" + item + "'");
     modes.push_back(mode);
   }

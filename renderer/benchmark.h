@@ -25,9 +25,11 @@ namespace kinray {
 
 /// One Embree configuration of the peer: build mode and ray packet width.
 struct EmbreeMode {
-  std::string build = "refit";  ///< rebuild | refit
-  int packet = 1;               ///< 1, 4, 8 or 16
-  [[nodiscard]] std::string name() const { return build + "/" + std::to_string(packet); }
+  EmbreeBuild build = EmbreeBuild::kRefit;
+  int packet = 1;  ///< one of kEmbreePacketWidths
+  [[nodiscard]] std::string name() const {
+    return embree_build_name(build) + ("/" + std::to_string(packet));
+  }
 };
 
 struct BenchParams {

@@ -168,7 +168,7 @@ class EmbreeBackend final : public Backend {
         m_config(config),
         m_threads(resolve_threads(config.threads)),
         m_device(Device::get(config.threads)),
-        m_refit(config.embree_mode == "refit") {
+        m_refit(config.embree_build == EmbreeBuild::kRefit) {
     const RTCDevice device = m_device.handle();
     const uint64_t mark = m_device.error_count();
     m_meshes.resize(scene.objects.size());
@@ -292,7 +292,7 @@ class EmbreeBackend final : public Backend {
     packets.erase(packets.begin());  // 1 is not a packet
     stats["embree"] = {
         {"version", rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_VERSION)},
-        {"mode", m_refit ? "refit" : "rebuild"},
+        {"mode", embree_build_name(m_config.embree_build)},
         {"packet", m_config.embree_packet},
         {"native_packets", packets},
         {"robust", true},
@@ -366,7 +366,7 @@ class EmbreeBackend final : public Backend {
           rtcAttachGeometryByID(m_rtc_scene, m_meshes[o].geometry, unsigned(o));
     }
     rtcCommitScene(m_rtc_scene);
-    m_device.check(mark, m_refit ? "refit" : "rebuild");
+    m_device.check(mark, embree_build_name(m_config.embree_build));
   }
 
   /// Runs `band(b, context)` for every b in [0, bands) on all render threads, handing out bands
@@ -494,18 +494,15 @@ class EmbreeBackend final : public Backend {
 
 std::unique_ptr<Backend> make_embree_backend(const CameraSpaceScene& scene,
                                              const BackendConfig& config) {
-  if (config.embree_mode != "refit" && config.embree_mode != "rebuild")
-    throw InputError("--embree-mode", "must be rebuild or refit, got '" + config.embree_mode + "'");
-  if (config.embree_packet != 1 && config.embree_packet != 4 && config.embree_packet != 8 &&
-      config.embree_packet != 16)
-    throw InputError("--packet",
-                     "must be 1, 4, 8 or 16, got " + std::to_string(config.embree_packet));
+  if (!is_embree_packet_width(config.embree_packet))
+    throw OptionError("embree_packet",
+                      "must be 1, 4, 8 or 16, got " + std::to_string(config.embree_packet));
   if (config.width <= 0 || config.height <= 0)
-    throw InputError("--size", "width and height must be positive");
-  if (config.threads < 0) throw InputError("--threads", "must be 0 (all cores) or more");
+    throw OptionError("width", "width and height must be positive");
+  if (config.threads < 0) throw OptionError("threads", "must be 0 (all cores) or more");
   const std::vector<int> widths = embree_packet_widths(config.threads);
   if (std::find(widths.begin(), widths.end(), config.embree_packet) == widths.end())
-    throw InputError("--packet", "this machine's Embree has no native " +
+    throw OptionError("embree_packet", "this machine's Embree has no native " +
                                      std::to_string(config.embree_packet) +
                                      "-wide ray packets (its widths: " + join_widths(widths) + ")");
   return std::make_unique<EmbreeBackend>(scene, config);

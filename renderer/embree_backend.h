@@ -6,7 +6,7 @@
 // best users would: one device for the process, robust scenes, FTZ/DAZ on every render thread,
 // padded vertex buffers reused between frames, an error callback, all cores.
 //
-// Modes (BackendConfig::embree_mode):
+// Modes (BackendConfig::embree_build):
 //  - "refit":   one persistent two-level scene (RTC_SCENE_FLAG_DYNAMIC | ROBUST, scene quality
 //               LOW); moving objects are RTC_BUILD_QUALITY_REFIT geometries whose vertex buffers
 //               are updated and refitted each frame, static objects are built once (HIGH).
@@ -27,8 +27,8 @@
 
 namespace kinray {
 
-/// Creates the Embree backend for `scene` (which must outlive it). Throws InputError for a bad
-/// embree_mode or packet width, std::runtime_error when Embree reports an error.
+/// Creates the Embree backend for `scene` (which must outlive it). Throws OptionError for a bad
+/// size, thread count or packet width, std::runtime_error when Embree reports an error.
 /// The ray packet widths this machine's Embree traces natively, ascending: 1 always, and 4, 8
 /// and 16 where the build and the CPU have them (16 needs AVX-512). Other widths are refused.
 /// The process has one Embree device: the first call here or to make_embree_backend creates it,

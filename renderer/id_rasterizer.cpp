@@ -36,11 +36,11 @@ RasterBackend::RasterBackend(const CameraSpaceScene& scene, const BackendConfig&
                              std::unique_ptr<IdRasterizer> rasterizer)
     : m_scene(scene), m_config(config), m_rasterizer(std::move(rasterizer)), m_ids(scene) {
   if (config.width <= 0 || config.height <= 0)
-    throw InputError("--size", "the image size must be positive, not " +
+    throw OptionError("width", "the image size must be positive, not " +
                                    std::to_string(config.width) + "x" +
                                    std::to_string(config.height));
   if (config.width > m_rasterizer->max_size() || config.height > m_rasterizer->max_size())
-    throw InputError("--size", "the " + m_rasterizer->name() + " backend renders at most " +
+    throw OptionError("width", "the " + m_rasterizer->name() + " backend renders at most " +
                                    std::to_string(m_rasterizer->max_size()) +
                                    " pixels per side, not " + std::to_string(config.width) + "x" +
                                    std::to_string(config.height));

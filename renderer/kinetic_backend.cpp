@@ -27,13 +27,8 @@ class KineticBackend final : public Backend {
  public:
   KineticBackend(const CameraSpaceScene& scene, const BackendConfig& config)
       : m_scene(scene), m_config(config) {
-    if (config.width < 1 || config.height < 1) throw InputError("--size", "the image must be at least 1x1");
-    try {
-      m_grid_config.sort = parse_depth_sort(config.sort);
-    } catch (const std::invalid_argument&) {
-      throw InputError("--sort", "unknown depth sort '" + config.sort +
-                                     "' (available: list, tournament, heap)");
-    }
+    if (config.width < 1 || config.height < 1) throw OptionError("width", "the image must be at least 1x1");
+    m_grid_config.sort = config.sort;
     m_grid_config.threads = config.threads;
     m_grid_config.audit = config.audit;
     m_grid_config.init_progress = &m_init_progress;

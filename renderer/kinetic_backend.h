@@ -7,7 +7,7 @@
 // plane depth of the hit triangle along the pixel-centre ray, as a float), and the colour comes
 // from the shared shade_frame, so frames agree with Embree's up to ties.
 //
-// BackendConfig: width, height, threads, sort (list | tournament | heap), audit.
+// BackendConfig: width, height, threads, sort (DepthSortKind), audit.
 #include <memory>
 
 #include "kinetic/grid_input.h"
@@ -19,8 +19,8 @@ namespace kinray {
 /// (spans into `scene`, which must outlive the result) and the pixel-centre rays.
 [[nodiscard]] GridInput kinetic_grid_input(const CameraSpaceScene& scene, int width, int height);
 
-/// Creates the kinetic backend for `scene` (which must outlive it). Throws InputError naming
-/// --sort for an unknown depth sort. Frame times must not decrease between render calls.
+/// Creates the kinetic backend for `scene` (which must outlive it). Throws OptionError for an
+/// empty image. Frame times must not decrease between render calls.
 [[nodiscard]] std::unique_ptr<Backend> make_kinetic_backend(const CameraSpaceScene& scene,
                                                             const BackendConfig& config);
 

@@ -36,9 +36,9 @@ void check_options_apply(const RenderParams& params, std::span<const std::string
   if (params.packet != defaults.packet)
     require_backend(backends, "embree", "--packet", "--packet " + std::to_string(params.packet));
   if (params.embree_mode != defaults.embree_mode)
-    require_backend(backends, "embree", "--embree-mode", "--embree-mode " + params.embree_mode);
+    require_backend(backends, "embree", "--embree-mode", "--embree-mode " + std::string(embree_build_name(params.embree_mode)));
   if (params.sort != defaults.sort)
-    require_backend(backends, "kinetic", "--sort", "--sort " + params.sort);
+    require_backend(backends, "kinetic", "--sort", "--sort " + std::string(depth_sort_name(params.sort)));
   if (params.audit) require_backend(backends, "kinetic", "--audit", "--audit");
   if (is_model_spec(params.scene)) return;
   const char* what = is_builtin_scene(params.scene.substr(0, params.scene.find(':')))

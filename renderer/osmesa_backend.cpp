@@ -38,7 +38,7 @@ class OsmesaRasterizer : public IdRasterizer {
                               OSMESA_COMPAT_PROFILE,
                               0};
     m_context.reset(OSMesaCreateContextAttribs(attributes, nullptr));
-    if (!m_context) throw InputError("--backend osmesa", "cannot create an OSMesa context");
+    if (!m_context) throw OptionError("backend", "osmesa: cannot create an OSMesa context");
     make_current();
     load(m_clip_control, "glClipControl");
     load(m_gen_framebuffers, "glGenFramebuffers");
@@ -144,7 +144,7 @@ class OsmesaRasterizer : public IdRasterizer {
   void load(F& function, const char* name) {
     function = reinterpret_cast<F>(OSMesaGetProcAddress(name));
     if (!function)
-      throw InputError("--backend osmesa", std::string("this OSMesa lacks ") + name +
+      throw OptionError("backend", std::string("osmesa: this OSMesa lacks ") + name +
                                                " (needs framebuffer objects and clip control)");
   }
 

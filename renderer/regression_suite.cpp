@@ -272,7 +272,7 @@ RegressionCaseResult run_regression_case(const RegressionCase& c, const Regressi
   params.animation = c.animation;
   params.audit = config.audit;
   // Models may bring lights; the cases are tiny, so their shadow rays are traced by brute force.
-  params.shadow_tree = "brute";
+  params.shadow_tree = ShadowTree::brute;
   params.threads = config.threads;
   params.quiet = true;
 

@@ -93,10 +93,8 @@ void validate(const RenderParams& params) {
   if (params.threads < 0 || params.threads > 4096)
     throw InputError("--threads",
                      "must lie in 0..4096 (0: all cores), got " + std::to_string(params.threads));
-  check_one_of(params.embree_mode, {"rebuild", "refit"}, "--embree-mode");
-  if (params.packet != 1 && params.packet != 4 && params.packet != 8 && params.packet != 16)
+  if (!is_embree_packet_width(params.packet))
     throw InputError("--packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
-  check_one_of(params.sort, {"list", "tournament", "heap"}, "--sort");
   for (const std::string& aov : params.aov) check_one_of(aov, {"id", "depth"}, "--aov");
   if (!std::isfinite(params.keyrate) || params.keyrate < 0)
     throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
@@ -105,7 +103,6 @@ void validate(const RenderParams& params) {
   if (params.lights.size() > kMaxLights)
     throw InputError("--light", "at most " + std::to_string(kMaxLights) + " lights, got " +
                                     std::to_string(params.lights.size()));
-  (void)parse_shadow_tree(params.shadow_tree);
   if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
   if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
   validate(params.shutter);
@@ -128,11 +125,11 @@ BackendConfig backend_config(const RenderParams& params) {
   config.width = params.width;
   config.height = params.height;
   config.threads = params.threads;
-  config.embree_mode = params.embree_mode;
+  config.embree_build = params.embree_mode;
   config.embree_packet = params.packet;
   config.sort = params.sort;
   config.audit = params.audit;
-  config.shadow_tree = parse_shadow_tree(params.shadow_tree);
+  config.shadow_tree = params.shadow_tree;
   config.shutter = params.shutter;
   return config;
 }

@@ -37,12 +37,12 @@ struct RenderParams {
   std::vector<std::string> aov;                   ///< --aov: any of "id", "depth"
   std::string stats;                              ///< --stats FILE.json; empty: none
   int threads = 0;                                ///< --threads; 0: all cores
-  std::string embree_mode = "refit";              ///< --embree-mode rebuild|refit
-  int packet = 1;                                 ///< --packet 1|4|8|16
-  std::string sort = "list";                      ///< --sort list|tournament|heap
+  EmbreeBuild embree_mode = EmbreeBuild::kRefit;  ///< --embree-mode (kEmbreeBuildNames)
+  int packet = 1;                                 ///< --packet (kEmbreePacketWidths)
+  DepthSortKind sort = DepthSortKind::kList;      ///< --sort (kDepthSortNames)
   bool audit = false;                             ///< --audit
   std::vector<std::string> lights;                ///< --light (repeatable): replace the scene's
-  std::string shadow_tree = "aabb";               ///< --shadow-tree aabb|boxtree|refit|brute
+  ShadowTree shadow_tree = ShadowTree::aabb;      ///< --shadow-tree (kShadowTreeNames)
   std::string animation;                          ///< --animation NAME|INDEX (model files)
   double keyrate = 0;                             ///< --keyrate HZ (model files)
   bool quiet = false;                             ///< --quiet

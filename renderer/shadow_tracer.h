@@ -3,12 +3,14 @@
 // backend starts a shadow ray at the same camera-space hit point (the primary hit at the frame
 // time) with the same rule against self-intersection (the triangle the ray leaves from is
 // skipped), so the shadow masks of two backends can be compared pixel by pixel.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "kinetic/enum_names.h"
 #include "scenes/scene.h"
 
 namespace kinray {
@@ -17,6 +19,18 @@ namespace kinray {
 /// kinetic BoxTree, the same AABB tree updated bottom-up at every frame, or every triangle
 /// tested (brute force, the reference for small scenes).
 enum class ShadowTree { aabb, boxtree, refit, brute };
+
+/// The one spelling of each shadow tracer: --shadow-tree, help, bench --structure, JSON.
+inline constexpr std::array kShadowTreeNames{
+    EnumName{ShadowTree::aabb, "aabb"},
+    EnumName{ShadowTree::boxtree, "boxtree"},
+    EnumName{ShadowTree::refit, "refit"},
+    EnumName{ShadowTree::brute, "brute"},
+};
+
+[[nodiscard]] constexpr const char* shadow_tree_name(ShadowTree kind) {
+  return enum_name(kShadowTreeNames, kind);
+}
 
 /// One shadow ray in the camera space the backends share (fov-normalized, scenes/camera_space.h):
 /// the points origin + s * direction for 0 < s < s_max.

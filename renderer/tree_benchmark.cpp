@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <ctime>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -20,12 +21,9 @@ std::vector<ShadowTree> parse_tree_structures(const std::string& text) {
   std::vector<ShadowTree> out;
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    if (item == "aabb")
-      out.push_back(ShadowTree::aabb);
-    else if (item == "boxtree")
-      out.push_back(ShadowTree::boxtree);
-    else if (item == "refit")
-      out.push_back(ShadowTree::refit);
+    const std::optional<ShadowTree> tree = find_enum(kShadowTreeNames, item);
+    if (tree && tree != ShadowTree::brute)
+      out.push_back(*tree);
     else
       throw InputError("--structure",
                        "unknown structure '" + item + "' (available: grid, aabb, boxtree, refit)");

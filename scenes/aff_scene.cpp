@@ -7,6 +7,7 @@
 
 #include "scenes/aff_parser.h"
 #include "scenes/error.h"
+#include "scenes/warning.h"
 
 namespace kinray {
 namespace {
@@ -43,10 +44,8 @@ class SceneBuilder {
     std::vector<Eigen::Affine3d>& samples = m_matrices[node.animation];
     if (found == m_document.animations.end()) {
       // BART's GetMatrix: an animation without keyframes is the identity (Robot1.aff's grip_lift1).
-      std::fprintf(stderr,
-                   "kinray: warning: %s: the animated transform '%s' has no keyframes; it stays "
-                   "the identity\n",
-                   node.where.c_str(), node.animation.c_str());
+      warn(node.where + ": the animated transform '" + node.animation +
+           "' has no keyframes; it stays the identity");
       samples.assign(m_times.size(), Eigen::Affine3d::Identity());
       return samples;
     }
@@ -197,8 +196,7 @@ Scene build_aff_scene(const AffDocument& document, const std::string& source, do
 
 Scene load_aff(const std::filesystem::path& path, double keyrate) {
   const AffDocument document = parse_aff(path);
-  for (const std::string& warning : document.warnings)
-    std::fprintf(stderr, "kinray: warning: %s\n", warning.c_str());
+  for (const std::string& warning : document.warnings) warn(warning);
   return build_aff_scene(document, path.string(), keyrate);
 }
 

@@ -9,9 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <iostream>
 #include <map>
-#include <mutex>
 #include <string_view>
 
 #include "kinetic/parallel.h"
@@ -25,14 +23,11 @@
 #include "scenes/model_skinning.h"
 #include "scenes/model_textures.h"
 #include "scenes/model_xfile_check.h"
+#include "scenes/warning.h"
 
 namespace kinray {
 
-void warn_repair(const std::string& where, const std::string& what) {
-  static std::mutex mutex;
-  const std::lock_guard lock(mutex);
-  std::cerr << "kinray: warning: " << where << ": " << what << std::endl;
-}
+void warn_repair(const std::string& where, const std::string& what) { warn(where + ": " + what); }
 
 namespace {
 

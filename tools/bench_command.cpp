@@ -182,16 +182,12 @@ void register_bench_command(CLI::App& app) {
   add_scene_options(*command, options->render);
   add_camera_options(*command, options->render.params.camera);
   command->get_option("SCENE")->required(false);  // not with --suite; without it, validate() asks
-  options->render.size_option =
-      command
-          ->add_option("--size", options->render.size,
-                       "Base image size WxH (default: the scene's own, else 512x512)")
-          ->capture_default_str();
-  options->render.time_option =
-      command->add_option("--time", options->render.time, "Restrict the shot to [A, B] (seconds), as A:B");
-  command->add_option("--threads", options->render.params.threads, "Base thread count (0: all cores)")
-      ->capture_default_str();
-  command->add_option("--sort", options->render.params.sort, "Kinetic: list | tournament | heap")->capture_default_str();
+  add_size_option(*command, options->render,
+                  "Base image size WxH (default: the scene's own, else 512x512)");
+  options->render.time_option = add_time_option(*command, options->render.time,
+                                                "Restrict the shot to [A, B] (seconds), as A:B");
+  add_threads_option(*command, options->render.params.threads, "Base thread count (0: all cores)");
+  add_sort_option(*command, options->render.params.sort);
   command->add_option("--inbetweens", options->inbetweens, "In-betweens per keyframe interval, a list: 1,2,4,...")
       ->capture_default_str();
   command->add_option("--triangles", options->triangles,

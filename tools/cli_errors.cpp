@@ -1,6 +1,7 @@
 #include "tools/cli_errors.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace kinray {
@@ -62,6 +63,21 @@ InputError unexpected_arguments(const CLI::App& command, const std::string& mess
 }
 
 }  // namespace
+
+InputError name_the_flag(const OptionError& error) {
+  // The fields of BackendConfig (renderer/backend.h) a backend can reject, and their flags; enum
+  // fields cannot hold a bad value, their flags refuse one at parse time.
+  static const std::pair<const char*, const char*> kFlags[] = {
+      {"width", "--size"},
+      {"threads", "--threads"},
+      {"embree_packet", "--packet"},
+      {"shutter", "--shutter"},
+      {"backend", "--backend"},
+  };
+  for (const auto& [field, flag] : kFlags)
+    if (error.where() == field) return InputError(flag, error.message());
+  return error;
+}
 
 InputError explain_parse_error(const CLI::App& app, const CLI::ParseError& error) {
   const CLI::App& command = active_command(app);

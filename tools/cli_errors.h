@@ -12,4 +12,8 @@ namespace kinray {
 /// the subcommand that was being parsed is found from it).
 [[nodiscard]] InputError explain_parse_error(const CLI::App& app, const CLI::ParseError& error);
 
+/// The library names a bad option by its config field (OptionError: "embree_packet"); the user
+/// gave a flag (--packet). The same error, naming the flag.
+[[nodiscard]] InputError name_the_flag(const OptionError& error);
+
 }  // namespace kinray

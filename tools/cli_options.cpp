@@ -2,6 +2,7 @@
 
 #include <system_error>
 #include <tuple>
+#include <vector>
 
 #include "renderer/frame_schedule.h"
 #include "scenes/error.h"
@@ -40,13 +41,41 @@ void add_scene_options(CLI::App& command, RenderOptions& options) {
       ->group("Scene");
 }
 
+CLI::Validator int_member(std::span<const int> allowed) {
+  std::string names;
+  for (int value : allowed) names += (names.empty() ? "" : ", ") + std::to_string(value);
+  return CLI::Validator(
+      [allowed = std::vector<int>(allowed.begin(), allowed.end()),
+       names](const std::string& value) {
+        for (int a : allowed)
+          if (value == std::to_string(a)) return std::string();
+        return "must be one of " + names + ", got '" + value + "'";
+      },
+      "");
+}
+
+CLI::Option* add_size_option(CLI::App& command, RenderOptions& options, const std::string& help) {
+  options.size_option = command.add_option("--size", options.size, help)->capture_default_str();
+  return options.size_option;
+}
+
+CLI::Option* add_time_option(CLI::App& command, std::string& time, const std::string& help) {
+  return command.add_option("--time", time, help);
+}
+
+CLI::Option* add_threads_option(CLI::App& command, int& threads, const std::string& help) {
+  return command.add_option("--threads", threads, help)->capture_default_str();
+}
+
+CLI::Option* add_sort_option(CLI::App& command, DepthSortKind& sort) {
+  return add_enum_option(command, "--sort", sort, kDepthSortNames,
+                         "Kinetic: per-pixel depth order");
+}
+
 void add_frame_options(CLI::App& command, RenderOptions& options) {
   const char* group = "Frames";
-  options.size_option = command
-                            .add_option("--size", options.size,
-                                        "Image size WxH (default: the scene's own, else 512x512)")
-                            ->capture_default_str()
-                            ->group(group);
+  add_size_option(command, options, "Image size WxH (default: the scene's own, else 512x512)")
+      ->group(group);
   options.frames_option =
       command
           .add_option("--frames", options.frames,
@@ -63,8 +92,7 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
   options.frames_option->excludes(options.fps_option)->excludes(options.inbetweens_option);
   options.fps_option->excludes(options.inbetweens_option);
   options.time_option =
-      command
-          .add_option("--time", options.time, "Restrict the shot to [A, B] seconds, given as A:B")
+      add_time_option(command, options.time, "Restrict the shot to [A, B] seconds, given as A:B")
           ->group(group);
   command
       .add_option("--shutter", options.params.shutter.shutter,
@@ -81,8 +109,7 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
                   "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 4)")
       ->capture_default_str()
       ->group(group);
-  command.add_option("--threads", options.params.threads, "Render threads (0: all cores)")
-      ->capture_default_str()
+  add_threads_option(command, options.params.threads, "Render threads (0: all cores)")
       ->group(group);
 }
 
@@ -91,31 +118,24 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
   command.add_option("--backend", options.params.backend, "kinetic | embree | osmesa")
       ->capture_default_str()
       ->group(group);
-  command
-      .add_option("--embree-mode", options.params.embree_mode,
-                  "Embree: rebuild | refit the BVH each frame")
-      ->capture_default_str()
+  add_enum_option(command, "--embree-mode", options.params.embree_mode, kEmbreeBuildNames,
+                  "Embree: rebuild or refit the BVH each frame")
       ->group(group);
   command
       .add_option("--packet", options.params.packet,
                   "Embree: single rays (1) or 4/8/16-wide ray packets")
+      ->check(int_member(kEmbreePacketWidths))
       ->capture_default_str()
       ->group(group);
-  command
-      .add_option("--sort", options.params.sort,
-                  "Kinetic: per-pixel depth order as list | tournament | heap")
-      ->capture_default_str()
-      ->group(group);
+  add_sort_option(command, options.params.sort)->group(group);
   command
       .add_option("--light", options.params.lights,
                   "A world-space light, point:X,Y,Z[:R,G,B] or dir:X,Y,Z[:R,G,B] (repeatable; "
                   "replaces the scene's lights)")
       ->allow_extra_args(false)
       ->group(group);
-  command
-      .add_option("--shadow-tree", options.params.shadow_tree,
-                  "Kinetic: what traces shadow rays, aabb | boxtree | refit | brute")
-      ->capture_default_str()
+  add_enum_option(command, "--shadow-tree", options.params.shadow_tree, kShadowTreeNames,
+                  "Kinetic: what traces shadow rays")
       ->group(group);
   command
       .add_flag("--audit", options.params.audit,

@@ -2,9 +2,13 @@
 // The flags that `kinray render`, `diff` and `bench` share, defined once so that they stay
 // identical: each command adds the groups it needs and turns what was parsed into RenderParams.
 #include <CLI/CLI.hpp>
+#include <array>
+#include <cstddef>
 #include <filesystem>
+#include <span>
 #include <string>
 
+#include "kinetic/enum_names.h"
 #include "renderer/render_job.h"
 
 namespace kinray {
@@ -26,6 +30,43 @@ struct RenderOptions {
   /// RenderParams from the parsed flags. Throws InputError naming the flag at fault.
   [[nodiscard]] RenderParams resolve() const;
 };
+
+/// A check that turns one of `table`'s names into its enum value; any other value is refused at
+/// parse time with "FLAG: must be one of NAME, NAME, got 'VALUE'" (tools/cli_errors.h).
+template <class Enum, size_t N>
+[[nodiscard]] CLI::Validator enum_member(const std::array<EnumName<Enum>, N>& table) {
+  return CLI::Validator(
+      [table](std::string& value) {
+        const auto found = find_enum(table, value);
+        if (!found) return "must be one of " + enum_names(table) + ", got '" + value + "'";
+        value = std::to_string(static_cast<int>(*found));  // CLI11 reads enums as integers
+        return std::string();
+      },
+      "");
+}
+
+/// Option `flag` taking one of `table`'s names into `target`; the help shows the names and the
+/// default.
+template <class Enum, size_t N>
+CLI::Option* add_enum_option(CLI::App& command, const std::string& flag, Enum& target,
+                             const std::array<EnumName<Enum>, N>& table, const std::string& help) {
+  return command.add_option(flag, target, help)
+      ->transform(enum_member(table))
+      ->type_name(enum_names(table, "|"))
+      ->default_str(enum_name(table, target));
+}
+
+/// A check that accepts one of `allowed` only: "must be one of 1, 4, 8, 16, got '2'".
+[[nodiscard]] CLI::Validator int_member(std::span<const int> allowed);
+
+/// --size WxH into options.size (options.size_option).
+CLI::Option* add_size_option(CLI::App& command, RenderOptions& options, const std::string& help);
+/// --time A:B into `time`, parsed later by parse_time_range.
+CLI::Option* add_time_option(CLI::App& command, std::string& time, const std::string& help);
+/// --threads N (0: all cores).
+CLI::Option* add_threads_option(CLI::App& command, int& threads, const std::string& help);
+/// --sort list|tournament|heap (kDepthSortNames).
+CLI::Option* add_sort_option(CLI::App& command, DepthSortKind& sort);
 
 /// SCENE (positional, required), --animation, --keyrate.
 void add_scene_options(CLI::App& command, RenderOptions& options);

@@ -156,7 +156,7 @@ void register_collide_command(CLI::App& app) {
   command->add_flag("--self", options->self, "Also contacts of each object with itself");
   command->add_option("--objects", options->objects,
                       "Only these objects: names or indices A,B,...");
-  command->add_option("--time", options->time, "Only contacts in [A, B] seconds, given as A:B");
+  add_time_option(*command, options->time, "Only contacts in [A, B] seconds, given as A:B");
   command->add_option("--structure", options->structure, "ksl | swept | brute")
       ->capture_default_str();
   command->add_option("--checks", options->checks,

@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
                   2);
     }
     return fail(kinray::explain_parse_error(app, e).what(), 2);
+  } catch (const kinray::OptionError& e) {
+    return fail(kinray::name_the_flag(e).what(), 2);
   } catch (const kinray::InputError& e) {
     return fail(e.what(), 2);
   } catch (const std::bad_alloc&) {

@@ -15,6 +15,7 @@
 #include "renderer/output_check.h"
 #include "renderer/regression_suite.h"
 #include "scenes/error.h"
+#include "tools/cli_options.h"
 #include "tools/commands.h"
 
 namespace kinray {
@@ -94,7 +95,7 @@ void register_regress_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--test-models", options->config.test_models, "Debian's assimp-testmodels folder")
       ->capture_default_str();
-  command->add_option("--threads", options->config.threads, "Render threads, 0 = all cores")->capture_default_str();
+  add_threads_option(*command, options->config.threads, "Render threads (0: all cores)");
   command->add_flag("--no-audit", options->no_audit, "Do not audit the kinetic backend (faster)");
   command->add_flag("-q,--quiet", options->quiet, "Print failing cases only");
   command->callback([options] { run_regress(*options); });

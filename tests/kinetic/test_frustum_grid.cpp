@@ -582,7 +582,6 @@ TEST(FrustumGrid, RejectsTimeGoingBackAndBadInput) {
   scene.meshes.push_back(test::moving_triangle({0.0}, {{Vec(0, 0, 1), Vec(1, 0, 1), Vec(0, 1, 1)}}));
   FrustumGrid grid(scene.input(), 0.5);
   EXPECT_THROW(grid.advance_to(0.25), std::invalid_argument);
-  EXPECT_THROW((void)parse_depth_sort("bubble"), std::invalid_argument);
   TestScene bad = scene;
   bad.meshes[0].triangles = {{0, 1, 7}};
   EXPECT_THROW(FrustumGrid(bad.input(), 0.0), std::invalid_argument);

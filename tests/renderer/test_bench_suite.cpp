@@ -65,7 +65,7 @@ TEST(BenchSuite, WholeAnimationOfABuiltInScene) {
   params.bench.inbetweens = {1, 4};
   params.bench.repetitions = 1;
   params.bench.reference_frames = 3;
-  params.bench.embree_modes = {{"refit", 1}, {"rebuild", embree_packet_widths().back()}};
+  params.bench.embree_modes = {{EmbreeBuild::kRefit, 1}, {EmbreeBuild::kRebuild, embree_packet_widths().back()}};
   params.intervals = 2;
   params.whole_animation = true;
   const SuiteReport report = run_suite(params);

@@ -24,7 +24,7 @@ TEST(Benchmark, TinyRunMeasuresBothSidesAndAgrees) {
   params.inbetweens = {1, 3};
   params.repetitions = 1;
   params.reference_frames = 3;
-  params.embree_modes = {{"refit", 1}, {"rebuild", embree_packet_widths().back()}};
+  params.embree_modes = {{EmbreeBuild::kRefit, 1}, {EmbreeBuild::kRebuild, embree_packet_widths().back()}};
   const BenchReport report = run_benchmark(params);
   ASSERT_EQ(report.points.size(), 2u);
   for (const BenchPoint& p : report.points) {
@@ -95,6 +95,8 @@ TEST(Benchmark, BadListsAreRejected) {
   EXPECT_THROW(parse_embree_modes("refit/3"), InputError);
   EXPECT_THROW(parse_embree_modes("fast/8"), InputError);
   EXPECT_EQ(parse_embree_modes("rebuild/8,refit").back().packet, 1);
+  EXPECT_EQ(parse_embree_modes("rebuild/8,refit").front().name(), "rebuild/8");
+  EXPECT_EQ(parse_embree_modes("rebuild/8,refit").back().build, EmbreeBuild::kRefit);
 }
 
 TEST(Chart, WritesAPngOfTheAskedSize) {
@@ -132,7 +134,7 @@ TEST(Benchmark, DefaultPeersAreWhatTheMachineOffers) {
   params.base.scene = "wavy-sphere:triangles=300";
   for (int packet : {4, 8, 16}) {
     if (std::find(widths.begin(), widths.end(), packet) != widths.end()) continue;
-    params.embree_modes = {{"refit", packet}};
+    params.embree_modes = {{EmbreeBuild::kRefit, packet}};
     EXPECT_THROW(validate(params), InputError) << packet;
   }
 }

@@ -49,7 +49,7 @@ BackendConfig config(const std::string& mode, int packet) {
   c.width = kWidth;
   c.height = kHeight;
   c.threads = 2;
-  c.embree_mode = mode;
+  c.embree_build = find_enum(kEmbreeBuildNames, mode).value();
   c.embree_packet = packet;
   return c;
 }
@@ -246,8 +246,9 @@ TEST(EmbreeBackend, PacketWidthsAreWhatTheMachineOffers) {
     try {
       (void)make_embree_backend(cs, config("refit", packet));
       ADD_FAILURE() << packet << "-wide packets were accepted though not native";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("--packet"), std::string::npos) << e.what();
+    } catch (const OptionError& e) {
+      EXPECT_EQ(e.where(), "embree_packet") << e.what();  // the CLI names --packet
+      EXPECT_NE(e.message().find("no native"), std::string::npos) << e.what();
     }
   }
 }
@@ -256,8 +257,10 @@ TEST(EmbreeBackend, RejectsBadModesAndPacketWidths) {
   Scene scene = empty_scene();
   scene.objects.push_back(quad({-1, -1, 3}, {1, -1, 3}, {1, 1, 3}, {-1, 1, 3}));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
-  EXPECT_THROW((void)make_embree_backend(cs, config("fast", 1)), InputError);
-  EXPECT_THROW((void)make_embree_backend(cs, config("refit", 3)), InputError);
+  EXPECT_THROW((void)make_embree_backend(cs, config("refit", 3)), OptionError);
+  BackendConfig empty = config("rebuild", 1);
+  empty.width = 0;
+  EXPECT_THROW((void)make_embree_backend(cs, empty), OptionError);
   EXPECT_THROW((void)make_backend("raytracer-9000", cs, config("refit", 1)), InputError);
   EXPECT_EQ(make_backend("embree", cs, config("refit", 1))->name(), "embree");
 }

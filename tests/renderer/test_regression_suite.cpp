@@ -15,6 +15,7 @@
 #include "renderer/frame.h"
 #include "renderer/image_io.h"
 #include "renderer/regression_suite.h"
+#include "scenes/warning.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {
@@ -46,9 +47,8 @@ class Cases : public ::testing::TestWithParam<RegressionCase> {};
 TEST_P(Cases, MatchesItsReferencesAndEmbree) {
   const RegressionCase& c = GetParam();
   const fs::path report = fs::path(::testing::TempDir()) / "kinray_regression_report";
-  ::testing::internal::CaptureStderr();  // model import warnings
+  const ScopedWarningSink quiet([](const std::string&) {});  // model import warnings
   const RegressionCaseResult result = run_regression_case(c, test_config(kReferences, report));
-  ::testing::internal::GetCapturedStderr();
   if (result.status == RegressionStatus::kSkipped) GTEST_SKIP() << result.message;
   EXPECT_EQ(result.status, RegressionStatus::kPassed) << result.message;
   ASSERT_EQ(result.frames.size(), size_t(c.frames));

@@ -274,7 +274,7 @@ void expect_masks_agree(const std::string& spec) {
   params.width = params.height = 48;
   params.frames = 2;
   params.threads = 2;
-  params.shadow_tree = "brute";
+  params.shadow_tree = ShadowTree::brute;
   params.lights = {"point:2,5,-3", "dir:-1,-2,0.5:0.5,0.6,0.7"};
   RenderJob job(params);
   std::unique_ptr<Backend> embree = job.make_backend("embree");

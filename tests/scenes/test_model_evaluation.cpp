@@ -12,6 +12,7 @@
 #include "scenes/error.h"
 #include "scenes/model_animation.h"
 #include "scenes/model_import.h"
+#include "scenes/warning.h"
 #include "tests/scenes/model_test_support.h"
 
 namespace kinray {
@@ -190,9 +191,9 @@ TEST(ModelSkinning, BoneTurnedNinetyDegreesMovesVerticesAsComputedByHand) {
 TEST(ModelSkinning, BoneWithoutNodeKeepsItsBindPose) {
   const auto model = skinned_scene();
   model->mMeshes[0]->mBones[0]->mName = "lost";  // "bone" no longer names a node
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = convert_model(*model, "lost-bone");
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(warnings.find("'lost'"), std::string::npos) << warnings;
   EXPECT_EQ(scene.objects[0].key_count(), 1u);  // nothing left that moves
   expect_near(scene.objects[0].key_positions[0][0], {2, 0, 5});
@@ -201,9 +202,9 @@ TEST(ModelSkinning, BoneWithoutNodeKeepsItsBindPose) {
 TEST(ModelSkinning, WeightsNotSummingToOneAreNormalized) {
   const auto model = skinned_scene();
   model->mMeshes[0]->mBones[1]->mWeights[0].mWeight = 1.5f;  // v1: 0.5 bone + 1.5 anchor
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = convert_model(*model, "unnormalized");
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(warnings.find("normalized"), std::string::npos) << warnings;
   // 1/4 of (1,1,6) + 3/4 of (2,0,6).
   expect_near(scene.objects[0].key_positions[1][1], {1.75, 0.25, 6});
@@ -344,9 +345,9 @@ TEST(ModelAnimation, UnsortedAndDuplicateKeysAreRepairedWithAWarning) {
   aiNodeAnim* anchor = add_channel(*model->mAnimations[0], "anchor");
   // Times 10, 0, 5, 5: sorted to 0, 5, 10; of the two keys at 5 the later one (y = 2) is kept.
   set_position_keys(*anchor, {{10, {0, 0, 0}}, {0, {0, 0, 0}}, {5, {0, 1, 0}}, {5, {0, 2, 0}}});
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = convert_model(*model, "unsorted");
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(warnings.find("not in time order"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("repeated"), std::string::npos) << warnings;
   EXPECT_EQ(scene.objects[0].key_times, (std::vector<double>{0, 0.5, 1}));
@@ -390,9 +391,9 @@ TEST(ModelAnimation, SingleKeyAnimationIsAStillPoseForOneSecond) {
   aiNodeAnim* bone = model->mAnimations[0]->mChannels[0];
   bone->mNumRotationKeys = 1;  // only the key at tick 0 is left (aiScene still frees both)
   bone->mRotationKeys[0] = aiQuatKey(3, about_z(90));
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = convert_model(*model, "single-key");
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
   bone->mNumRotationKeys = 2;
   EXPECT_NE(warnings.find("single key time"), std::string::npos) << warnings;
   EXPECT_DOUBLE_EQ(scene.time_begin, 0.3);

@@ -15,6 +15,7 @@
 
 #include "scenes/error.h"
 #include "scenes/model_import.h"
+#include "scenes/warning.h"
 #include "tests/scenes/model_test_support.h"
 
 namespace kinray {
@@ -150,9 +151,9 @@ TEST_P(AnimatedModels, LoadsWithItsTrianglesShotMotionAndCamera) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed";
   ModelOptions options;
   options.animation = model.animation;
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = load_model(path.string(), options);
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
 
   EXPECT_EQ(scene.triangle_count(), model.triangles);
   // glTF stores seconds as floats, which assimp turns into float milliseconds.
@@ -353,9 +354,8 @@ TEST(ModelKeyrate, ResamplesTheShotAtTheGivenRate) {
 TEST(ModelStatic, ModelWithoutAnimationIsStillForOneSecond) {
   const std::filesystem::path path = kTestModels / "OBJ/spider.obj";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is not installed";
-  ::testing::internal::CaptureStderr();
+  const ScopedWarningSink quiet([](const std::string&) {});
   const Scene scene = load_model(path.string());
-  ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(scene.time_begin, 0);
   EXPECT_EQ(scene.time_end, 1);
   EXPECT_GT(scene.triangle_count(), 0u);

@@ -11,6 +11,7 @@
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
 #include "scenes/model_import.h"
+#include "scenes/warning.h"
 #include "tests/scenes/model_test_support.h"
 
 namespace kinray {
@@ -26,9 +27,8 @@ TEST_P(ModelRender, EmbreeHitsTheModelAtTheStartMiddleAndEndOfItsShot) {
   if (shared && !std::filesystem::exists(testing::kSharedModels))
     GTEST_SKIP() << "the shared folder is not beside the clone: " << testing::kSharedModels;
   ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing";
-  ::testing::internal::CaptureStderr();
+  const ScopedWarningSink quiet([](const std::string&) {});
   const Scene scene = load_model(path.string());
-  ::testing::internal::GetCapturedStderr();
   const CameraSpaceScene camera_space = CameraSpaceScene::build(scene);
   BackendConfig config;
   config.width = config.height = 64;

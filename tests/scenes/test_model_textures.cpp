@@ -15,6 +15,7 @@
 #include "scenes/model_textures.h"
 #include "scenes/texture_image.h"
 #include "scenes/model_tga.h"
+#include "scenes/warning.h"
 #include "tests/scenes/model_test_support.h"
 
 namespace kinray {
@@ -88,9 +89,9 @@ TEST(ModelTextures, AbsolutePathOfTheAuthorsMachineIsLookedUpBesideTheModel) {
 
 TEST(ModelTextures, MissingTextureIsAWarningAndTheBaseColour) {
   const std::filesystem::path obj = write_quad("missing.png");
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = load_model(obj.string());
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
   std::filesystem::remove_all(obj.parent_path());
   EXPECT_NE(warnings.find("missing.png"), std::string::npos) << warnings;
   EXPECT_NE(warnings.find("quad.obj"), std::string::npos) << warnings;
@@ -104,9 +105,9 @@ TEST(ModelTextures, MissingTextureIsAWarningAndTheBaseColour) {
 TEST(ModelTextures, UndecodableTextureIsAWarningAndTheBaseColour) {
   const std::filesystem::path obj = write_quad("broken.png");
   std::ofstream(obj.parent_path() / "broken.png") << "not a png at all";
-  ::testing::internal::CaptureStderr();
+  std::string warnings;
+  const ScopedWarningSink collect([&](const std::string& line) { warnings += line + "\n"; });
   const Scene scene = load_model(obj.string());
-  const std::string warnings = ::testing::internal::GetCapturedStderr();
   std::filesystem::remove_all(obj.parent_path());
   EXPECT_NE(warnings.find("could not be decoded"), std::string::npos) << warnings;
   EXPECT_EQ(scene.materials.at(scene.objects.at(0).material).texture, -1);

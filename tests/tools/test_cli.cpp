@@ -223,12 +223,6 @@ TEST(RenderParams, ValidationNamesTheFlag) {
   p.packet = 2;
   EXPECT_EQ(where(p), "--packet");
   p = params;
-  p.embree_mode = "fast";
-  EXPECT_EQ(where(p), "--embree-mode");
-  p = params;
-  p.sort = "bubble";
-  EXPECT_EQ(where(p), "--sort");
-  p = params;
   p.fps = -1;
   EXPECT_EQ(where(p), "--fps");
   p = params;

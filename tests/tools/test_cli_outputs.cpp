@@ -206,6 +206,58 @@ TEST_F(CliOutputs, ParseErrorsAreKinraysOwnAndNameTheFlag) {
   }
 }
 
+// Option values spelled once (kinetic/enum_names.h): every command that takes the flag refuses a
+// bad value at parse time with one line naming the flag and every allowed value, and exit 2.
+TEST_F(CliOutputs, BadOptionValuesNameTheFlagAndTheAllowedValues) {
+  const std::string scene = std::string(kTiny) + " ";
+  const std::string render = "render " + scene + "--out " + path("base") + " ";
+  const std::string sorts = "must be one of list, tournament, heap, got 'bubble'";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {render + "--sort bubble", "kinray: error: --sort: " + sorts},
+      {"diff " + scene + "--sort bubble", "kinray: error: --sort: " + sorts},
+      {"bench " + scene + "--sort bubble", "kinray: error: --sort: " + sorts},
+      {render + "--sort LIST", "kinray: error: --sort: must be one of list, tournament, heap, got 'LIST'"},
+      {render + "--embree-mode fast",
+       "kinray: error: --embree-mode: must be one of rebuild, refit, got 'fast'"},
+      {"diff " + scene + "--embree-mode 1",
+       "kinray: error: --embree-mode: must be one of rebuild, refit, got '1'"},
+      {render + "--packet 2", "kinray: error: --packet: must be one of 1, 4, 8, 16, got '2'"},
+      {render + "--packet wide", "kinray: error: --packet: must be one of 1, 4, 8, 16, got 'wide'"},
+      {render + "--shadow-tree octree",
+       "kinray: error: --shadow-tree: must be one of aabb, boxtree, refit, brute, got 'octree'"},
+  };
+  for (const auto& [args, line] : cases) {
+    SCOPED_TRACE(args);
+    const test::CommandRun run = kinray(args);
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err, line + "\n");
+  }
+  EXPECT_FALSE(fs::exists(path("base")));
+}
+
+// A backend names what it rejects by its config field (OptionError, scenes/error.h); the user
+// reads the flag that set it.
+TEST_F(CliOutputs, BackendErrorsNameTheFlag) {
+  const std::string render = std::string("render ") + kTiny + " --size 16x16 --frames 1 --out " +
+                             path("base") + " --quiet ";
+  const test::CommandRun run = kinray(render + "--backend osmesa --shutter 0.5");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(run.err,
+            "kinray: error: --shutter: the osmesa backend has no motion blur (kinetic and embree "
+            "have)\n");
+}
+
+TEST_F(CliOutputs, HelpListsTheAllowedValuesOfEnumFlags) {
+  for (const char* command : {"render", "diff", "bench"}) {
+    SCOPED_TRACE(command);
+    const test::CommandRun run = kinray(std::string(command) + " --help");
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("--sort list|tournament|heap"), std::string::npos) << run.out;
+  }
+  const test::CommandRun render = kinray("render --help");
+  EXPECT_NE(render.out.find("--embree-mode rebuild|refit"), std::string::npos) << render.out;
+}
+
 TEST_F(CliOutputs, VersionIsPrinted) {
   const test::CommandRun run = kinray("--version");
   EXPECT_EQ(run.status, 0);

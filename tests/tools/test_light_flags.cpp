@@ -50,14 +50,6 @@ TEST(LightFlag, TooManyLightsAndUnknownTreesAreRejected) {
   } catch (const InputError& error) {
     EXPECT_EQ(error.where(), "--light");
   }
-  params.lights.clear();
-  params.shadow_tree = "octree";
-  try {
-    validate(params);
-    ADD_FAILURE() << "--shadow-tree octree accepted";
-  } catch (const InputError& error) {
-    EXPECT_EQ(error.where(), "--shadow-tree");
-  }
 }
 
 class LightCli : public ::testing::Test {
