@@ -2,6 +2,8 @@
 // force on the collision scenes, time order, and bad input.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -18,7 +20,8 @@ class CollideCommand : public ::testing::Test {
   void SetUp() override {
     m_dir = fs::temp_directory_path() /
             ("kinray_collide_" +
-             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+             std::to_string(getpid()));  // two suites at once (two checkouts) do not share it
     fs::create_directories(m_dir);
   }
   void TearDown() override { fs::remove_all(m_dir); }
