@@ -24,10 +24,11 @@ bool parse_number(const std::string& text, double& value) {
   return end == text.c_str() + text.size();
 }
 
-void check_count(size_t count, const char* flag) {
+void check_count(size_t count, const char* field) {
   if (count > kMaxFrameCount)
-    throw InputError(flag, "asks for " + std::to_string(count) +
-                               " frames, more than the limit of " + std::to_string(kMaxFrameCount));
+    throw OptionError(field, "asks for " + std::to_string(count) +
+                                 " frames, more than the limit of " +
+                                 std::to_string(kMaxFrameCount));
 }
 
 }  // namespace
@@ -50,21 +51,21 @@ void validate(const FrameScheduleParams& params) {
                     int(params.inbetweens.has_value());
   if (given > 1) throw InputError("--frames/--fps/--inbetweens", "give at most one of them");
   if (params.frames && *params.frames < 1)
-    throw InputError("--frames", "must be at least 1, got " + std::to_string(*params.frames));
+    throw OptionError("frames", "must be at least 1, got " + std::to_string(*params.frames));
   if (params.fps && !(std::isfinite(*params.fps) && *params.fps > 0))
-    throw InputError("--fps", "must be a finite number > 0, got " + format(*params.fps));
+    throw OptionError("fps", "must be a finite number > 0, got " + format(*params.fps));
   if (params.inbetweens && *params.inbetweens < 1)
-    throw InputError("--inbetweens",
-                     "must be at least 1, got " + std::to_string(*params.inbetweens));
+    throw OptionError("inbetweens",
+                      "must be at least 1, got " + std::to_string(*params.inbetweens));
   if (params.time) {
     const auto [a, b] = *params.time;
     if (!std::isfinite(a) || !std::isfinite(b))
-      throw InputError("--time", "A and B must be finite numbers");
+      throw OptionError("time", "A and B must be finite numbers");
     if (!(a < b))
-      throw InputError("--time", "A must be less than B, got " + format(a) + ":" + format(b));
+      throw OptionError("time", "A must be less than B, got " + format(a) + ":" + format(b));
   }
-  if (params.frames) check_count(size_t(*params.frames), "--frames");
-  if (params.inbetweens) check_count(size_t(*params.inbetweens), "--inbetweens");
+  if (params.frames) check_count(size_t(*params.frames), "frames");
+  if (params.inbetweens) check_count(size_t(*params.inbetweens), "inbetweens");
 }
 
 std::vector<double> frame_times(std::span<const double> key_times,
@@ -76,9 +77,9 @@ std::vector<double> frame_times(std::span<const double> key_times,
   if (params.time) {
     std::tie(begin, end) = *params.time;
     if (begin < shot_begin || end > shot_end)
-      throw InputError("--time", "[" + format(begin) + ", " + format(end) +
-                                     "] is not inside the shot [" + format(shot_begin) + ", " +
-                                     format(shot_end) + "]");
+      throw OptionError("time", "[" + format(begin) + ", " + format(end) +
+                                    "] is not inside the shot [" + format(shot_begin) + ", " +
+                                    format(shot_end) + "]");
   }
   std::vector<double> grid = {begin};
   for (double t : key_times)
@@ -89,19 +90,19 @@ std::vector<double> frame_times(std::span<const double> key_times,
   if (params.fps) {
     const double fps = *params.fps;
     const double first = std::ceil(begin * fps), last = std::floor(end * fps);
-    if (!(last - first < double(kMaxFrameCount))) check_count(kMaxFrameCount + 1, "--fps");
+    if (!(last - first < double(kMaxFrameCount))) check_count(kMaxFrameCount + 1, "fps");
     // k / F rounds, so look one step beyond each end and keep what lies inside [begin, end].
     for (double k = first - 1; k <= last + 1; k += 1) {
       const double t = k / fps;
       if (t >= begin && t <= end) times.push_back(t);
     }
     if (times.empty())
-      throw InputError("--fps", "no multiple of 1/" + format(fps) + " s lies in the shot [" +
-                                    format(begin) + ", " + format(end) + "]");
-    check_count(times.size(), "--fps");
+      throw OptionError("fps", "no multiple of 1/" + format(fps) + " s lies in the shot [" +
+                                   format(begin) + ", " + format(end) + "]");
+    check_count(times.size(), "fps");
   } else if (params.inbetweens) {
     const int k_per_interval = *params.inbetweens;
-    check_count((grid.size() - 1) * size_t(k_per_interval) + 1, "--inbetweens");
+    check_count((grid.size() - 1) * size_t(k_per_interval) + 1, "inbetweens");
     for (size_t k = 0; k + 1 < grid.size(); ++k)
       for (int m = 0; m < k_per_interval; ++m)
         times.push_back(grid[k] + m * (grid[k + 1] - grid[k]) / k_per_interval);

@@ -22,17 +22,18 @@ struct FrameScheduleParams {
   std::optional<std::pair<double, double>> time;  ///< --time A:B: restricts the shot to [A, B]
 };
 
-/// Parses "A:B" (two finite numbers, A < B). Throws InputError naming --time.
+/// Parses "A:B" (two finite numbers, A < B). Throws InputError naming --time for text that is
+/// not A:B, OptionError naming the field time for a bad range.
 [[nodiscard]] std::pair<double, double> parse_time_range(const std::string& text);
 
-/// Throws InputError naming the flag when a value is out of range (N >= 1, F > 0, K >= 1, A < B,
-/// all finite) or more than one of --frames, --fps, --inbetweens is given.
+/// Throws OptionError naming the field when a value is out of range (N >= 1, F > 0, K >= 1,
+/// A < B, all finite), InputError when more than one of --frames, --fps, --inbetweens is given.
 void validate(const FrameScheduleParams& params);
 
 /// Frame times, increasing, for a shot whose keyframe grid is `key_times` (sorted, first and last
 /// = the shot's ends, as Scene::key_times()). --time must lie inside the shot; the grid is cut to
-/// [A, B] (keys strictly inside, plus A and B). Throws InputError naming the flag at fault,
-/// including when --fps finds no frame or a schedule exceeds kMaxFrameCount frames.
+/// [A, B] (keys strictly inside, plus A and B). Throws OptionError naming the field at fault,
+/// including when fps finds no frame or a schedule exceeds kMaxFrameCount frames.
 [[nodiscard]] std::vector<double> frame_times(std::span<const double> key_times,
                                               const FrameScheduleParams& params);
 

@@ -33,9 +33,9 @@ bool embree_much_faster(const RenderForecast& forecast) {
 std::string forecast_warning(const RenderForecast& forecast) {
   char text[400];
   std::snprintf(text, sizeof text,
-                "kinray: warning: the kinetic backend will take about %.0f s for this render, "
+                "the kinetic backend will take about %.0f s for this render, "
                 "Embree about %.1f s; --backend embree is faster at this frame rate (kinetic wins "
-                "with many frames per keyframe interval: --inbetweens)\n",
+                "with many frames per keyframe interval: --inbetweens)",
                 forecast.kinetic_s, forecast.embree_s);
   return text;
 }

@@ -41,7 +41,7 @@ inline constexpr double kForecastMinKineticS = 10;
 [[nodiscard]] double project_embree(const ForecastInputs& in);
 /// True when the forecast says --backend embree is many times faster.
 [[nodiscard]] bool embree_much_faster(const RenderForecast& forecast);
-/// The one warning line (ending in a newline) for `forecast`.
+/// The one warning line for `forecast`, for warn(): no "kinray: warning: " prefix, no newline.
 [[nodiscard]] std::string forecast_warning(const RenderForecast& forecast);
 
 /// Watches a kinetic render's frame loop and, once its first key interval is done, forecasts

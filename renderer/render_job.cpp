@@ -9,15 +9,16 @@
 #include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <system_error>
 #include <tuple>
 
 #include "kinetic/check.h"
 #include "renderer/contact_tint.h"
-#include "renderer/memory_estimate.h"
 #include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/light_flag.h"
 #include "renderer/lighting.h"
+#include "renderer/memory_estimate.h"
 #include "renderer/progress.h"
 #include "renderer/shading.h"
 #include "renderer/shadow_rays.h"
@@ -42,14 +43,16 @@ bool parse_int(const std::string& text, int& value) {
   return true;
 }
 
-void check_one_of(const std::string& value, std::initializer_list<const char*> allowed,
-                  const char* flag) {
+/// The problem with `value` when it is none of `allowed`, else nothing: the flag parser and
+/// validate() throw it naming the flag and the field respectively.
+std::optional<std::string> not_one_of(const std::string& value,
+                                      std::initializer_list<const char*> allowed) {
   std::string list;
   for (const char* a : allowed) {
-    if (value == a) return;
+    if (value == a) return std::nullopt;
     list += (list.empty() ? "" : ", ") + std::string(a);
   }
-  throw InputError(flag, "must be one of " + list + ", got '" + value + "'");
+  return "must be one of " + list + ", got '" + value + "'";
 }
 
 }  // namespace
@@ -73,7 +76,7 @@ std::vector<std::string> parse_aov(const std::string& text) {
   while (start <= text.size()) {
     const size_t comma = std::min(text.find(',', start), text.size());
     const std::string name = text.substr(start, comma - start);
-    check_one_of(name, {"id", "depth"}, "--aov");
+    if (const auto problem = not_one_of(name, {"id", "depth"})) throw InputError("--aov", *problem);
     if (std::find(aovs.begin(), aovs.end(), name) != aovs.end())
       throw InputError("--aov", "'" + name + "' is given twice");
     aovs.push_back(name);
@@ -86,22 +89,23 @@ void validate(const RenderParams& params) {
   if (params.scene.empty()) throw InputError("SCENE", "no scene given");
   if (params.width < 1 || params.height < 1 || params.width > kMaxImageSide ||
       params.height > kMaxImageSide)
-    throw InputError("--size", "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
+    throw OptionError("width", "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
                                    ", got " + std::to_string(params.width) + "x" +
                                    std::to_string(params.height));
   validate(schedule_params(params));
   if (params.threads < 0 || params.threads > 4096)
-    throw InputError("--threads",
-                     "must lie in 0..4096 (0: all cores), got " + std::to_string(params.threads));
+    throw OptionError("threads",
+                      "must lie in 0..4096 (0: all cores), got " + std::to_string(params.threads));
   if (!is_embree_packet_width(params.packet))
-    throw InputError("--packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
-  for (const std::string& aov : params.aov) check_one_of(aov, {"id", "depth"}, "--aov");
+    throw OptionError("packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
+  for (const std::string& aov : params.aov)
+    if (const auto problem = not_one_of(aov, {"id", "depth"})) throw OptionError("aov", *problem);
   if (!std::isfinite(params.keyrate) || params.keyrate < 0)
-    throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
+    throw OptionError("keyrate", "must be a finite number >= 0 (0: the model's own keys)");
   if (!params.video.empty()) VideoWriter::validate_path(params.video);
   for (const std::string& light : params.lights) (void)parse_light_flag(light);
   if (params.lights.size() > kMaxLights)
-    throw InputError("--light", "at most " + std::to_string(kMaxLights) + " lights, got " +
+    throw OptionError("lights", "at most " + std::to_string(kMaxLights) + " lights, got " +
                                     std::to_string(params.lights.size()));
   if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
   if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);

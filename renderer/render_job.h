@@ -61,7 +61,9 @@ inline constexpr int kMaxImageSide = 16384;
 /// Parses "id,depth" (any of id, depth; no repeats). Throws InputError naming --aov.
 [[nodiscard]] std::vector<std::string> parse_aov(const std::string& text);
 
-/// Checks every flag that can be checked without the scene; throws InputError naming the flag.
+/// Checks every field that can be checked without the scene; throws OptionError naming the
+/// field (the command line turns it into the flag), or InputError naming a flag for the checks
+/// still phrased in flags (SCENE, --contacts with --shutter, and the parsers it calls).
 void validate(const RenderParams& params);
 /// The frame-schedule flags of `params`.
 [[nodiscard]] FrameScheduleParams schedule_params(const RenderParams& params);

@@ -19,6 +19,7 @@
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"
+#include "tools/cli_errors.h"
 #include "tools/cli_options.h"
 #include "tools/collide_bench.h"
 #include "tools/commands.h"
@@ -111,8 +112,11 @@ void check_configurations(const BenchParams& params) {
       kinetic.backend = "kinetic";
       check_render_memory(kinetic, nullptr);
       (void)frame_times(keys, schedule_params(p));
-    } catch (const InputError& e) {
-      if (e.where() == flag) throw;
+    } catch (const InputError& error) {
+      // A field the library names (OptionError) is reported as its flag, as main would.
+      const auto* option = dynamic_cast<const OptionError*>(&error);
+      const InputError e = option ? name_the_flag(*option) : error;
+      if (e.where() == flag) throw e;
       throw InputError(flag, std::string("in this sweep, ") + e.what());
     }
   }

@@ -65,14 +65,23 @@ InputError unexpected_arguments(const CLI::App& command, const std::string& mess
 }  // namespace
 
 InputError name_the_flag(const OptionError& error) {
-  // The fields of BackendConfig (renderer/backend.h) a backend can reject, and their flags; enum
-  // fields cannot hold a bad value, their flags refuse one at parse time.
+  // The fields the library can reject, and their flags: BackendConfig's (renderer/backend.h),
+  // RenderParams' (renderer/render_job.h) and FrameScheduleParams' (renderer/frame_schedule.h).
+  // Enum fields cannot hold a bad value, their flags refuse one at parse time.
   static const std::pair<const char*, const char*> kFlags[] = {
       {"width", "--size"},
       {"threads", "--threads"},
       {"embree_packet", "--packet"},
+      {"packet", "--packet"},
       {"shutter", "--shutter"},
       {"backend", "--backend"},
+      {"aov", "--aov"},
+      {"keyrate", "--keyrate"},
+      {"lights", "--light"},
+      {"frames", "--frames"},
+      {"fps", "--fps"},
+      {"inbetweens", "--inbetweens"},
+      {"time", "--time"},
   };
   for (const auto& [field, flag] : kFlags)
     if (error.where() == field) return InputError(flag, error.message());

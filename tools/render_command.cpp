@@ -21,6 +21,7 @@
 #include "renderer/video_writer.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "scenes/warning.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/contact_frames.h"
@@ -91,11 +92,10 @@ void run_render(const RenderParams& flags) {
                                           video_fps(params, job.frame_times()));
     const auto [width, height] = VideoWriter::encoded_size(params.width, params.height);
     if (width != params.width || height != params.height)
-      std::fprintf(
-          stderr,
-          "kinray: warning: --video: video encoders need even sides, so the video is %dx%d "
-          "(the frames are %dx%d); give an even --size for a video of the frames' size\n",
-          width, height, params.width, params.height);
+      warn("--video: video encoders need even sides, so the video is " + std::to_string(width) +
+           "x" + std::to_string(height) + " (the frames are " + std::to_string(params.width) +
+           "x" + std::to_string(params.height) +
+           "); give an even --size for a video of the frames' size");
   }
   const bool write_id = std::find(params.aov.begin(), params.aov.end(), "id") != params.aov.end();
   const bool write_depth =
@@ -112,7 +112,7 @@ void run_render(const RenderParams& flags) {
     if (kinetic && !params.quiet)
       if (const std::optional<RenderForecast> slow = forecast.frame_done(job, index)) {
         status.finish();  // the bar's line, drawn again at the next frame
-        std::fputs(forecast_warning(*slow).c_str(), stderr);
+        warn(forecast_warning(*slow));
       }
     write(numbered_file("frame", index, ".png"), write_color_png, frame);
     if (write_id) write(numbered_file("id", index, ".png"), write_id_png, frame);

@@ -86,8 +86,9 @@ TEST(FrameSchedule, RejectsBadValues) {
   EXPECT_THROW(validate(both), InputError);
   try {
     validate(frames(-3));
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where(), "--frames");
+    ADD_FAILURE() << "frames -3 was accepted";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.where(), "frames");  // the field; the command line names it --frames
   }
 }
 

@@ -201,7 +201,9 @@ TEST(RenderParams, DefaultOutputFolderIsNamedAfterTheScene) {
   EXPECT_EQ(output_folder(params), "elsewhere");
 }
 
-TEST(RenderParams, ValidationNamesTheFlag) {
+// The library names the field at fault (OptionError); the command line turns it into the flag
+// (CliFlags.ALibraryFieldIsNamedByItsFlag). The video path is still checked as a flag.
+TEST(RenderParams, ValidationNamesTheField) {
   RenderParams params;
   params.scene = "wavy-sphere";
   EXPECT_NO_THROW(validate(params));
@@ -215,19 +217,19 @@ TEST(RenderParams, ValidationNamesTheFlag) {
   };
   RenderParams p = params;
   p.width = 0;
-  EXPECT_EQ(where(p), "--size");
+  EXPECT_EQ(where(p), "width");
   p = params;
   p.threads = -1;
-  EXPECT_EQ(where(p), "--threads");
+  EXPECT_EQ(where(p), "threads");
   p = params;
   p.packet = 2;
-  EXPECT_EQ(where(p), "--packet");
+  EXPECT_EQ(where(p), "packet");
   p = params;
   p.fps = -1;
-  EXPECT_EQ(where(p), "--fps");
+  EXPECT_EQ(where(p), "fps");
   p = params;
   p.keyrate = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(where(p), "--keyrate");
+  EXPECT_EQ(where(p), "keyrate");
   p = params;
   p.video = "clip.gif";
   EXPECT_EQ(where(p), "--video");

@@ -43,6 +43,25 @@ TEST_F(CliFlags, FlagsThatNothingReadsAreRefused) {
   EXPECT_EQ(run.status, 0) << run.err;
 }
 
+TEST_F(CliFlags, ALibraryFieldIsNamedByItsFlag) {
+  // validate() names RenderParams' fields (OptionError); main says the flag the user gave.
+  const std::string render = "render wavy-sphere:triangles=600 --out '" + path("f") + "' ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {render + "--frames 0", "--frames: must be at least 1, got 0"},
+      {render + "--fps -1", "--fps: must be a finite number > 0, got -1"},
+      {render + "--inbetweens 0", "--inbetweens: must be at least 1, got 0"},
+      {render + "--threads 5000", "--threads: must lie in 0..4096 (0: all cores), got 5000"},
+      {render + "--time 0:99", "--time: [0, 99] is not inside the shot"},
+  };
+  for (const auto& [args, line] : cases) {
+    SCOPED_TRACE(args);
+    const test::CommandRun run = kinray(args);
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err.rfind("kinray: error: " + line, 0), 0u) << run.err;
+  }
+  EXPECT_FALSE(fs::exists(path("f")));
+}
+
 TEST_F(CliFlags, AVideoOfOddSizeSaysWhatSizeItHas) {
   for (const char* name : {"odd.mp4", "odd.avi"}) {
     SCOPED_TRACE(name);

@@ -47,8 +47,8 @@ TEST(LightFlag, TooManyLightsAndUnknownTreesAreRejected) {
   try {
     validate(params);
     ADD_FAILURE() << "33 lights accepted";
-  } catch (const InputError& error) {
-    EXPECT_EQ(error.where(), "--light");
+  } catch (const OptionError& error) {
+    EXPECT_EQ(error.where(), "lights");  // the field; the command line names --light
   }
 }
 
