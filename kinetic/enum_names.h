@@ -18,6 +18,9 @@ struct EnumName {
   Enum value;
   const char* name;
 };
+/// Spelled out for clang 14 (the fuzz build), which deduces no aggregate's template arguments.
+template <class Enum>
+EnumName(Enum, const char*) -> EnumName<Enum>;
 
 /// The name of `value` in `table` ("?" if the table misses it, which a test rules out).
 template <class Enum, size_t N>
