@@ -14,7 +14,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CliFlags : public test::CommandTest {};
+class CliFlags : public test::CommandTest {
+ protected:
+  /// Each command exits 2 with one error line that starts with its expected text.
+  void expect_refused(const std::vector<std::pair<std::string, std::string>>& cases) {
+    for (const auto& [args, line] : cases) {
+      SCOPED_TRACE(args);
+      const test::CommandRun run = kinray(args);
+      EXPECT_EQ(run.status, 2);
+      EXPECT_EQ(run.err.rfind("kinray: error: " + line, 0), 0u) << run.err;
+    }
+  }
+};
 
 TEST_F(CliFlags, FlagsThatNothingReadsAreRefused) {
   const std::string render =
@@ -31,12 +42,7 @@ TEST_F(CliFlags, FlagsThatNothingReadsAreRefused) {
        "--animation: applies to model files only"},
       {diff + "--against osmesa --packet 4", "--packet: applies to the embree backend only"},
   };
-  for (const auto& [args, line] : cases) {
-    SCOPED_TRACE(args);
-    const test::CommandRun run = kinray(args);
-    EXPECT_EQ(run.status, 2);
-    EXPECT_EQ(run.err.rfind("kinray: error: " + line, 0), 0u) << run.err;
-  }
+  expect_refused(cases);
   EXPECT_FALSE(fs::exists(path("f")));
   // Where a flag is read it is accepted: diff's reference is Embree, which takes --packet.
   const test::CommandRun run = kinray(diff + "--packet 4 --quiet");
@@ -53,12 +59,7 @@ TEST_F(CliFlags, ALibraryFieldIsNamedByItsFlag) {
       {render + "--threads 5000", "--threads: must lie in 0..4096 (0: all cores), got 5000"},
       {render + "--time 0:99", "--time: [0, 99] is not inside the shot"},
   };
-  for (const auto& [args, line] : cases) {
-    SCOPED_TRACE(args);
-    const test::CommandRun run = kinray(args);
-    EXPECT_EQ(run.status, 2);
-    EXPECT_EQ(run.err.rfind("kinray: error: " + line, 0), 0u) << run.err;
-  }
+  expect_refused(cases);
   EXPECT_FALSE(fs::exists(path("f")));
 }
 
