@@ -23,6 +23,7 @@
 #include "scenes/model_skinning.h"
 #include "scenes/model_textures.h"
 #include "scenes/model_xfile_check.h"
+#include "scenes/ply_reader.h"
 #include "scenes/warning.h"
 
 namespace kinray {
@@ -431,6 +432,7 @@ Scene load_model(const std::string& path, const ModelOptions& options, ModelCata
   if (!std::isfinite(options.import_timeout) || options.import_timeout <= 0)
     throw InputError(path, "the import timeout must be a positive number of seconds");
   check_x_skin_weights(path);
+  check_ply_file(path);
   auto read = [&](Assimp::Importer& importer) {
     return importer.ReadFile(path, model_import_flags());
   };

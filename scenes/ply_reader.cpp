@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <optional>
 
 #include "scenes/error.h"
@@ -76,9 +77,12 @@ std::string at_line(const std::string& source, size_t line) {
   return source + ":" + std::to_string(line);
 }
 
+/// Whether a header line that no PLY reader knows is an error or is passed over.
+enum class UnknownLines { refuse, skip };
+
 /// One header line (`element`, `property`, `format`, ...) applied to `header`.
 void parse_header_line(const std::vector<std::string_view>& w, PlyHeader& header,
-                       const std::string& where) {
+                       const std::string& where, UnknownLines unknown) {
   const auto fail = [&](const std::string& problem) { throw InputError(where, problem); };
   if (w[0] == "comment" || w[0] == "obj_info") return;
   if (w[0] == "format") {
@@ -117,12 +121,13 @@ void parse_header_line(const std::vector<std::string_view>& w, PlyHeader& header
       property.count_type = *count_type;
     }
     header.elements.back().properties.push_back(property);
-  } else {
+  } else if (unknown == UnknownLines::refuse) {
     fail("unknown header line '" + std::string(w[0]) + "'");
   }
 }
 
-PlyHeader parse_header(std::string_view bytes, const std::string& source) {
+PlyHeader parse_header(std::string_view bytes, const std::string& source,
+                       UnknownLines unknown = UnknownLines::refuse) {
   PlyHeader header;
   size_t offset = 0, line = 0;
   bool format_seen = false;
@@ -141,7 +146,7 @@ PlyHeader parse_header(std::string_view bytes, const std::string& source) {
     if (w.empty()) continue;
     if (w[0] == "end_header") break;
     format_seen |= w[0] == "format";
-    parse_header_line(w, header, where);
+    parse_header_line(w, header, where, unknown);
     if (w[0] == "element") header.elements.back().line = line;
   }
   if (!format_seen) throw InputError(at_line(source, 2), "the header has no 'format' line");
@@ -280,10 +285,19 @@ uint64_t smallest_instance(const PlyElement& element, PlyFormat format) {
   return bytes;
 }
 
+/// Instances without properties take no bytes, so the file's length bounds their count
+/// nothing; a reader that loops over them (assimp's does) runs for as long as the count says.
+[[noreturn]] void throw_propertyless(const PlyElement& element, const std::string& source) {
+  throw InputError(at_line(source, element.line),
+                   "declares " + std::to_string(element.count) + " " + element.name +
+                       " elements but no properties for them");
+}
+
 void check_counts(const PlyHeader& header, size_t body_bytes, const std::string& source) {
   uint64_t needed = 0;
   for (const PlyElement& element : header.elements) {
     const uint64_t each = smallest_instance(element, header.format);
+    if (each == 0 && element.count > 0) throw_propertyless(element, source);
     if (each > 0 && element.count > (body_bytes + 1) / each)
       throw InputError(at_line(source, element.line),
                        "declares " + std::to_string(element.count) + " " + element.name +
@@ -366,10 +380,16 @@ void read_faces(PlyBody& body, const PlyElement& element, uint64_t vertex_count,
 void check_mesh_elements(const PlyHeader& header, const std::string& source) {
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
-  for (const PlyElement& element : header.elements) {
-    if (element.name == "vertex") vertex = &element;
-    if (element.name == "face") face = &element;
-  }
+  for (const PlyElement& element : header.elements)
+    for (const PlyElement** seen : {&vertex, &face})
+      if (element.name == (seen == &vertex ? "vertex" : "face")) {
+        // A second one would be read as more of the first, against counts checked for one.
+        if (*seen != nullptr)
+          throw InputError(at_line(source, element.line),
+                           "a second '" + element.name + "' element (the first is on line " +
+                               std::to_string((*seen)->line) + ")");
+        *seen = &element;
+      }
   if (vertex == nullptr) throw InputError(source, "has no 'vertex' element");
   for (const char* axis : {"x", "y", "z"})
     if (find_scalar(*vertex, axis) < 0)
@@ -414,6 +434,23 @@ MeshFile parse_ply(std::string_view bytes, const std::string& source) {
   MeshFile file;
   file.parts.push_back(std::move(part));
   return file;
+}
+
+void check_ply_file(const std::string& path) {
+  char start[4] = {};
+  std::ifstream(path, std::ios::binary).read(start, sizeof start);
+  if (std::string_view(start, 3) != "ply" || (start[3] != '\n' && start[3] != '\r')) return;
+  const std::string bytes = read_mesh_bytes(path);
+  PlyHeader header;
+  try {
+    // Leniently: assimp reads headers with lines of other writers (Wuson.ply has 'Created
+    // by ...') and files a few bytes short, and says itself what else is wrong.
+    header = parse_header(bytes, path, UnknownLines::skip);
+  } catch (const InputError&) {
+    return;
+  }
+  for (const PlyElement& element : header.elements)
+    if (element.properties.empty() && element.count > 0) throw_propertyless(element, path);
 }
 
 MeshFile read_ply(const std::string& path) {

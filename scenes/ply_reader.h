@@ -16,6 +16,12 @@ namespace kinray {
 /// range, faces of fewer than three corners and a mesh without faces.
 [[nodiscard]] MeshFile parse_ply(std::string_view bytes, const std::string& source);
 
+/// When the file at `path` is a PLY file (its first line is 'ply'), throws InputError if its
+/// header declares elements without properties: no length of file bounds their count, and
+/// assimp's PLY reader loops over it (for hours on a corrupt file). Run before assimp reads a
+/// model; everything else about the file is left to assimp.
+void check_ply_file(const std::string& path);
+
 /// Reads and parses the file at `path`; throws InputError naming it when it cannot be read.
 [[nodiscard]] MeshFile read_ply(const std::string& path);
 

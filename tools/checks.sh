@@ -68,7 +68,7 @@ case "$mode" in
         echo "checks: fuzz_$name found a problem; its input is in $artifacts/. Fix it, then keep" \
           "the input as tests/fuzz/regressions/$name/<what-it-was> (the suite replays it)."
       fi
-      runs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "build-fuzz/fuzz_$name.log" | grep -o '[0-9]*$' || true)"
+      runs="$(grep -a -o 'stat::number_of_executed_units: *[0-9]*' "build-fuzz/fuzz_$name.log" | grep -o '[0-9]*$' || true)"
       echo "checks: fuzz_$name: ${runs:-?} inputs in $((SECONDS - start)) s"
     done
     passed=0

@@ -144,6 +144,12 @@ TEST(PlyReader, CountsBeyondTheFileAreRefusedBeforeAnythingIsReserved) {
   EXPECT_NE(error_of(truncated).find("a face of 3 corners runs past the end of the file"),
             std::string::npos);
   EXPECT_EQ(error_of(truncated).rfind("bad.ply: byte ", 0), 0u) << error_of(truncated);
+  // A vertex element with no properties takes no bytes, so no length of file bounds its count;
+  // read as a second vertex element it would reserve 7e12 vertices (found by fuzz_ply_reader).
+  EXPECT_EQ(error_of("ply\nformat ascii 1.0\nelement vertex 7000000000000\n" +
+                     kHeader.substr(kHeader.find("element vertex")) +
+                     "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            "bad.ply:4: a second 'vertex' element (the first is on line 3)");
 }
 
 }  // namespace
