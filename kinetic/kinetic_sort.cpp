@@ -9,27 +9,15 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
-KineticSortStats& KineticSortStats::operator+=(const KineticSortStats& o) {
-  events_internal += o.events_internal;
-  events_external += o.events_external;
-  events_renewal += o.events_renewal;
-  certificates_live += o.certificates_live;
-  certificates_created += o.certificates_created;
-  work += o.work;
-  degenerate += o.degenerate;
-  return *this;
-}
-
-KineticSortQuality quality(const KineticSortStats& s, size_t n) {
-  KineticSortQuality q;
-  const double objects = n > 0 ? static_cast<double>(n) : 1.0;
-  const double events = static_cast<double>(s.events() + s.events_renewal);
-  q.compactness = static_cast<double>(s.certificates_live) / objects;
-  q.responsiveness = events > 0 ? static_cast<double>(s.work) / events : 0.0;
-  q.locality = 2.0 * static_cast<double>(s.certificates_live) / objects;
-  q.efficiency = s.events_external > 0 ? static_cast<double>(s.events_internal) /
-                                             static_cast<double>(s.events_external)
-                                       : static_cast<double>(s.events_internal);
+QualityCounts quality_counts(const KineticSortStats& s, size_t objects) {
+  QualityCounts q;
+  q.certificates_live_max = s.certificates_live;
+  q.certificates_live = s.certificates_live;
+  q.certificates_computed = s.work;
+  q.events = s.events() + s.events_renewal;
+  q.events_internal = s.events_internal;
+  q.events_external = s.events_external;
+  q.objects_present = objects;
   return q;
 }
 

@@ -15,12 +15,12 @@
 //   key_b - key_a coefficient-wise). Then an event is never re-fired at the instant it was
 //   processed. Keys that re-centre at t still work but may cost extra events at near-ties.
 
-#include <concepts>
-#include <cstddef>
-#include <cstdint>
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -30,9 +30,11 @@
 
 #include "kinetic/audit_failure.h"
 #include "kinetic/check.h"
+#include "kinetic/counters.h"
 #include "kinetic/event_queue.h"
 #include "kinetic/exact_certificate.h"
 #include "kinetic/polynomial.h"
+#include "kinetic/quality_measures.h"
 #include "kinetic/root_finding.h"
 
 namespace kinray {
@@ -70,28 +72,25 @@ struct KineticSortConfig {
   KineticSortStats* shared_stats = nullptr;
 };
 
-/// Counters of one structure (or of many, when shared). certificates_live is a gauge.
-struct KineticSortStats {
-  uint64_t events_internal = 0;       ///< failures that did not change the front
-  uint64_t events_external = 0;       ///< failures that changed the front
-  uint64_t events_renewal = 0;        ///< events at a certificate's end / spurious: no change
-  uint64_t certificates_live = 0;     ///< certificates currently held (gauge)
-  uint64_t certificates_created = 0;  ///< certificates computed and (re)scheduled
-  uint64_t work = 0;                  ///< certificate computations (incl. comparisons)
-  uint64_t degenerate = 0;            ///< near-ties resolved by the same-instant guard
+// X(member, "stats key") of KineticSortStats.
+#define KINRAY_SORT_COUNTERS(X)                                                              \
+  X(events_internal, "events_internal") /* failures that did not change the front */        \
+  X(events_external, "events_external") /* failures that changed the front */              \
+  X(events_renewal, "events_renewal")   /* at a certificate's end, or spurious: no change */ \
+  X(certificates_live, "certificates_live")       /* held now (a gauge) */                  \
+  X(certificates_created, "certificates_created") /* computed and (re)scheduled */          \
+  X(work, "work")             /* certificate computations, comparisons included */          \
+  X(degenerate, "degenerate") /* near-ties resolved by the same-instant guard */
 
-  KineticSortStats& operator+=(const KineticSortStats& o);
+/// Counters of one structure (or of many, when shared).
+struct KineticSortStats {
+  KINRAY_COUNTERS(KineticSortStats, KINRAY_SORT_COUNTERS)
   [[nodiscard]] uint64_t events() const { return events_internal + events_external; }
 };
 
-/// The quality measures of DESIGN.md for a structure over n objects.
-struct KineticSortQuality {
-  double compactness = 0;     ///< live certificates per object
-  double responsiveness = 0;  ///< certificate computations per event
-  double locality = 0;        ///< certificates per object (each certificate involves 2 objects)
-  double efficiency = 0;      ///< internal / external events
-};
-[[nodiscard]] KineticSortQuality quality(const KineticSortStats& stats, size_t n);
+/// What the quality measures of a sort over `objects` keys are computed from. The sorts keep
+/// no maximum of their live certificates: compactness is the count held now.
+[[nodiscard]] QualityCounts quality_counts(const KineticSortStats& stats, size_t objects);
 
 /// The common interface of KineticSortedList, KineticTournament and KineticHeap.
 template <class S>

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/quality_measures.h"
+#include "renderer/stats_json.h"
 #include "kinetic/frustum_grid.h"
 #include "renderer/grid_meshes.h"
 #include "renderer/kinetic_shadow_tracer.h"
@@ -96,12 +96,7 @@ class KineticBackend final : public Backend {
     }
     const GridStats s = m_grid->stats();
     const GridTimings& timings = m_grid->timings();
-    stats["events"] = {
-        {"total", s.events.total()},       {"boundary", s.events.boundary},
-        {"vertex_row", s.events.vertex_row}, {"orientation", s.events.orientation},
-        {"swap", s.events.swap},           {"flightplan", s.events.flightplan},
-        {"insert", s.events.insert},       {"delete", s.events.remove},
-    };
+    stats["events"] = event_counts_json(s.events);
     stats["certificates_live_max"] = s.certificates_live_max;
     stats["memory_bytes_peak"] = m_grid->memory_bytes_peak();
     stats["quality"] = quality_json({s.certificates_live_max, s.certificates_live,
@@ -111,33 +106,14 @@ class KineticBackend final : public Backend {
     time["init"] = timings.init;
     time["events"] = timings.events;
     time["readout"] = timings.readout;
-    stats["kinetic"] = {
-        {"sort", depth_sort_name(m_grid_config.sort)},
-        {"bands", m_grid->band_count()},
-        {"audit", m_grid_config.audit},
-        {"events_external", s.events_external},
-        {"events_internal", s.events_internal},
-        {"spurious", s.spurious},
-        {"renewals", s.renewals},
-        {"coverage_changes", s.coverage_changes},
-        {"records", s.records},
-        {"records_born", s.records_born},
-        {"records_died", s.records_died},
-        {"reties", s.reties},
-        {"row_rebuilds", s.row_rebuilds},
-        {"degenerate_rebuilds", s.degenerate_rebuilds},
-        {"certificates_live", s.certificates_live},
-        {"certificates_computed", s.certificates_computed},
-        {"triangles_present", s.triangles_present},
-        {"meshes_culling", s.meshes_culling},
-        {"triangles_culled", s.triangles_culled},
-        {"pixel_entries", s.pixel_entries},
-        {"memory_bytes", s.memory_bytes},
-        {"pixel_memory_bytes", s.pixel_memory_bytes},
-        {"memory_per_pixel_entry",
-         s.pixel_entries > 0 ? double(s.pixel_memory_bytes) / double(s.pixel_entries) : 0.0},
-        {"per_frame", {{"events_s", m_events_s}, {"readout_s", m_readout_s}, {"events", m_events}}},
-    };
+    nlohmann::json& kinetic = stats["kinetic"] = counters_json(s);
+    kinetic["sort"] = depth_sort_name(m_grid_config.sort);
+    kinetic["bands"] = m_grid->band_count();
+    kinetic["audit"] = m_grid_config.audit;
+    kinetic["memory_per_pixel_entry"] =
+        s.pixel_entries > 0 ? double(s.pixel_memory_bytes) / double(s.pixel_entries) : 0.0;
+    kinetic["per_frame"] = {
+        {"events_s", m_events_s}, {"readout_s", m_readout_s}, {"events", m_events}};
   }
 
  private:

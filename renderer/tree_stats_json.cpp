@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "renderer/quality_measures.h"
+#include "renderer/stats_json.h"
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/kinetic_bvh.h"
 
@@ -11,9 +11,7 @@ namespace kinray {
 
 void write_kinetic_tree_stats(const KineticBvh& tree, nlohmann::json& out) {
   const TreeStats s = tree.stats();
-  out["events"] = {{"total", s.events.total()}, {"leaf", s.events.leaf},
-                   {"tree", s.events.tree},     {"flightplan", s.events.flightplan},
-                   {"insert", s.events.insert}, {"delete", s.events.remove}};
+  out["events"] = event_counts_json(s.events);
   out["events_external"] = s.events_external;
   out["events_internal"] = s.events_internal;
   out["realizer_changes"] = s.realizer_changes;

@@ -9,7 +9,7 @@
 
 #include "renderer/frame_schedule.h"
 #include "renderer/image_io.h"
-#include "renderer/quality_measures.h"
+#include "renderer/stats_json.h"
 #include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
@@ -66,14 +66,7 @@ nlohmann::json ksl_json(const KslReport& k) {
   q.events_external = e.external();
   q.events_internal = e.total() - e.external();
   q.objects_present = k.list.triangles;
-  return {{"events",
-           {{"overlap", e.overlap},
-            {"separation", e.separation},
-            {"witness_change", e.witness_change},
-            {"recertification", e.recertification},
-            {"flightplan", e.flightplan},
-            {"rounding", e.rounding},
-            {"total", e.total()}}},
+  return {{"events", event_counts_json(e)},
           {"events_external", q.events_external},
           {"events_internal", q.events_internal},
           {"certificates",

@@ -4,29 +4,23 @@
 // one asks for contacts.
 #include <cstdint>
 
+#include "kinetic/counters.h"
+
 namespace kinray {
 
+// X(member, "stats key"), one line per kind of event.
+#define KINRAY_KSL_EVENT_KINDS(X)                                                             \
+  X(overlap, "overlap")       /* a separated pair began to overlap: its children listed */   \
+  X(separation, "separation") /* an overlapping pair separated: its children removed */      \
+  X(witness_change, "witness_change")   /* a separating axis failed; another took over */    \
+  X(recertification, "recertification") /* a listed node's realizer changed */              \
+  X(flightplan, "flightplan") /* a flightplan segment began: every certificate recomputed */ \
+  X(rounding, "rounding")     /* a failure at the level of rounding: the same state holds */
+
 struct KslEventCounts {
-  uint64_t overlap = 0;          ///< a separated pair began to overlap: replaced by its children
-  uint64_t separation = 0;       ///< an overlapping pair separated: its children pairs removed
-  uint64_t witness_change = 0;   ///< a separating axis failed and another one took over
-  uint64_t recertification = 0;  ///< a realizer of a listed node changed: certificates recomputed
-  uint64_t flightplan = 0;       ///< a flightplan segment began: every certificate recomputed
-  uint64_t rounding = 0;         ///< a failure at the level of rounding: the same state holds
-  [[nodiscard]] uint64_t total() const {
-    return overlap + separation + witness_change + recertification + flightplan + rounding;
-  }
+  KINRAY_EVENT_COUNTERS(KslEventCounts, KINRAY_KSL_EVENT_KINDS)
   /// Events that changed the separation list.
   [[nodiscard]] uint64_t external() const { return overlap + separation; }
-  KslEventCounts& operator+=(const KslEventCounts& o) {
-    overlap += o.overlap;
-    separation += o.separation;
-    witness_change += o.witness_change;
-    recertification += o.recertification;
-    flightplan += o.flightplan;
-    rounding += o.rounding;
-    return *this;
-  }
 };
 
 struct KslStats {

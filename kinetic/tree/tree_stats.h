@@ -4,15 +4,20 @@
 // appearing or disappearing; none depends on how many frames are queried.
 #include <cstdint>
 
+#include "kinetic/counters.h"
+
 namespace kinray {
 
+// X(member, "stats key"), one line per kind of event.
+#define KINRAY_TREE_EVENT_KINDS(X)                                                            \
+  X(leaf, "leaf")             /* a triangle's realizing vertex on a node side was overtaken */ \
+  X(tree, "tree")             /* an inner node's realizer was overtaken by the other child's */ \
+  X(flightplan, "flightplan") /* a mesh reached a key: its certificates recomputed */         \
+  X(insert, "insert")         /* a mesh appeared: its leaves attached */                      \
+  X(remove, "delete")         /* a mesh disappeared: its leaves detached */
+
 struct TreeEventCounts {
-  uint64_t leaf = 0;        ///< a triangle's realizing vertex on one node side was overtaken
-  uint64_t tree = 0;        ///< an inner node's realizer was overtaken by the other child's
-  uint64_t flightplan = 0;  ///< a mesh reached a key: its certificates recomputed
-  uint64_t insert = 0;      ///< a mesh appeared: its leaves attached
-  uint64_t remove = 0;      ///< a mesh disappeared: its leaves detached ("delete" in the stats)
-  [[nodiscard]] uint64_t total() const { return leaf + tree + flightplan + insert + remove; }
+  KINRAY_EVENT_COUNTERS(TreeEventCounts, KINRAY_TREE_EVENT_KINDS)
   /// Certificate failures only (leaf and tree events): what moves with the geometry.
   [[nodiscard]] uint64_t failures() const { return leaf + tree; }
 };

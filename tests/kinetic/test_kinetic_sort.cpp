@@ -406,7 +406,7 @@ TYPED_TEST(KineticSort, ManySmallInstancesShareOneQueue) {
   }
   EXPECT_GT(total.events(), 100u);
   EXPECT_EQ(&pixels[0].stats(), &total);
-  const KineticSortQuality q = quality(total, 1650);
+  const QualityMeasures q = quality_measures(quality_counts(total, 1650));
   EXPECT_GT(q.responsiveness, 0);
   EXPECT_LT(pixels[0].memory_bytes(), 512u);
 }
