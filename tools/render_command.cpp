@@ -59,6 +59,54 @@ std::string summary_details(const RenderTimings& timings, const Backend& backend
   return details + ")";
 }
 
+/// The --video writer (null without --video), its folder made; warns when the encoder's even
+/// sides differ from the frames'.
+std::unique_ptr<VideoWriter> open_video(const RenderParams& params, const RenderJob& job) {
+  if (params.video.empty()) return nullptr;
+  create_folder(fs::path(params.video).parent_path(), "--video");
+  auto video = std::make_unique<VideoWriter>(params.video, params.width, params.height,
+                                             video_fps(params, job.frame_times()));
+  const auto [width, height] = VideoWriter::encoded_size(params.width, params.height);
+  if (width != params.width || height != params.height)
+    warn("--video: video encoders need even sides, so the video is " + std::to_string(width) +
+         "x" + std::to_string(height) + " (the frames are " + std::to_string(params.width) + "x" +
+         std::to_string(params.height) + "); give an even --size for a video of the frames' size");
+  return video;
+}
+
+/// What a render wrote besides its frames, for the summary.
+struct RenderOutputs {
+  const std::string& folder;
+  const std::vector<std::string>& stale;  ///< files of an earlier render removed
+  size_t contact_frames = 0;              ///< frames with tinted contacts (--contacts)
+  const VideoWriter* video = nullptr;
+};
+
+void print_summary(const RenderJob& job, const Backend& backend, const RenderTimings& timings,
+                   const RenderOutputs& outputs) {
+  const RenderParams& params = job.params();
+  const size_t n = timings.frames;
+  std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s%s\n", n,
+              n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
+              params.height, backend.name().c_str(), timings.total,
+              summary_details(timings, backend).c_str());
+  const FrameSlice& slice = job.slice();
+  const std::string last = n > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
+  std::printf("frames: %s/%s%s\n", outputs.folder.c_str(),
+              numbered_file("frame", slice.begin, ".png").c_str(), last.c_str());
+  const std::vector<std::string>& stale = outputs.stale;
+  if (!stale.empty())
+    std::printf("removed %zu file%s of an earlier render from %s (%s%s)\n", stale.size(),
+                stale.size() == 1 ? "" : "s", outputs.folder.c_str(), stale.front().c_str(),
+                stale.size() > 1 ? (" .. " + stale.back()).c_str() : "");
+  if (params.contacts)
+    std::printf("contacts: triangles in contact tinted in %zu of %zu frames\n",
+                outputs.contact_frames, n);
+  if (outputs.video)
+    std::printf("video:  %s (%s)\n", params.video.c_str(), outputs.video->codec().c_str());
+  if (!params.stats.empty()) std::printf("stats:  %s\n", params.stats.c_str());
+}
+
 void run_render(const RenderParams& flags) {
   check_options_apply(flags, std::array{flags.backend});
   const std::string out = output_folder(flags);
@@ -85,18 +133,7 @@ void run_render(const RenderParams& flags) {
 
   // Everything is valid: from here on files are written.
   create_folder(out, "--out");
-  std::unique_ptr<VideoWriter> video;
-  if (!params.video.empty()) {
-    create_folder(fs::path(params.video).parent_path(), "--video");
-    video = std::make_unique<VideoWriter>(params.video, params.width, params.height,
-                                          video_fps(params, job.frame_times()));
-    const auto [width, height] = VideoWriter::encoded_size(params.width, params.height);
-    if (width != params.width || height != params.height)
-      warn("--video: video encoders need even sides, so the video is " + std::to_string(width) +
-           "x" + std::to_string(height) + " (the frames are " + std::to_string(params.width) +
-           "x" + std::to_string(params.height) +
-           "); give an even --size for a video of the frames' size");
-  }
+  const std::unique_ptr<VideoWriter> video = open_video(params, job);
   const bool write_id = std::find(params.aov.begin(), params.aov.end(), "id") != params.aov.end();
   const bool write_depth =
       std::find(params.aov.begin(), params.aov.end(), "depth") != params.aov.end();
@@ -134,25 +171,8 @@ void run_render(const RenderParams& flags) {
   const bool whole = job.slice().begin == 0 && job.slice().end == job.frame_times().size();
   const std::vector<std::string> stale =
       whole ? remove_stale_frames(folder, written) : std::vector<std::string>{};
-  if (!params.quiet) {
-    const size_t n = timings.frames;
-    std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s%s\n", n,
-                n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
-                params.height, backend->name().c_str(), timings.total,
-                summary_details(timings, *backend).c_str());
-    const FrameSlice& slice = job.slice();
-    const std::string last = n > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
-    std::printf("frames: %s/%s%s\n", out.c_str(), numbered_file("frame", slice.begin, ".png").c_str(),
-                last.c_str());
-    if (!stale.empty())
-      std::printf("removed %zu file%s of an earlier render from %s (%s%s)\n", stale.size(),
-                  stale.size() == 1 ? "" : "s", out.c_str(), stale.front().c_str(),
-                  stale.size() > 1 ? (" .. " + stale.back()).c_str() : "");
-    if (params.contacts)
-      std::printf("contacts: triangles in contact tinted in %zu of %zu frames\n", contact_frames, n);
-    if (video) std::printf("video:  %s (%s)\n", params.video.c_str(), video->codec().c_str());
-    if (!params.stats.empty()) std::printf("stats:  %s\n", params.stats.c_str());
-  }
+  if (!params.quiet)
+    print_summary(job, *backend, timings, {out, stale, contact_frames, video.get()});
 }
 
 }  // namespace
