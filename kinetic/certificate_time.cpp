@@ -57,6 +57,26 @@ bool clear_through(const double* c, double a, double b, double big_s) {
   }
 }
 
+/// Interval Horner over [a, b] (0 <= a <= b): the lower end of an enclosure of f's range there
+/// exceeds twice ends_clear's margin. Rounding moves the computed end by at most what it moves
+/// Horner's value (gamma_2N times the same magnitudes), so exact f exceeds the margin throughout
+/// and Horner's value is positive at every double of the window. It decides the windows
+/// clear_through cannot, a minimum inside the window far above zero, as the depth certificates
+/// of a pixel order have where two surfaces are far apart and their distance turns.
+template <int N>
+bool range_clear(const double* c, double a, double b, double big_s) {
+  if (!(a >= 0)) return false;
+  double scale = 0, lo = c[N], hi = c[N];
+  for (int k = N; k >= 0; --k) scale = scale * big_s + std::fabs(c[k]);
+  for (int k = N - 1; k >= 0; --k) {
+    const double l = lo >= 0 ? lo * a : lo * b, h = hi >= 0 ? hi * b : hi * a;
+    lo = l + c[k];
+    hi = h + c[k];
+  }
+  const double margin = 16 * double(N) * kEps * scale;
+  return std::isfinite(margin) && lo > 2 * margin;
+}
+
 }  // namespace
 
 bool holds_through(const Polynomial& f, double s_now, double s_end) {
@@ -67,6 +87,8 @@ bool holds_through(const Polynomial& f, double s_now, double s_end) {
     case 1: return clear_through<1>(f.c.data(), s_now, s_end, big_s);
     case 2: return clear_through<2>(f.c.data(), s_now, s_end, big_s);
     case 3: return clear_through<3>(f.c.data(), s_now, s_end, big_s);
+    case 4: return range_clear<4>(f.c.data(), s_now, s_end, big_s) || clear_through<4>(f.c.data(), s_now, s_end, big_s);
+    case 5: return range_clear<5>(f.c.data(), s_now, s_end, big_s) || clear_through<5>(f.c.data(), s_now, s_end, big_s);
     default: return false;
   }
 }

@@ -13,13 +13,14 @@
 
 namespace kinray {
 
-/// The floating-point filter in front of the exact search: true when f (stored degree <= 3) is
+/// The floating-point filter in front of the exact search: true when f (stored degree <= 5) is
 /// positive on all of [s_now, s_end] by more than any rounding of Horner's rule can take away
 /// there, so that no evaluation in the window (all that the exact search and the event handler
 /// look at) can see it fail: its two end values clear an error bound, and its minimum on the
 /// window is at an end (it opens downwards, or its derivative passes the same test with one
 /// sign). False means undecided. Most certificates the grid schedules hold through their
-/// segment (every key recomputes all of them), and this spares them the root isolation.
+/// segment (every key recomputes all of them), and this spares them the root isolation; degrees
+/// 4 and 5 are the pixel orders' depth certificates and their envelopes (decided_despite).
 [[nodiscard]] bool holds_through(const Polynomial& f, double s_now, double s_end);
 
 /// first_failure(f, s_now, s_end) (root_finding.h), with a closed-form path for degree 2.

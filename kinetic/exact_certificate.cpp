@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "kinetic/certificate_time.h"
 #include "kinetic/collision/rational_polynomial.h"
 #include "kinetic/double_steps.h"
 #include "kinetic/root_finding.h"
@@ -256,6 +257,11 @@ bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
   // Both ways: a structure that swaps the pair schedules -f, computed from the same call.
   const Polynomial lower = with_error(f, error, -1), upper = with_error(f, error, 1);
   auto decided = [&](const Polynomial& below, const Polynomial& above) {
+    // first_failure returns s_now exactly when sign_after is negative there; else the filter,
+    // which decides only where first_failure(below) finds no failure either: most depth
+    // certificates hold through their segment one way and are broken now the other.
+    if (sign_after(below, s_now) < 0) return sign_after(above, s_now) < 0;
+    if (holds_through(below, s_now, s_end)) return true;
     const std::optional<double> low = first_failure(below, s_now, s_end);
     if (!low) return true;
     const std::optional<double> high = first_failure(above, s_now, s_end);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kinetic/certificate_time.h"
+
 namespace kinray {
 
 namespace {
@@ -80,8 +82,11 @@ Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
     }
     return s;
   }
+  // holds_through decides only where first_failure would find no failure (the same answer).
   const auto r = c.exact ? exact_first_failure(*c.exact, s_now, c.end - c.origin)
-                         : first_failure(c.f, s_now, c.end - c.origin);
+                 : holds_through(c.f, s_now, c.end - c.origin)
+                     ? std::nullopt
+                     : first_failure(c.f, s_now, c.end - c.origin);
   if (!r) {
     // Renewal at the end of validity. A certificate that ends at (or before) now is stale: the
     // keys have not switched to the next motion yet, and renewing at now would loop; the owner

@@ -28,23 +28,37 @@ class KineticSortedList {
   KineticSortedList(const KineticSortedList&) = delete;
   KineticSortedList& operator=(const KineticSortedList&) = delete;
 
-  /// O(log n) certificate comparisons to find the place, O(n) to shift the entries after it.
+  /// O(log n) certificate comparisons to find the place, O(n) to shift the entries after it. The
+  /// search's last comparison on each side is with the new neighbours, so their certificates are
+  /// scheduled as the search computed them: (front, id) as is, (id, back) negated (exactly -f,
+  /// the keys contract), none computed twice.
   void insert(uint32_t id, double now) {
     KINRAY_DCHECK(!contains(id));
     const size_t n = m_entries.size();
+    OrderCertificate with_front, with_back;  // of (entry lo - 1, id) and (entry lo, id)
     size_t lo = 0, hi = n;
     while (lo < hi) {
       const size_t mid = (lo + hi) / 2;
-      if (m_core.before(m_entries[mid].id, id, now))
+      const uint32_t other = m_entries[mid].id;
+      OrderCertificate c = m_core.certificate(other, id, now);
+      if (detail::order_sign(c, now, other, id) > 0) {
         lo = mid + 1;
-      else
+        with_front = std::move(c);
+      } else {
         hi = mid;
+        with_back = std::move(c);
+      }
     }
     m_entries.insert(m_entries.begin() + static_cast<std::ptrdiff_t>(lo), Entry{id, kNoEvent});
     renumber(lo + 1);
     if (n > 0) ++m_core.stats().certificates_live;
-    if (lo > 0) schedule(lo - 1, now);
-    if (lo < n) schedule(lo, now);
+    const size_t size = m_entries.size();
+    if (lo > 0)
+      m_core.schedule(m_entries[lo - 1].event, with_front, m_entries[lo - 1].id, id, now, size, lo - 1);
+    if (lo < n) {
+      with_back.negate();
+      m_core.schedule(m_entries[lo].event, with_back, id, m_entries[lo + 1].id, now, size, lo);
+    }
     if (m_core.audit_on()) audit(now);
   }
 

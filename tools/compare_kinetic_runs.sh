@@ -14,7 +14,10 @@
 # It prints one line per run (events total, certificates computed, coverage changes, files
 # compared, OK or DIFF with what differs) and exits non-zero if any run differs.
 # Environment: SIZE (default 96x72), FRAMES (6), SORTS (default "list"; e.g. "list tournament
-# heap" runs every pixel order), MODELS (space-separated model paths, default three animated ones).
+# heap" runs every pixel order), MODELS (space-separated model paths, default three animated ones),
+# IGNORE_COUNTERS (space-separated counter names left out of the comparison, default none: e.g.
+# "kinetic.certificates_computed quality.responsiveness" for a change that only computes fewer
+# certificates; the line then still shows how those counters moved).
 set -euo pipefail
 base=${1:?usage: compare_kinetic_runs.sh BASE_BINARY NEW_BINARY [WORK_DIR]}
 new=${2:?usage: compare_kinetic_runs.sh BASE_BINARY NEW_BINARY [WORK_DIR]}
@@ -44,6 +47,14 @@ for k in sorted(out): print(k, json.dumps(out[k]))
 PY
 }
 
+ignore=${IGNORE_COUNTERS:-}
+
+# The counters of one run, without the ignored ones.
+compared() {
+  awk -v ignore="$ignore" 'BEGIN { n = split(ignore, names, " "); for (i = 1; i <= n; i++) skip[names[i]] = 1 }
+                           !($1 in skip)' "$1"
+}
+
 status=0
 for sort in $sorts; do
   for scene in $scenes; do
@@ -59,7 +70,7 @@ for sort in $sorts; do
         counters "$work/$side/$name.json" >"$work/$side/$name.counters"
       done
       what=""
-      diff -q "$work/base/$name.counters" "$work/new/$name.counters" >/dev/null || what="counters"
+      diff -q <(compared "$work/base/$name.counters") <(compared "$work/new/$name.counters") >/dev/null || what="counters"
       files=0
       for f in "$work/base/$name"/*; do
         files=$((files + 1))
@@ -68,11 +79,16 @@ for sort in $sorts; do
       [[ $(ls "$work/base/$name" | wc -l) == $(ls "$work/new/$name" | wc -l) ]] || what="$what file-count"
       get() { awk -v k="$1" '$1 == k { print $2 }' "$work/new/$name.counters"; }
       summary="events $(get events.total) (boundary $(get events.boundary) vertex_row $(get events.vertex_row) orientation $(get events.orientation) swap $(get events.swap) flightplan $(get events.flightplan) insert $(get events.insert) delete $(get events.delete)), certificates $(get kinetic.certificates_computed), coverage changes $(get kinetic.coverage_changes), $files files"
+      for counter in $ignore; do
+        before=$(awk -v k="$counter" '$1 == k { print $2 }' "$work/base/$name.counters")
+        after=$(get "$counter")
+        [[ $before == "$after" ]] || summary="$summary, ignored $counter $before -> $after"
+      done
       if [[ -z $what ]]; then
         echo "$name: OK   $summary"
       else
         echo "$name: DIFF ($what) $summary"
-        diff "$work/base/$name.counters" "$work/new/$name.counters" | head -20 || true
+        diff <(compared "$work/base/$name.counters") <(compared "$work/new/$name.counters") | head -20 || true
         status=1
       fi
     done

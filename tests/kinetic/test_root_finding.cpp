@@ -310,6 +310,8 @@ TEST(RootFinding, HoldsThroughFilterDecidesOnlyCertainWindows) {
   EXPECT_TRUE(holds_through(Polynomial{1, 1, 0}, 0, 1));           // increasing, positive
   EXPECT_TRUE(holds_through(Polynomial{1, 0, -0.5}, 0, 1));        // opens downwards, ends > 0
   EXPECT_TRUE(holds_through(from_roots({-1, 2, 3}), 1, 1.5));  // cubic, decreasing there
+  EXPECT_TRUE(holds_through(from_roots({-1, 2, 3, 4, 5}), 1, 1.1));  // quintic, as depth ones
+  EXPECT_FALSE(holds_through(from_roots({-1, 1.05, 3, 4, 5}), 1, 1.1));  // a root inside
   // A root in the window, a dip between positive ends, or a root at the window's start: never.
   EXPECT_FALSE(holds_through(from_roots({0.5, 2}), 0, 1));
   EXPECT_FALSE(holds_through(Polynomial{0.01, -1, 1}, 0, 1));  // vertex at 0.5, f(0.5) < 0
@@ -322,7 +324,7 @@ TEST(RootFinding, HoldsThroughFilterDecidesOnlyCertainWindows) {
   int decided = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     Polynomial f;
-    f.degree = 1 + trial % 3;
+    f.degree = 1 + trial % 5;  // up to the depth certificates' 5
     for (int k = 0; k <= f.degree; ++k) f.c[size_t(k)] = coef(rng) * std::pow(10.0, -3 * (trial % 4));
     const double a = start(rng), b = a + width(rng);
     if (!holds_through(f, a, b)) continue;
