@@ -187,6 +187,10 @@ double on_grid(const IsolatedRoot& root) {
   return mpq_class(mpq_class(a) * e).get_d();  // k e with k <= 2^48: exactly a double
 }
 
+RationalPolynomial coplanarity_of(const std::array<PolyVec, 4>& p) {
+  return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+}
+
 }  // namespace
 
 RationalMotion to_rational(const PrimitiveMotion& motion) {
@@ -202,14 +206,14 @@ RationalMotion to_rational(const PrimitiveMotion& motion) {
 RationalPolynomial coplanarity_polynomial(const RationalMotion& motion) {
   std::array<PolyVec, 4> p;
   for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+  return coplanarity_of(p);
 }
 
 std::vector<double> exact_contact_times(ContactType type, const RationalMotion& motion,
                                         LocalWindow window) {
   std::array<PolyVec, 4> p;
   for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  const RationalPolynomial coplanarity = coplanarity_polynomial(motion);
+  const RationalPolynomial coplanarity = coplanarity_of(p);
   std::unique_ptr<const ContactCondition> owned;
   if (type == ContactType::vertex_face)
     owned = std::make_unique<VertexInTriangle>(p);

@@ -52,7 +52,7 @@ int sign_variations(const std::vector<mpq_class>& b) {
   return variations;
 }
 
-/// Roots of the square-free p in the open (a, b), whose ends are not roots, in order.
+/// Roots of p, none multiple in [a, b], in the open (a, b), whose ends are not roots, in order.
 void descartes(const RationalPolynomial& p, const mpq_class& a, const mpq_class& b,
                std::vector<IsolatedRoot>& out) {
   const int variations = sign_variations(bernstein_coefficients(p, a, b));
@@ -280,12 +280,16 @@ std::vector<IsolatedRoot> isolate_roots(const RationalPolynomial& f, const mpq_c
                                         const mpq_class& hi) {
   std::vector<IsolatedRoot> roots;
   if (lo < hi && certainly_no_root(f, lo, hi)) return roots;
-  RationalPolynomial p = squarefree_part(f);
+  // f' without a root in [lo, hi]: f's roots there are simple, and f serves as the square-free
+  // part on [lo, hi] (all that the isolation, refinement and sign_at's gcd test need of it).
+  const bool monotone =
+      lo < hi && f.degree() >= 2 && certainly_no_root(f.derivative(), lo, hi);
+  RationalPolynomial p = monotone ? f : squarefree_part(f);
   if (p.degree() <= 0) return roots;
   const bool root_at_lo = sgn(p(lo)) == 0, root_at_hi = lo < hi && sgn(p(hi)) == 0;
   if (root_at_lo) roots.push_back({p, lo, lo});
   if (lo == hi) return roots;
-  // Divide out the roots at the ends (simple, p being square-free), so that the open interval's
+  // Divide out the roots at the ends (simple, as every root of p in [lo, hi]), so that the open interval's
   // roots are isolated by a polynomial that does not vanish at its ends.
   if (root_at_lo) p = divide(p, RationalPolynomial::linear(-lo, 1)).first;
   if (root_at_hi) p = divide(p, RationalPolynomial::linear(-hi, 1)).first;
@@ -298,14 +302,12 @@ int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
   if (g.is_zero()) return 0;
   if (const int s = interval_sign_at(g, root); s != 0) return s;
   if (root.is_rational()) return sgn(g(root.lo));
-  for (int attempt = 0;; ++attempt) {
-    if (attempt == 0) {
-      // Doubles did not decide even on the narrowed interval: most likely g vanishes there.
-      // h = gcd divides the square-free poly, so its roots are simple and, inside [lo, hi],
-      // can only be the isolated root itself; the ends are not roots of poly, hence not of h.
-      const RationalPolynomial h = gcd(root.poly, g);
-      if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
-    }
+  // Doubles did not decide even on the narrowed interval: most likely g vanishes there.
+  // h = gcd divides poly, so inside [lo, hi] its only possible root is the isolated one,
+  // simple; the ends are not roots of poly, hence not of h.
+  const RationalPolynomial h = gcd(root.poly, g);
+  if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
+  for (;;) {
     const std::vector<mpq_class> b = bernstein_coefficients(g, root.lo, root.hi);
     bool positive = true, negative = true;
     for (const mpq_class& x : b) {

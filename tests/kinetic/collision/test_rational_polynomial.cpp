@@ -100,6 +100,20 @@ TEST(RationalPolynomial, RootsJustOutsideOrAtTheEndsOfTheInterval) {
   EXPECT_EQ(isolate_roots(square - RationalPolynomial({tiny * tiny}), 0, 1).size(), 2u);
 }
 
+TEST(RationalPolynomial, MonotoneOnTheIntervalButNotSquareFree) {
+  // (t - 1/3)(t - 3)^2: the double root lies outside [0, 1], where f is monotone, so f itself
+  // isolates the root (no gcd with f'); signs there stay exact, zeros included.
+  const RationalPolynomial f = from_roots({mpq_class(1, 3), 3, 3});
+  std::vector<IsolatedRoot> roots = isolate_roots(f, 0, 1);
+  ASSERT_EQ(roots.size(), 1u);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 3), 1), roots[0]), 0);
+  EXPECT_EQ(sign_at(from_roots({3, 3}), roots[0]), 1);
+  const mpq_class tiny(1, mpz_class(1) << 80);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 3) - tiny, 1), roots[0]), -1);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 3) + tiny, 1), roots[0]), 1);
+  EXPECT_EQ(isolate_roots(f, 0, 4).size(), 2u);  // the double root once, beside the simple one
+}
+
 TEST(RationalPolynomial, BernsteinCoefficientsBoundTheRange) {
   const RationalPolynomial p({1, -3, 2});  // (1 - t)(1 - 2t)
   const std::vector<mpq_class> b = bernstein_coefficients(p, 0, 1);
