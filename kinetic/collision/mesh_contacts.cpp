@@ -110,8 +110,7 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
     for (int j = 0; j < 3; ++j) {
       const std::array<std::uint32_t, 2> ea = {fa[i], fa[(i + 1) % 3]};
       const std::array<std::uint32_t, 2> eb = {fb[j], fb[(j + 1) % 3]};
-      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters,
-                window);
+      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters, window);
     }
 }
 

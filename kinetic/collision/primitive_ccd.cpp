@@ -131,7 +131,8 @@ std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motio
     return {};
   }
   IntervalCcdCounters interval;
-  std::optional<std::vector<double>> certified = interval_contact_times(type, motion, interval, window);
+  std::optional<std::vector<double>> certified =
+      interval_contact_times(type, motion, interval, window);
   count.interval_rejections += interval.rejections;
   count.interval_contacts += interval.contacts;
   count.exact_signs += interval.exact_signs;

@@ -282,15 +282,14 @@ std::vector<IsolatedRoot> isolate_roots(const RationalPolynomial& f, const mpq_c
   if (lo < hi && certainly_no_root(f, lo, hi)) return roots;
   // f' without a root in [lo, hi]: f's roots there are simple, and f serves as the square-free
   // part on [lo, hi] (all that the isolation, refinement and sign_at's gcd test need of it).
-  const bool monotone =
-      lo < hi && f.degree() >= 2 && certainly_no_root(f.derivative(), lo, hi);
+  const bool monotone = lo < hi && f.degree() >= 2 && certainly_no_root(f.derivative(), lo, hi);
   RationalPolynomial p = monotone ? f : squarefree_part(f);
   if (p.degree() <= 0) return roots;
   const bool root_at_lo = sgn(p(lo)) == 0, root_at_hi = lo < hi && sgn(p(hi)) == 0;
   if (root_at_lo) roots.push_back({p, lo, lo});
   if (lo == hi) return roots;
-  // Divide out the roots at the ends (simple, as every root of p in [lo, hi]), so that the open interval's
-  // roots are isolated by a polynomial that does not vanish at its ends.
+  // Divide out the roots at the ends (simple, as every root of p in [lo, hi]), so that the
+  // open interval's roots are isolated by a polynomial that does not vanish at its ends.
   if (root_at_lo) p = divide(p, RationalPolynomial::linear(-lo, 1)).first;
   if (root_at_hi) p = divide(p, RationalPolynomial::linear(-hi, 1)).first;
   if (p.degree() >= 1) descartes(p, lo, hi, roots);

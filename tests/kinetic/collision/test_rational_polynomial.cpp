@@ -78,10 +78,9 @@ TEST(RationalPolynomial, SignsCloserToTheRootThanDoublesResolve) {
   mpz_mul_2exp(huge.get_num_mpz_t(), huge.get_num_mpz_t(), 2000);
   EXPECT_EQ(sign_at(RationalPolynomial({-huge, huge}), roots[0]), -1);
   // from a fresh, wide isolating interval, signs that need the interval narrowed first
-  for (const auto& [value, expected] : {std::pair{mpq_class(7071, 10000), 1},
-                                        std::pair{mpq_class(7072, 10000), -1},
-                                        std::pair{mpq_class(above), -1},
-                                        std::pair{mpq_class(below), 1}}) {
+  for (const auto& [value, expected] :
+       {std::pair{mpq_class(7071, 10000), 1}, std::pair{mpq_class(7072, 10000), -1},
+        std::pair{mpq_class(above), -1}, std::pair{mpq_class(below), 1}}) {
     IsolatedRoot fresh = isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1)[0];
     EXPECT_EQ(sign_at(RationalPolynomial::linear(-value, 1), fresh), expected) << value;
     EXPECT_EQ(sign_at(RationalPolynomial({-1, 0, 2}), fresh), 0);
