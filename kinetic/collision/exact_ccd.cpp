@@ -187,6 +187,10 @@ double on_grid(const IsolatedRoot& root) {
   return mpq_class(mpq_class(a) * e).get_d();  // k e with k <= 2^48: exactly a double
 }
 
+RationalPolynomial coplanarity_of(const std::array<PolyVec, 4>& p) {
+  return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+}
+
 }  // namespace
 
 RationalMotion to_rational(const PrimitiveMotion& motion) {
@@ -202,13 +206,14 @@ RationalMotion to_rational(const PrimitiveMotion& motion) {
 RationalPolynomial coplanarity_polynomial(const RationalMotion& motion) {
   std::array<PolyVec, 4> p;
   for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
+  return coplanarity_of(p);
 }
 
-std::vector<double> exact_contact_times(ContactType type, const RationalMotion& motion) {
+std::vector<double> exact_contact_times(ContactType type, const RationalMotion& motion,
+                                        LocalWindow window) {
   std::array<PolyVec, 4> p;
   for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  const RationalPolynomial coplanarity = coplanarity_polynomial(motion);
+  const RationalPolynomial coplanarity = coplanarity_of(p);
   std::unique_ptr<const ContactCondition> owned;
   if (type == ContactType::vertex_face)
     owned = std::make_unique<VertexInTriangle>(p);
@@ -216,18 +221,19 @@ std::vector<double> exact_contact_times(ContactType type, const RationalMotion& 
     owned = std::make_unique<EdgesMeet>(p);
   const ContactCondition& condition = *owned;
 
-  const mpq_class zero = 0, one = 1;
+  // The candidates of [0, 1] that lie in the window: its ends count only where they are 0 or 1.
+  const mpq_class zero = 0, one = 1, lo = window.lo, hi = window.hi;
   std::vector<IsolatedRoot> candidates;
   if (!coplanarity.is_zero()) {
-    candidates = isolate_roots(coplanarity, zero, one);
+    candidates = isolate_roots(coplanarity, lo, hi);
   } else {
-    candidates.push_back({RationalPolynomial::linear(0, 1), zero, zero});
-    candidates.push_back({RationalPolynomial::linear(-1, 1), one, one});
+    if (lo == zero) candidates.push_back({RationalPolynomial::linear(0, 1), zero, zero});
+    if (hi == one) candidates.push_back({RationalPolynomial::linear(-1, 1), one, one});
     std::vector<const RationalPolynomial*> polynomials;
     condition.collect(polynomials);
     for (const RationalPolynomial* q : polynomials)
       if (q->degree() >= 1)
-        for (IsolatedRoot& r : isolate_roots(*q, zero, one)) candidates.push_back(std::move(r));
+        for (IsolatedRoot& r : isolate_roots(*q, lo, hi)) candidates.push_back(std::move(r));
   }
 
   std::vector<double> times;

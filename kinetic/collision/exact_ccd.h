@@ -39,8 +39,10 @@ inline constexpr double kContactTimeEarliness = 0x1p-48;
 /// vanishes identically (coplanar motion) the contact set may be a whole interval: then every
 /// interval of contact is reported by its first and last times (and any critical time inside),
 /// found among 0, 1 and the roots of the polynomials whose signs decide the 2-D test.
-/// Each time is rounded down to the grid of kContactTimeEarliness.
+/// Each time is rounded down to the grid of kContactTimeEarliness. With a window: exactly those
+/// of these times whose exact time lies in it.
 [[nodiscard]] std::vector<double> exact_contact_times(ContactType type,
-                                                      const RationalMotion& motion);
+                                                      const RationalMotion& motion,
+                                                      LocalWindow window = {});
 
 }  // namespace kinray

@@ -126,7 +126,7 @@ class PairMotion {
 constexpr int kMaxDepth = 10;
 constexpr int kMaxIntervals = 96;
 
-/// Splits [0, 1] until every piece is free of contact or holds exactly one certified contact
+/// Splits the window until every piece is free of contact or holds exactly one certified contact
 /// (appended to `contacts`, in time order); false when the budget runs out first.
 bool classify(const PairMotion& pair, Interval t, int depth, int& budget,
               std::vector<Interval>& contacts) {
@@ -144,7 +144,7 @@ bool classify(const PairMotion& pair, Interval t, int depth, int& budget,
     }
   }
   if (depth == kMaxDepth) return false;
-  const double mid = 0.5 * (t.lo + t.hi);  // exact: the ends are dyadic
+  const double mid = 0.5 * (t.lo + t.hi);  // inside [lo, hi] however it rounds
   return classify(pair, {t.lo, mid}, depth + 1, budget, contacts) &&
          classify(pair, {mid, t.hi}, depth + 1, budget, contacts);
 }
@@ -205,7 +205,8 @@ constexpr double kMaxCoordinate = 0x1p150;
 
 std::optional<std::vector<double>> interval_contact_times(ContactType type,
                                                           const PrimitiveMotion& motion,
-                                                          IntervalCcdCounters& counters) {
+                                                          IntervalCcdCounters& counters,
+                                                          LocalWindow window) {
   for (int i = 0; i < 4; ++i)
     if (motion.start[i].cwiseAbs().maxCoeff() >= kMaxCoordinate ||
         motion.end[i].cwiseAbs().maxCoeff() >= kMaxCoordinate)
@@ -213,7 +214,7 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
   const PairMotion pair(type, motion);
   std::vector<Interval> contacts;
   int budget = kMaxIntervals;
-  if (!classify(pair, {0, 1}, 0, budget, contacts)) return std::nullopt;
+  if (!classify(pair, {window.lo, window.hi}, 0, budget, contacts)) return std::nullopt;
   std::vector<double> times;
   for (const Interval& t : contacts) times.push_back(grid_floor_of_root(pair, motion, t, counters));
   times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one grid cell

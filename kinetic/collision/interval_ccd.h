@@ -21,10 +21,11 @@ struct IntervalCcdCounters {
   std::uint64_t exact_signs = 0;  ///< grid points too close to a root, signed in rationals
 };
 
-/// Every time of contact in local time [0, 1], sorted, each floor(t* / e) e for the exact
-/// contact time t* and e = kContactTimeEarliness; or nothing when floating point cannot
-/// certify the answer. Coordinates must be finite.
+/// Every time of contact in local time [0, 1] (in `window`), sorted, each floor(t* / e) e for
+/// the exact contact time t* and e = kContactTimeEarliness; or nothing when floating point
+/// cannot certify the answer. Coordinates must be finite.
 [[nodiscard]] std::optional<std::vector<double>> interval_contact_times(
-    ContactType type, const PrimitiveMotion& motion, IntervalCcdCounters& counters);
+    ContactType type, const PrimitiveMotion& motion, IntervalCcdCounters& counters,
+    LocalWindow window = {});
 
 }  // namespace kinray

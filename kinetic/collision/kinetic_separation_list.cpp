@@ -197,8 +197,7 @@ void KineticSeparationList::overlap(uint32_t id) {
   const Record& r = m_records[id];
   if (m_a.topology().nodes[r.a].leaf() && m_b.topology().nodes[r.b].leaf()) {
     set_state(id, State::leaf);
-    test_leaf(id);
-    (void)watch(id);
+    (void)watch(id);  // tests the pair up to its separation event
   } else {
     expand(id);
   }
@@ -233,6 +232,7 @@ KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id) {
     first = std::min(first, c.negated().failure_time(now));  // pad - gap_d turns negative
   }
   schedule(id, first);
+  if (m_records[id].state == State::leaf) test_leaf(id);
   return Outcome::unchanged;
 }
 
@@ -295,7 +295,8 @@ void KineticSeparationList::begin_segment(const MeshSegment& a, const MeshSegmen
   m_mesh_b = &b;
   m_segment_begin = time_begin;
   m_segment_end = time_end;
-  m_tested.clear();
+  m_tested_until.clear();
+  m_found.clear();
   ++m_stats.events.flightplan;
   if (m_root == kNone) {  // initialisation: the simultaneous traversal
     if (m_a.topology().nodes.empty() || m_b.topology().nodes.empty()) return;
@@ -303,10 +304,8 @@ void KineticSeparationList::begin_segment(const MeshSegment& a, const MeshSegmen
     classify_new(m_root);
   } else {
     for (uint32_t id = 0; id < m_records.size(); ++id)
-      if (m_records[id].alive) count(certify(id), Reason::flightplan);
+      if (m_records[id].alive) count(certify(id), Reason::flightplan);  // tests listed leaves
   }
-  for (uint32_t id = 0; id < m_records.size(); ++id)
-    if (m_records[id].alive && m_records[id].state == State::leaf) test_leaf(id);
 }
 
 void KineticSeparationList::advance_to(double t) {
@@ -350,20 +349,50 @@ void KineticSeparationList::recertify_dirty() {
 
 // ---- contacts --------------------------------------------------------------------------------
 
-void KineticSeparationList::test_leaf(uint32_t id) {
-  const Record& r = m_records[id];
+uint64_t KineticSeparationList::triangle_pair(const Record& r) const {
   uint32_t ta = m_a.topology().nodes[r.a].triangle, tb = m_b.topology().nodes[r.b].triangle;
   if (m_self && tb < ta) std::swap(ta, tb);  // brute force's order: i < j
-  if (!m_tested.insert(uint64_t(ta) << 32 | tb).second) return;
+  return uint64_t(ta) << 32 | tb;
+}
+
+double KineticSeparationList::episode_end(const Record& r) const {
+  if (r.event == kNoEvent) return m_segment_end;
+  return std::min(m_sim.queue().key(r.event).time, m_segment_end);
+}
+
+void KineticSeparationList::test_leaf(uint32_t id) {
+  const Record& r = m_records[id];
+  const uint64_t pair = triangle_pair(r);
+  const double end = episode_end(r);
+  const auto [it, first_test] = m_tested_until.try_emplace(pair, end);
+  if (!first_test && it->second >= end) return;
+  const double begin = first_test ? m_sim.now() : std::max(m_sim.now(), it->second);
+  it->second = end;
+  // The window in the segment's local time, widened by more than the rounding of the division
+  // (a wider window only meets contacts some window finds anyway: m_found drops the repeats).
+  const double length = m_segment_end - m_segment_begin;
+  auto local = [&](double t, double direction) {
+    const double u = (t - m_segment_begin) / length;
+    const double error = 4 * std::numeric_limits<double>::epsilon() *
+                         (std::fabs(u) + (std::fabs(t) + std::fabs(m_segment_begin)) / length);
+    return std::clamp(u + direction * error, 0.0, 1.0);
+  };
+  const LocalWindow window = {begin <= m_segment_begin ? 0.0 : local(begin, -1),
+                              end >= m_segment_end ? 1.0 : local(end, +1)};
   ++m_stats.leaf_tests;
   ++m_counters.triangle_pairs;
+  const uint32_t ta = uint32_t(pair >> 32), tb = uint32_t(pair);
   const size_t first = m_pending.size();
   triangle_pair_contacts(*m_mesh_a, ta, *m_mesh_b, tb, m_segment_begin, m_segment_end, m_pending,
-                         m_counters.primitives);
+                         m_counters.primitives, window);
+  size_t kept = first;
   for (size_t k = first; k < m_pending.size(); ++k) {
     canonical_contact(m_pending[k]);
-    std::push_heap(m_pending.begin(), m_pending.begin() + long(k) + 1, later);
+    if (!m_found.insert(m_pending[k]).second) continue;  // found in an earlier window
+    m_pending[kept] = m_pending[k];
+    std::push_heap(m_pending.begin(), m_pending.begin() + long(++kept), later);
   }
+  m_pending.resize(kept);
 }
 
 void KineticSeparationList::release_contacts(double t, std::vector<Contact>& out) {

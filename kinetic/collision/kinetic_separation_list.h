@@ -6,15 +6,16 @@
 // Every node pair met by the simultaneous traversal is a record:
 //   - separated: some axis separates the two boxes by more than the pad; its witness is one
 //     linear certificate between two realizers (the lower box's max, the upper box's min);
-//   - an overlapping leaf pair: a triangle pair, listed, tested by the primitive CCD on every
-//     flightplan segment during which it is listed;
+//   - an overlapping leaf pair: a triangle pair, listed, tested by the primitive CCD over the
+//     part of each flightplan segment during which it is listed (its overlap episodes);
 //   - expanded: an overlapping inner pair whose children pairs are records; it is watched for
 //     separation (six linear certificates, one per axis and direction).
 // The separation list is the front: the separated pairs and the overlapping leaf pairs. Events:
 // a witness fails (another axis takes over, or the pair overlaps and is replaced by its children
 // pairs); a watched pair separates (its children pairs are replaced by the pair); a realizer of a
 // node in a record changes (KineticBvh's observer: the record is recertified); a segment begins
-// (every record is recertified, every listed leaf pair tested on the new segment).
+// (every record is recertified). A listed leaf pair is tested from the time it is listed to its
+// separation event (or the segment's end), and again from there whenever that event moves later.
 //
 // Conservative: boxes are closed and padded by `pad`, far above the rounding between the trees'
 // motion a + b (t - o) and the primitive tests' segment motion; a triangle pair in contact at t*
@@ -23,7 +24,8 @@
 // pairs are (l, l), (l, r), (r, r). Triangles sharing a vertex are never paired.
 #include <array>
 #include <cstdint>
-#include <unordered_set>
+#include <set>
+#include <unordered_map>
 #include <vector>
 
 #include "kinetic/collision/ksl_stats.h"
@@ -64,7 +66,8 @@ class KineticSeparationList {
 
   /// At t strictly between events and within the segment: the list equals a fresh traversal's
   /// front at t, every certificate holds at t, every event is at its certificate's failure time,
-  /// every listed leaf pair was tested on this segment. Throws KineticAuditFailure with context.
+  /// every listed leaf pair was tested on this segment from now to its separation event (or the
+  /// segment's end). Throws KineticAuditFailure with context.
   void audit(double t) const;
 
   /// The front now, sorted.
@@ -120,7 +123,12 @@ class KineticSeparationList {
   Outcome certify(uint32_t id);
   void count(Outcome outcome, Reason reason);
   void schedule(uint32_t id, double time);
+  /// A listed leaf pair: tests its triangle pair from where its tests so far end (or now) to its
+  /// separation event, or the segment's end when it has none in the segment.
   void test_leaf(uint32_t id);
+  /// The end of the test window of a listed leaf pair: its event time, at most the segment's end.
+  [[nodiscard]] double episode_end(const Record& r) const;
+  [[nodiscard]] uint64_t triangle_pair(const Record& r) const;
   [[nodiscard]] bool relevant(const Record& r, int which, int side) const;
   void on_realizer_change(int which, uint32_t node, int side);
   void recertify_dirty();
@@ -144,8 +152,10 @@ class KineticSeparationList {
   const MeshSegment* m_mesh_a = nullptr;
   const MeshSegment* m_mesh_b = nullptr;
   double m_segment_begin = 0, m_segment_end = 0;
-  std::unordered_set<uint64_t> m_tested;  ///< triangle pairs tested on this segment
-  std::vector<Contact> m_pending;         ///< a min-heap on Contact's order
+  /// Per triangle pair tested on this segment: the (global) time up to which it was tested.
+  std::unordered_map<uint64_t, double> m_tested_until;
+  std::set<Contact> m_found;       ///< contacts found on this segment (windows share their ends)
+  std::vector<Contact> m_pending;  ///< a min-heap on Contact's order
   Contact m_last_released;
   bool m_released_any = false;
 

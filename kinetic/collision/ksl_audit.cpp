@@ -93,10 +93,11 @@ void KineticSeparationList::audit_record(uint32_t id, double t) const {
       (scheduled && !near(m_sim.queue().key(r.event).time, failure)))
     fail("the event is not at the certificate's failure time", t, r.a, r.b);
   if (r.state == State::leaf) {
-    uint32_t ta = m_a.topology().nodes[r.a].triangle, tb = m_b.topology().nodes[r.b].triangle;
-    if (m_self && tb < ta) std::swap(ta, tb);
-    if (!m_tested.contains(uint64_t(ta) << 32 | tb))
+    const auto it = m_tested_until.find(triangle_pair(r));
+    if (it == m_tested_until.end())
       fail("a listed triangle pair was not tested on this segment", t, r.a, r.b);
+    if (it->second < episode_end(r) || it->second < t)
+      fail("a listed triangle pair was not tested up to its separation event", t, r.a, r.b);
   }
 }
 

@@ -25,19 +25,46 @@ PrimitiveMotion gather(const MeshSegment& first, std::span<const std::uint32_t> 
   return m;
 }
 
+/// canonical_contact's naming, each swap of two vertex ids applied by swap_points(i, j).
+template <class SwapPoints>
+void canonical_order(Contact& c, SwapPoints&& swap_points) {
+  // An edge shared by two triangles is tested from both, in either direction: one orientation
+  // of each edge (smaller vertex id first) and of each edge pair names the contact.
+  if (c.type != ContactType::edge_edge) return;
+  if (c.vertices[0] > c.vertices[1]) swap_points(0, 1);
+  if (c.vertices[2] > c.vertices[3]) swap_points(2, 3);
+  if (std::tie(c.objects[0], c.vertices[0], c.vertices[1]) >
+      std::tie(c.objects[1], c.vertices[2], c.vertices[3])) {
+    std::swap(c.objects[0], c.objects[1]);
+    swap_points(0, 2);
+    swap_points(1, 3);
+  }
+}
+
 void test_pair(ContactType type, const MeshSegment& first, std::span<const std::uint32_t> fv,
                const MeshSegment& second, std::span<const std::uint32_t> sv, double time_begin,
-               double time_end, std::vector<Contact>& out, PrimitiveCcdCounters& counters) {
+               double time_end, std::vector<Contact>& out, PrimitiveCcdCounters& counters,
+               LocalWindow window) {
   const PrimitiveMotion motion = gather(first, fv, second, sv);
-  for (double local : contact_times(type, motion, &counters)) {
-    Contact c;
+  const std::vector<double> times = contact_times(type, motion, &counters, window);
+  if (times.empty()) return;
+  // Named canonically, with the points in that order: the contact point is then the same
+  // whichever triangle pair, and whichever side, meets the primitive pair.
+  Contact c;
+  c.type = type;
+  c.objects = {first.object, second.object};
+  int i = 0;
+  for (std::uint32_t v : fv) c.vertices[i++] = v;
+  for (std::uint32_t v : sv) c.vertices[i++] = v;
+  PrimitiveMotion named = motion;
+  canonical_order(c, [&](int a, int b) {
+    std::swap(c.vertices[a], c.vertices[b]);
+    std::swap(named.start[a], named.start[b]);
+    std::swap(named.end[a], named.end[b]);
+  });
+  for (double local : times) {
     c.time = time_begin + local * (time_end - time_begin);
-    c.type = type;
-    c.objects = {first.object, second.object};
-    int i = 0;
-    for (std::uint32_t v : fv) c.vertices[i++] = v;
-    for (std::uint32_t v : sv) c.vertices[i++] = v;
-    c.point = contact_point(type, motion, local);
+    c.point = contact_point(type, named, local);
     out.push_back(c);
   }
 }
@@ -69,35 +96,26 @@ bool triangles_adjacent(const std::array<std::uint32_t, 3>& a,
 
 void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
                             std::uint32_t tb, double time_begin, double time_end,
-                            std::vector<Contact>& out, PrimitiveCcdCounters& counters) {
+                            std::vector<Contact>& out, PrimitiveCcdCounters& counters,
+                            LocalWindow window) {
   const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
   const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
   for (int i = 0; i < 3; ++i) {
     test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end, out,
-              counters);
+              counters, window);
     test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
-              counters);
+              counters, window);
   }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const std::array<std::uint32_t, 2> ea = {fa[i], fa[(i + 1) % 3]};
       const std::array<std::uint32_t, 2> eb = {fb[j], fb[(j + 1) % 3]};
-      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters);
+      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters, window);
     }
 }
 
 void canonical_contact(Contact& c) {
-  // An edge shared by two triangles is tested from both, in either direction: one orientation
-  // of each edge (smaller vertex id first) and of each edge pair names the contact.
-  if (c.type != ContactType::edge_edge) return;
-  if (c.vertices[0] > c.vertices[1]) std::swap(c.vertices[0], c.vertices[1]);
-  if (c.vertices[2] > c.vertices[3]) std::swap(c.vertices[2], c.vertices[3]);
-  if (std::tie(c.objects[0], c.vertices[0], c.vertices[1]) >
-      std::tie(c.objects[1], c.vertices[2], c.vertices[3])) {
-    std::swap(c.objects[0], c.objects[1]);
-    std::swap(c.vertices[0], c.vertices[2]);
-    std::swap(c.vertices[1], c.vertices[3]);
-  }
+  canonical_order(c, [&](int a, int b) { std::swap(c.vertices[a], c.vertices[b]); });
 }
 
 void sort_contacts(std::vector<Contact>& contacts) {

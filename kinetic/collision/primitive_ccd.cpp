@@ -10,6 +10,7 @@
 
 #include "kinetic/check.h"
 #include "kinetic/collision/exact_ccd.h"
+#include "kinetic/collision/interval_arithmetic.h"
 #include "kinetic/collision/interval_ccd.h"
 
 namespace kinray {
@@ -18,6 +19,28 @@ namespace {
 /// Points [0, first_points) belong to the first primitive (the vertex, or edge a).
 int first_points(ContactType type) {
   return type == ContactType::vertex_face ? 1 : 2;
+}
+
+/// Over a window: each coordinate start + u (end - start), u in [lo, hi], enclosed in interval
+/// arithmetic (the difference rounded, hence enclosed too).
+bool window_boxes_separated(ContactType type, const PrimitiveMotion& m, LocalWindow window) {
+  using detail::Interval;
+  const int first_end = first_points(type);
+  const Interval u = {window.lo, window.hi};
+  for (int axis = 0; axis < 3; ++axis) {
+    double lo[2] = {std::numeric_limits<double>::infinity(),
+                    std::numeric_limits<double>::infinity()};
+    double hi[2] = {-lo[0], -lo[0]};
+    for (int i = 0; i < 4; ++i) {
+      const int side = i < first_end ? 0 : 1;
+      const Interval x = Interval::point(m.start[i][axis]) +
+                         u * Interval::around(m.end[i][axis] - m.start[i][axis]);
+      lo[side] = std::min(lo[side], x.lo);
+      hi[side] = std::max(hi[side], x.hi);
+    }
+    if (hi[0] < lo[1] || hi[1] < lo[0]) return true;
+  }
+  return false;
 }
 
 /// Linear motion stays inside the box of its start and end positions; min and max are exact.
@@ -89,14 +112,17 @@ PrimitiveCcdCounters& PrimitiveCcdCounters::operator+=(const PrimitiveCcdCounter
 }
 
 std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motion,
-                                  PrimitiveCcdCounters* counters) {
+                                  PrimitiveCcdCounters* counters, LocalWindow window) {
   PrimitiveCcdCounters local;
   PrimitiveCcdCounters& count = counters ? *counters : local;
   ++count.tests;
   for (int i = 0; i < 4; ++i)
     KINRAY_CHECK_MSG(motion.start[i].allFinite() && motion.end[i].allFinite(),
                      "primitive CCD needs finite coordinates");
-  if (swept_boxes_separated(type, motion)) {
+  KINRAY_CHECK_MSG(0 <= window.lo && window.lo <= window.hi && window.hi <= 1,
+                   "primitive CCD window outside [0, 1]");
+  if (swept_boxes_separated(type, motion) ||
+      (!window.whole() && window_boxes_separated(type, motion, window))) {
     ++count.box_rejections;
     return {};
   }
@@ -105,7 +131,8 @@ std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motio
     return {};
   }
   IntervalCcdCounters interval;
-  std::optional<std::vector<double>> certified = interval_contact_times(type, motion, interval);
+  std::optional<std::vector<double>> certified =
+      interval_contact_times(type, motion, interval, window);
   count.interval_rejections += interval.rejections;
   count.interval_contacts += interval.contacts;
   count.exact_signs += interval.exact_signs;
@@ -114,7 +141,7 @@ std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motio
     return *std::move(certified);
   }
   ++count.exact_decisions;
-  std::vector<double> times = exact_contact_times(type, to_rational(motion));
+  std::vector<double> times = exact_contact_times(type, to_rational(motion), window);
   count.contacts += !times.empty();
   return times;
 }

@@ -24,10 +24,11 @@ struct PrimitiveCcdCounters {
   PrimitiveCcdCounters& operator+=(const PrimitiveCcdCounters& o);
 };
 
-/// Every time of contact of the pair in local time [0, 1], sorted; each time t satisfies
-/// t* - kContactTimeEarliness <= t <= t* (exact_ccd.h). Coordinates must be finite.
+/// Every time of contact of the pair in local time [0, 1] (in `window`), sorted; each time t
+/// satisfies t* - kContactTimeEarliness <= t <= t* (exact_ccd.h). Coordinates must be finite.
 [[nodiscard]] std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motion,
-                                                PrimitiveCcdCounters* counters = nullptr);
+                                                PrimitiveCcdCounters* counters = nullptr,
+                                                LocalWindow window = {});
 
 /// Where the pair touches at local time t (a point of the vertex, or the midpoint of the two
 /// edges' closest points), in double precision.

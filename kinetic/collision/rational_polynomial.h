@@ -41,8 +41,9 @@ int sign(const mpq_class& x);
 std::vector<mpq_class> bernstein_coefficients(const RationalPolynomial& f, const mpq_class& a,
                                               const mpq_class& b);
 
-/// A real algebraic number: the only root of the square-free `poly` in [lo, hi]. Either lo == hi
-/// (a rational root) or poly(lo) and poly(hi) are non-zero of opposite signs.
+/// A real algebraic number: the only root of `poly` in [lo, hi], a simple one (poly is
+/// square-free, or has no multiple root in [lo, hi]). Either lo == hi (a rational root) or
+/// poly(lo) and poly(hi) are non-zero of opposite signs.
 struct IsolatedRoot {
   RationalPolynomial poly;
   mpq_class lo, hi;

@@ -2,6 +2,7 @@
 // motion, parallel edges, contact at a segment end, a vertex hitting an edge.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "kinetic/collision/exact_ccd.h"
@@ -136,6 +137,43 @@ TEST(PrimitiveCcd, FiltersNeverChangeTheExactAnswer) {
     }
   }
   EXPECT_GT(contacts, 100);  // the sample does exercise contacts
+}
+
+TEST(PrimitiveCcd, WindowsSplitTheContactsOfTheWholeSegment) {
+  // The kinetic separation list tests a triangle pair over its overlap episodes: windows of
+  // [0, 1] that share their ends must together give the whole segment's times, each at the
+  // same value, and the floating-point path must agree with the exact one on every window.
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> coordinate(-2, 2);
+  const double cuts[] = {0.25, 0.5, 1.0 / 3, 0.6180339887498949};
+  int split_contacts = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    PrimitiveMotion m;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) {
+        m.start[i][k] = coordinate(rng) * 0.5;
+        m.end[i][k] = coordinate(rng) * 0.5;
+      }
+    for (ContactType type : {ContactType::vertex_face, ContactType::edge_edge}) {
+      const std::vector<double> whole = contact_times(type, m);
+      for (double cut : cuts) {
+        const LocalWindow first = {0, cut}, second = {cut, 1}, inner = {cut / 2, cut};
+        std::vector<double> joined = contact_times(type, m, nullptr, first);
+        const std::vector<double> rest = contact_times(type, m, nullptr, second);
+        ASSERT_EQ(joined, exact_contact_times(type, to_rational(m), first)) << "trial " << trial;
+        ASSERT_EQ(rest, exact_contact_times(type, to_rational(m), second)) << "trial " << trial;
+        ASSERT_EQ(contact_times(type, m, nullptr, inner),
+                  exact_contact_times(type, to_rational(m), inner))
+            << "trial " << trial;
+        split_contacts += !joined.empty() && !rest.empty();
+        joined.insert(joined.end(), rest.begin(), rest.end());
+        std::ranges::sort(joined);
+        joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
+        ASSERT_EQ(joined, whole) << "trial " << trial << " cut " << cut;
+      }
+    }
+  }
+  EXPECT_GT(split_contacts, 50);  // contacts on both sides of a cut, and at cuts
 }
 
 TEST(PrimitiveCcd, ContactPointOfCrossingEdges) {

@@ -1,6 +1,8 @@
 // Exact root isolation and signs at algebraic roots, against roots known in closed form.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "kinetic/collision/rational_polynomial.h"
 
 namespace kinray {
@@ -56,6 +58,59 @@ TEST(RationalPolynomial, IrrationalRootsAndExactSignsThere) {
   EXPECT_EQ(
       sign_at(RationalPolynomial({mpq_class(-1, 2), 0, 1}) * RationalPolynomial::linear(-3, 1), r),
       0);
+}
+
+TEST(RationalPolynomial, SignsCloserToTheRootThanDoublesResolve) {
+  // The doubles on either side of 1/sqrt(2): the floating-point filter narrows the root's
+  // interval to a few ulps and cannot tell; the exact path must.
+  std::vector<IsolatedRoot> roots =
+      isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1);
+  ASSERT_EQ(roots.size(), 1u);
+  const double above = 0.7071067811865476, below = std::nextafter(above, 0.0);
+  ASSERT_GT(mpq_class(above) * mpq_class(above), mpq_class(1, 2));
+  ASSERT_LT(mpq_class(below) * mpq_class(below), mpq_class(1, 2));
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(-mpq_class(above), 1), roots[0]), -1);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(-mpq_class(below), 1), roots[0]), 1);
+  EXPECT_LE(roots[0].lo * roots[0].lo, mpq_class(1, 2));  // still isolating the root
+  EXPECT_GE(roots[0].hi * roots[0].hi, mpq_class(1, 2));
+  // a polynomial of huge coefficients, beyond the filter's range: decided exactly
+  mpq_class huge = 1;
+  mpz_mul_2exp(huge.get_num_mpz_t(), huge.get_num_mpz_t(), 2000);
+  EXPECT_EQ(sign_at(RationalPolynomial({-huge, huge}), roots[0]), -1);
+  // from a fresh, wide isolating interval, signs that need the interval narrowed first
+  for (const auto& [value, expected] :
+       {std::pair{mpq_class(7071, 10000), 1}, std::pair{mpq_class(7072, 10000), -1},
+        std::pair{mpq_class(above), -1}, std::pair{mpq_class(below), 1}}) {
+    IsolatedRoot fresh = isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1)[0];
+    EXPECT_EQ(sign_at(RationalPolynomial::linear(-value, 1), fresh), expected) << value;
+    EXPECT_EQ(sign_at(RationalPolynomial({-1, 0, 2}), fresh), 0);
+  }
+}
+
+TEST(RationalPolynomial, RootsJustOutsideOrAtTheEndsOfTheInterval) {
+  const mpq_class tiny(1, mpz_class(1) << 70);
+  EXPECT_TRUE(isolate_roots(RationalPolynomial::linear(-(1 + tiny), 1), 0, 1).empty());
+  EXPECT_TRUE(isolate_roots(RationalPolynomial::linear(tiny, 1), 0, 1).empty());
+  EXPECT_EQ(isolate_roots(RationalPolynomial::linear(-tiny, 1), 0, 1).size(), 1u);
+  EXPECT_EQ(isolate_roots(RationalPolynomial::linear(-1, 1), 0, 1).size(), 1u);
+  // (t - 1/3)^2 + 2^-140 has no real root; (t - 1/3)^2 - 2^-140 two, 2^-70 apart
+  const RationalPolynomial square = from_roots({mpq_class(1, 3), mpq_class(1, 3)});
+  EXPECT_TRUE(isolate_roots(square + RationalPolynomial({tiny * tiny}), 0, 1).empty());
+  EXPECT_EQ(isolate_roots(square - RationalPolynomial({tiny * tiny}), 0, 1).size(), 2u);
+}
+
+TEST(RationalPolynomial, MonotoneOnTheIntervalButNotSquareFree) {
+  // (t - 1/3)(t - 3)^2: the double root lies outside [0, 1], where f is monotone, so f itself
+  // isolates the root (no gcd with f'); signs there stay exact, zeros included.
+  const RationalPolynomial f = from_roots({mpq_class(1, 3), 3, 3});
+  std::vector<IsolatedRoot> roots = isolate_roots(f, 0, 1);
+  ASSERT_EQ(roots.size(), 1u);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 3), 1), roots[0]), 0);
+  EXPECT_EQ(sign_at(from_roots({3, 3}), roots[0]), 1);
+  const mpq_class tiny(1, mpz_class(1) << 80);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 3) - tiny, 1), roots[0]), -1);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(mpq_class(-1, 3) + tiny, 1), roots[0]), 1);
+  EXPECT_EQ(isolate_roots(f, 0, 4).size(), 2u);  // the double root once, beside the simple one
 }
 
 TEST(RationalPolynomial, BernsteinCoefficientsBoundTheRange) {
