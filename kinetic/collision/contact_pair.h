@@ -5,8 +5,11 @@
 // this form to the same primitive test (primitive_ccd.h).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace kinray {
 
@@ -39,6 +42,22 @@ struct LocalWindow {
   [[nodiscard]] bool whole() const { return lo == 0 && hi == 1; }
   [[nodiscard]] bool contains(double t) const { return lo <= t && t <= hi; }
 };
+
+/// The window [begin, end] of absolute time inside the segment [segment_begin, segment_end], in
+/// the segment's local time, widened by more than the rounding of the division: a wider window
+/// only meets contacts that the whole segment's tests report anyway, at the same times, and the
+/// caller keeps those in [begin, end] (or drops repeats).
+[[nodiscard]] inline LocalWindow local_window(double segment_begin, double segment_end,
+                                              double begin, double end) {
+  const double length = segment_end - segment_begin;
+  auto local = [&](double t, double direction) {
+    const double u = (t - segment_begin) / length;
+    const double error = 4 * std::numeric_limits<double>::epsilon() *
+                         (std::fabs(u) + (std::fabs(t) + std::fabs(segment_begin)) / length);
+    return std::clamp(u + direction * error, 0.0, 1.0);
+  };
+  return {begin <= segment_begin ? 0.0 : local(begin, -1), end >= segment_end ? 1.0 : local(end, +1)};
+}
 
 [[nodiscard]] inline const char* contact_type_name(ContactType type) {
   return type == ContactType::vertex_face ? "vf" : "ee";

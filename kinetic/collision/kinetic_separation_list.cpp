@@ -368,17 +368,8 @@ void KineticSeparationList::test_leaf(uint32_t id) {
   if (!first_test && it->second >= end) return;
   const double begin = first_test ? m_sim.now() : std::max(m_sim.now(), it->second);
   it->second = end;
-  // The window in the segment's local time, widened by more than the rounding of the division
-  // (a wider window only meets contacts some window finds anyway: m_found drops the repeats).
-  const double length = m_segment_end - m_segment_begin;
-  auto local = [&](double t, double direction) {
-    const double u = (t - m_segment_begin) / length;
-    const double error = 4 * std::numeric_limits<double>::epsilon() *
-                         (std::fabs(u) + (std::fabs(t) + std::fabs(m_segment_begin)) / length);
-    return std::clamp(u + direction * error, 0.0, 1.0);
-  };
-  const LocalWindow window = {begin <= m_segment_begin ? 0.0 : local(begin, -1),
-                              end >= m_segment_end ? 1.0 : local(end, +1)};
+  // A wider window only meets contacts some window finds anyway: m_found drops the repeats.
+  const LocalWindow window = local_window(m_segment_begin, m_segment_end, begin, end);
   ++m_stats.leaf_tests;
   ++m_counters.triangle_pairs;
   const uint32_t ta = uint32_t(pair >> 32), tb = uint32_t(pair);

@@ -82,6 +82,9 @@ void SweptVolumeHierarchy::contacts(const SweptVolumeHierarchy& query, const Mes
   ++counters.segments;
   if (m_nodes.empty()) return;
   const std::size_t first = out.size();
+  // The primitive tests run over the check interval only, as a swept-volume method tests the
+  // motion its boxes sweep; the contacts they report are the whole segment's, at the same times.
+  const LocalWindow window = local_window(time_begin, time_end, window_begin, window_end);
   std::vector<std::uint32_t> stack;
   for (std::uint32_t i = 0; i < query.m_boxes.size(); ++i) {
     const Eigen::AlignedBox3d& box = query.m_boxes[i];
@@ -101,7 +104,8 @@ void SweptVolumeHierarchy::contacts(const SweptVolumeHierarchy& query, const Mes
         if (self && (j <= i || triangles_adjacent(a.triangles[i], a.triangles[j]))) continue;
         if (!m_boxes[j].intersects(box)) continue;
         ++counters.triangle_pairs;
-        triangle_pair_contacts(a, i, b, j, time_begin, time_end, out, counters.primitives);
+        triangle_pair_contacts(a, i, b, j, time_begin, time_end, out, counters.primitives,
+                               window);
       }
     }
   }
