@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "kinetic/check.h"
 #include "kinetic/collision/exact_ccd.h"
@@ -21,43 +22,43 @@ int first_points(ContactType type) {
   return type == ContactType::vertex_face ? 1 : 2;
 }
 
-/// Over a window: each coordinate start + u (end - start), u in [lo, hi], enclosed in interval
-/// arithmetic (the difference rounded, hence enclosed too).
-bool window_boxes_separated(ContactType type, const PrimitiveMotion& m, LocalWindow window) {
-  using detail::Interval;
+/// True when on some axis the extents of the two primitives' points do not overlap;
+/// extent(i, axis) gives point i's {lo, hi} on that axis.
+template <class Extent>
+bool extents_separated(ContactType type, Extent&& extent) {
   const int first_end = first_points(type);
-  const Interval u = {window.lo, window.hi};
   for (int axis = 0; axis < 3; ++axis) {
     double lo[2] = {std::numeric_limits<double>::infinity(),
                     std::numeric_limits<double>::infinity()};
     double hi[2] = {-lo[0], -lo[0]};
     for (int i = 0; i < 4; ++i) {
       const int side = i < first_end ? 0 : 1;
-      const Interval x = Interval::point(m.start[i][axis]) +
-                         u * Interval::around(m.end[i][axis] - m.start[i][axis]);
-      lo[side] = std::min(lo[side], x.lo);
-      hi[side] = std::max(hi[side], x.hi);
+      const auto [point_lo, point_hi] = extent(i, axis);
+      lo[side] = std::min(lo[side], point_lo);
+      hi[side] = std::max(hi[side], point_hi);
     }
     if (hi[0] < lo[1] || hi[1] < lo[0]) return true;
   }
   return false;
 }
 
+/// Over a window: each coordinate start + u (end - start), u in [lo, hi], enclosed in interval
+/// arithmetic (the difference rounded, hence enclosed too).
+bool window_boxes_separated(ContactType type, const PrimitiveMotion& m, LocalWindow window) {
+  using detail::Interval;
+  const Interval u = {window.lo, window.hi};
+  return extents_separated(type, [&](int i, int axis) {
+    const Interval x =
+        Interval::point(m.start[i][axis]) + u * Interval::around(m.end[i][axis] - m.start[i][axis]);
+    return std::pair{x.lo, x.hi};
+  });
+}
+
 /// Linear motion stays inside the box of its start and end positions; min and max are exact.
 bool swept_boxes_separated(ContactType type, const PrimitiveMotion& m) {
-  const int first_end = first_points(type);
-  for (int axis = 0; axis < 3; ++axis) {
-    double lo[2] = {std::numeric_limits<double>::infinity(),
-                    std::numeric_limits<double>::infinity()};
-    double hi[2] = {-lo[0], -lo[0]};
-    for (int i = 0; i < 4; ++i) {
-      const int side = i < first_end ? 0 : 1;
-      lo[side] = std::min({lo[side], m.start[i][axis], m.end[i][axis]});
-      hi[side] = std::max({hi[side], m.start[i][axis], m.end[i][axis]});
-    }
-    if (hi[0] < lo[1] || hi[1] < lo[0]) return true;
-  }
-  return false;
+  return extents_separated(type, [&](int i, int axis) {
+    return std::minmax(m.start[i][axis], m.end[i][axis]);
+  });
 }
 
 /// The coplanarity cubic det(X, Y, Z) with X, Y, Z the differences p1 - p0, p2 - p0, p3 - p0

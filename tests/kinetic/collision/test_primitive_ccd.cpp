@@ -118,18 +118,24 @@ TEST(PrimitiveCcd, ReportedTimeIsALowerBoundWithinTheStatedEarliness) {
   EXPECT_GE(mpq_class(t[0]), mpq_class(1, 3) - mpq_class(kContactTimeEarliness));
 }
 
+/// Coordinates in {-1, -0.5, 0, 0.5, 1}: many coplanar, parallel and touching configurations.
+PrimitiveMotion half_integer_motion(std::mt19937& rng) {
+  std::uniform_int_distribution<int> coordinate(-2, 2);
+  PrimitiveMotion m;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      m.start[i][k] = coordinate(rng) * 0.5;
+      m.end[i][k] = coordinate(rng) * 0.5;
+    }
+  return m;
+}
+
 TEST(PrimitiveCcd, FiltersNeverChangeTheExactAnswer) {
   // small integer coordinates: many coplanar, parallel and touching configurations
   std::mt19937 rng(16);
-  std::uniform_int_distribution<int> coordinate(-2, 2);
   int contacts = 0;
   for (int trial = 0; trial < 1000; ++trial) {
-    PrimitiveMotion m;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) {
-        m.start[i][k] = coordinate(rng) * 0.5;
-        m.end[i][k] = coordinate(rng) * 0.5;
-      }
+    const PrimitiveMotion m = half_integer_motion(rng);
     for (ContactType type : {ContactType::vertex_face, ContactType::edge_edge}) {
       const std::vector<double> filtered = contact_times(type, m);
       ASSERT_EQ(filtered, exact_contact_times(type, to_rational(m))) << "trial " << trial;
@@ -144,16 +150,10 @@ TEST(PrimitiveCcd, WindowsSplitTheContactsOfTheWholeSegment) {
   // [0, 1] that share their ends must together give the whole segment's times, each at the
   // same value, and the floating-point path must agree with the exact one on every window.
   std::mt19937 rng(17);
-  std::uniform_int_distribution<int> coordinate(-2, 2);
   const double cuts[] = {0.25, 0.5, 1.0 / 3, 0.6180339887498949};
   int split_contacts = 0;
   for (int trial = 0; trial < 600; ++trial) {
-    PrimitiveMotion m;
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k) {
-        m.start[i][k] = coordinate(rng) * 0.5;
-        m.end[i][k] = coordinate(rng) * 0.5;
-      }
+    const PrimitiveMotion m = half_integer_motion(rng);
     for (ContactType type : {ContactType::vertex_face, ContactType::edge_edge}) {
       const std::vector<double> whole = contact_times(type, m);
       for (double cut : cuts) {
