@@ -148,9 +148,10 @@ TEST(KineticSeparationList, FrontEqualsAFreshTraversalAndAdjacentTrianglesAreNev
   for (const KslPair& p : list.front()) {
     const BvhNode& a = tree.topology().nodes[p.a];
     const BvhNode& b = tree.topology().nodes[p.b];
-    if (a.leaf() && b.leaf())
+    if (a.leaf() && b.leaf()) {
       EXPECT_FALSE(triangles_adjacent(tree.meshes().triangle(a.triangle),
                                       tree.meshes().triangle(b.triangle)));
+    }
   }
 }
 
