@@ -87,8 +87,12 @@ bool holds_through(const Polynomial& f, double s_now, double s_end) {
     case 1: return clear_through<1>(f.c.data(), s_now, s_end, big_s);
     case 2: return clear_through<2>(f.c.data(), s_now, s_end, big_s);
     case 3: return clear_through<3>(f.c.data(), s_now, s_end, big_s);
-    case 4: return range_clear<4>(f.c.data(), s_now, s_end, big_s) || clear_through<4>(f.c.data(), s_now, s_end, big_s);
-    case 5: return range_clear<5>(f.c.data(), s_now, s_end, big_s) || clear_through<5>(f.c.data(), s_now, s_end, big_s);
+    case 4:
+      return range_clear<4>(f.c.data(), s_now, s_end, big_s) ||
+             clear_through<4>(f.c.data(), s_now, s_end, big_s);
+    case 5:
+      return range_clear<5>(f.c.data(), s_now, s_end, big_s) ||
+             clear_through<5>(f.c.data(), s_now, s_end, big_s);
     default: return false;
   }
 }

@@ -287,17 +287,18 @@ uint64_t smallest_instance(const PlyElement& element, PlyFormat format) {
 
 /// Instances without properties take no bytes, so the file's length bounds their count
 /// nothing; a reader that loops over them (assimp's does) runs for as long as the count says.
-[[noreturn]] void throw_propertyless(const PlyElement& element, const std::string& source) {
-  throw InputError(at_line(source, element.line),
-                   "declares " + std::to_string(element.count) + " " + element.name +
-                       " elements but no properties for them");
+void check_has_properties(const PlyElement& element, const std::string& source) {
+  if (element.properties.empty() && element.count > 0)
+    throw InputError(at_line(source, element.line),
+                     "declares " + std::to_string(element.count) + " " + element.name +
+                         " elements but no properties for them");
 }
 
 void check_counts(const PlyHeader& header, size_t body_bytes, const std::string& source) {
   uint64_t needed = 0;
   for (const PlyElement& element : header.elements) {
+    check_has_properties(element, source);
     const uint64_t each = smallest_instance(element, header.format);
-    if (each == 0 && element.count > 0) throw_propertyless(element, source);
     if (each > 0 && element.count > (body_bytes + 1) / each)
       throw InputError(at_line(source, element.line),
                        "declares " + std::to_string(element.count) + " " + element.name +
@@ -380,16 +381,19 @@ void read_faces(PlyBody& body, const PlyElement& element, uint64_t vertex_count,
 void check_mesh_elements(const PlyHeader& header, const std::string& source) {
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
-  for (const PlyElement& element : header.elements)
-    for (const PlyElement** seen : {&vertex, &face})
-      if (element.name == (seen == &vertex ? "vertex" : "face")) {
-        // A second one would be read as more of the first, against counts checked for one.
-        if (*seen != nullptr)
-          throw InputError(at_line(source, element.line),
-                           "a second '" + element.name + "' element (the first is on line " +
-                               std::to_string((*seen)->line) + ")");
-        *seen = &element;
-      }
+  // A second vertex or face element would be read as more of the first, against counts
+  // checked for one.
+  const auto first = [&](const PlyElement*& seen, const PlyElement& element) {
+    if (seen != nullptr)
+      throw InputError(at_line(source, element.line),
+                       "a second '" + element.name + "' element (the first is on line " +
+                           std::to_string(seen->line) + ")");
+    seen = &element;
+  };
+  for (const PlyElement& element : header.elements) {
+    if (element.name == "vertex") first(vertex, element);
+    if (element.name == "face") first(face, element);
+  }
   if (vertex == nullptr) throw InputError(source, "has no 'vertex' element");
   for (const char* axis : {"x", "y", "z"})
     if (find_scalar(*vertex, axis) < 0)
@@ -437,20 +441,25 @@ MeshFile parse_ply(std::string_view bytes, const std::string& source) {
 }
 
 void check_ply_file(const std::string& path) {
-  char start[4] = {};
-  std::ifstream(path, std::ios::binary).read(start, sizeof start);
-  if (std::string_view(start, 3) != "ply" || (start[3] != '\n' && start[3] != '\r')) return;
-  const std::string bytes = read_mesh_bytes(path);
-  PlyHeader header;
+  // Only the header is read: it is all the check needs, and a model can be large.
+  std::ifstream file(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(file, line) || (line != "ply" && line != "ply\r")) return;
+  std::string header = line + '\n';
+  while (std::getline(file, line)) {
+    header += line + '\n';
+    const std::vector<std::string_view> w = split_words(line);
+    if (!w.empty() && w[0] == "end_header") break;
+  }
+  PlyHeader parsed;
   try {
     // Leniently: assimp reads headers with lines of other writers (Wuson.ply has 'Created
     // by ...') and files a few bytes short, and says itself what else is wrong.
-    header = parse_header(bytes, path, UnknownLines::skip);
+    parsed = parse_header(header, path, UnknownLines::skip);
   } catch (const InputError&) {
     return;
   }
-  for (const PlyElement& element : header.elements)
-    if (element.properties.empty() && element.count > 0) throw_propertyless(element, path);
+  for (const PlyElement& element : parsed.elements) check_has_properties(element, path);
 }
 
 MeshFile read_ply(const std::string& path) {

@@ -56,7 +56,8 @@ struct LocalWindow {
                          (std::fabs(u) + (std::fabs(t) + std::fabs(segment_begin)) / length);
     return std::clamp(u + direction * error, 0.0, 1.0);
   };
-  return {begin <= segment_begin ? 0.0 : local(begin, -1), end >= segment_end ? 1.0 : local(end, +1)};
+  return {begin <= segment_begin ? 0.0 : local(begin, -1),
+          end >= segment_end ? 1.0 : local(end, +1)};
 }
 
 [[nodiscard]] inline const char* contact_type_name(ContactType type) {

@@ -378,7 +378,6 @@ void KineticSeparationList::test_leaf(uint32_t id) {
                          m_counters.primitives, window);
   size_t kept = first;
   for (size_t k = first; k < m_pending.size(); ++k) {
-    canonical_contact(m_pending[k]);
     if (!m_found.insert(m_pending[k]).second) continue;  // found in an earlier window
     m_pending[kept] = m_pending[k];
     std::push_heap(m_pending.begin(), m_pending.begin() + long(++kept), later);

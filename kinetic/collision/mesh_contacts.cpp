@@ -25,12 +25,17 @@ PrimitiveMotion gather(const MeshSegment& first, std::span<const std::uint32_t> 
   return m;
 }
 
-/// canonical_contact's naming, each swap of two vertex ids applied by swap_points(i, j).
-template <class SwapPoints>
-void canonical_order(Contact& c, SwapPoints&& swap_points) {
-  // An edge shared by two triangles is tested from both, in either direction: one orientation
-  // of each edge (smaller vertex id first) and of each edge pair names the contact.
+/// Names an edge-edge contact one way, each edge's smaller vertex id first, then the edge pair
+/// in (object, vertices) order, with `motion`'s points following their vertex ids: an edge shared
+/// by two triangles is tested from both, in either direction, and the repeats must be identical,
+/// their contact points included (computed from the points in this order).
+void name_canonically(Contact& c, PrimitiveMotion& motion) {
   if (c.type != ContactType::edge_edge) return;
+  const auto swap_points = [&](int a, int b) {
+    std::swap(c.vertices[a], c.vertices[b]);
+    std::swap(motion.start[a], motion.start[b]);
+    std::swap(motion.end[a], motion.end[b]);
+  };
   if (c.vertices[0] > c.vertices[1]) swap_points(0, 1);
   if (c.vertices[2] > c.vertices[3]) swap_points(2, 3);
   if (std::tie(c.objects[0], c.vertices[0], c.vertices[1]) >
@@ -48,8 +53,8 @@ void test_pair(ContactType type, const MeshSegment& first, std::span<const std::
   const PrimitiveMotion motion = gather(first, fv, second, sv);
   const std::vector<double> times = contact_times(type, motion, &counters, window);
   if (times.empty()) return;
-  // Named canonically, with the points in that order: the contact point is then the same
-  // whichever triangle pair, and whichever side, meets the primitive pair.
+  // Named canonically: the contact and its point are then the same whichever triangle pair,
+  // and whichever side, meets the primitive pair.
   Contact c;
   c.type = type;
   c.objects = {first.object, second.object};
@@ -57,11 +62,7 @@ void test_pair(ContactType type, const MeshSegment& first, std::span<const std::
   for (std::uint32_t v : fv) c.vertices[i++] = v;
   for (std::uint32_t v : sv) c.vertices[i++] = v;
   PrimitiveMotion named = motion;
-  canonical_order(c, [&](int a, int b) {
-    std::swap(c.vertices[a], c.vertices[b]);
-    std::swap(named.start[a], named.start[b]);
-    std::swap(named.end[a], named.end[b]);
-  });
+  name_canonically(c, named);
   for (double local : times) {
     c.time = time_begin + local * (time_end - time_begin);
     c.point = contact_point(type, named, local);
@@ -114,12 +115,7 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
     }
 }
 
-void canonical_contact(Contact& c) {
-  canonical_order(c, [&](int a, int b) { std::swap(c.vertices[a], c.vertices[b]); });
-}
-
 void sort_contacts(std::vector<Contact>& contacts) {
-  for (Contact& c : contacts) canonical_contact(c);
   std::sort(contacts.begin(), contacts.end());
   contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
 }

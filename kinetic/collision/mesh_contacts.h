@@ -51,17 +51,14 @@ struct ContactCounters {
 
 /// The 15 primitive tests of triangle ta of `a` against triangle tb of `b` (6 vertex-face, 9
 /// edge-edge) on the segment [time_begin, time_end]; appends every contact (those in `window`
-/// of the segment's local time, at the times the whole segment's tests give them).
+/// of the segment's local time, at the times the whole segment's tests give them), named one
+/// way (an edge-edge contact: each edge's smaller vertex id first, then the edge pair in
+/// (object, vertices) order), so that the same primitive pair met from two triangle pairs, or
+/// from either side, gives identical contacts, points included.
 void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window = {});
-
-/// Names an edge-edge contact one way (each edge's smaller vertex id first, then the edge pair
-/// in (object, vertices) order): the same primitive pair met from two triangle pairs, or from
-/// either side, compares equal. Every finder's contacts are already named so, and their points
-/// computed with the primitives' points in that order, so that the repeats are identical.
-void canonical_contact(Contact& c);
 
 /// Sorts contacts in time order and removes the repeats that arise when a vertex or an edge
 /// belongs to several tested triangle pairs.
