@@ -25,12 +25,12 @@
 #include <string>
 #include <vector>
 
-#include "kinetic/kinetic_heap.h"
-#include "kinetic/kinetic_sort.h"
-#include "kinetic/kinetic_sorted_list.h"
-#include "kinetic/kinetic_tournament.h"
-#include "kinetic/root_finding.h"
-#include "kinetic/simulator.h"
+#include "kinetic/core/root_finding.h"
+#include "kinetic/core/simulator.h"
+#include "kinetic/sort/kinetic_heap.h"
+#include "kinetic/sort/kinetic_sort.h"
+#include "kinetic/sort/kinetic_sorted_list.h"
+#include "kinetic/sort/kinetic_tournament.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #ifdef KINRAY_WITH_OSMESA
 #include "renderer/osmesa_backend.h"
 #endif
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

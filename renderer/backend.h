@@ -6,18 +6,18 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "kinetic/depth_sort_kind.h"
-#include "kinetic/work_progress.h"
+#include "kinetic/sort/depth_sort_kind.h"
 #include "renderer/embree_build.h"
 #include "renderer/frame.h"
 #include "renderer/shadow_tracer.h"
 #include "renderer/shutter.h"
 #include "scenes/camera_space.h"
+#include "util/work_progress.h"
 
 namespace kinray {
 
 /// Options every backend understands; the command line maps one flag to one field. A backend
-/// rejects a bad value with an OptionError naming the field (scenes/error.h), never a flag.
+/// rejects a bad value with an OptionError naming the field (util/input_error.h), never a flag.
 struct BackendConfig {
   int width = 512, height = 512;
   int threads = 0;              ///< 0: all cores
@@ -53,9 +53,9 @@ class Backend {
   [[nodiscard]] virtual const WorkProgress* initialisation_progress() const { return nullptr; }
 };
 
-/// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must outlive it.
-/// Throws OptionError naming "backend" for an unknown or unavailable backend, "shutter" for one
-/// without motion blur, or the field of `config` a backend rejects.
+/// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must
+/// outlive it. Throws OptionError naming "backend" for an unknown or unavailable backend, "shutter"
+/// for one without motion blur, or the field of `config` a backend rejects.
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config);
 

@@ -7,7 +7,7 @@
 
 #include "renderer/vector_flag.h"
 #include "scenes/automatic_camera.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

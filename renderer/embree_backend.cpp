@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "kinetic/parallel.h"
 #include "renderer/embree_motion_blur.h"
 #include "renderer/embree_shadow_tracer.h"
 #include "renderer/flush_denormals.h"
 #include "renderer/plane_depth.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
+#include "util/parallel.h"
 
 namespace kinray {
 namespace {
@@ -384,17 +384,17 @@ class EmbreeBackend final : public Backend {
   }
 
   void trace_single(Frame& frame) {
-    const ImageGeometry image{frame.width, frame.height};
+    const PixelRays image{frame.width, frame.height};
     constexpr int kRowsPerBand = 4;
     const int bands = (frame.height + kRowsPerBand - 1) / kRowsPerBand;
     for_each_band(bands, [&](int b, RTCIntersectContext& context) {
       for (int j = b * kRowsPerBand; j < std::min(frame.height, (b + 1) * kRowsPerBand); ++j) {
-        const float y = float(image.pixel_y(j));
+        const float y = float(image.y(j));
         for (int i = 0; i < frame.width; ++i) {
           RTCRayHit rayhit;
           rayhit.ray.org_x = rayhit.ray.org_y = rayhit.ray.org_z = 0.0f;
           rayhit.ray.tnear = 0.0f;
-          rayhit.ray.dir_x = float(image.pixel_x(i));
+          rayhit.ray.dir_x = float(image.x(i));
           rayhit.ray.dir_y = y;
           rayhit.ray.dir_z = 1.0f;
           rayhit.ray.time = 0.0f;
@@ -414,7 +414,7 @@ class EmbreeBackend final : public Backend {
   template <int N>
   void trace_packets(Frame& frame) {
     using P = Packet<N>;
-    const ImageGeometry image{frame.width, frame.height};
+    const PixelRays image{frame.width, frame.height};
     const int bands = (frame.height + P::kTileHeight - 1) / P::kTileHeight;
     for_each_band(bands, [&](int b, RTCIntersectContext& context) {
       const int j0 = b * P::kTileHeight;
@@ -426,8 +426,8 @@ class EmbreeBackend final : public Backend {
           valid[k] = i < frame.width && j < frame.height ? -1 : 0;
           rayhit.ray.org_x[k] = rayhit.ray.org_y[k] = rayhit.ray.org_z[k] = 0.0f;
           rayhit.ray.tnear[k] = 0.0f;
-          rayhit.ray.dir_x[k] = float(image.pixel_x(i));
-          rayhit.ray.dir_y[k] = float(image.pixel_y(j));
+          rayhit.ray.dir_x[k] = float(image.x(i));
+          rayhit.ray.dir_y[k] = float(image.y(j));
           rayhit.ray.dir_z[k] = 1.0f;
           rayhit.ray.time[k] = 0.0f;
           rayhit.ray.tfar[k] = std::numeric_limits<float>::infinity();
@@ -463,7 +463,7 @@ class EmbreeBackend final : public Backend {
   /// Replaces Embree's float tfar by the depth of the hit triangle's plane along d_ij in double
   /// (kept when that is degenerate, e.g. a plane seen exactly edge-on).
   void exact_depths(Frame& frame) const {
-    const ImageGeometry image{frame.width, frame.height};
+    const PixelRays image{frame.width, frame.height};
     parallel_for(size_t(frame.height), m_threads, [&](size_t row) {
       const int j = int(row);
       for (int i = 0; i < frame.width; ++i) {

@@ -3,7 +3,7 @@
 // and the ray packet widths it traces (--packet): each spelled once, here.
 #include <array>
 
-#include "kinetic/enum_names.h"
+#include "util/enum_names.h"
 
 namespace kinray {
 

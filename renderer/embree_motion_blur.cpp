@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "kinetic/parallel.h"
 #include "renderer/flush_denormals.h"
 #include "renderer/plane_depth.h"
 #include "renderer/shading.h"
+#include "util/parallel.h"
 
 namespace kinray {
 namespace {
@@ -124,7 +124,7 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
   m_build_s.push_back(seconds_since(start));
   m_piece_counts.push_back(m_pieces.size());
   start = Clock::now();
-  const ImageGeometry image{frame.width, frame.height};
+  const PixelRays image{frame.width, frame.height};
   frame.time = window.time;
   // Fresh times each frame, and different ones for different sample counts, so that a run at N
   // samples is not correlated with the reference.

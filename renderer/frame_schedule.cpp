@@ -6,7 +6,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -1,19 +1,20 @@
 #pragma once
-// The camera-space scene as the kinetic core's meshes (kinetic/grid_input.h): what the kinetic
-// grid and the kinetic trees consume.
+// The camera-space scene as the kinetic core's meshes (kinetic/motion/flightplan_mesh.h): what the
+// kinetic grid and the kinetic trees consume.
 #include <vector>
 
-#include "kinetic/grid_input.h"
+#include "kinetic/motion/flightplan_mesh.h"
 #include "scenes/camera_space.h"
 
 namespace kinray {
 
-/// One GridMesh per camera-space object, in order, pointing into `scene` (which must outlive them).
-[[nodiscard]] inline std::vector<GridMesh> grid_meshes(const CameraSpaceScene& scene) {
-  std::vector<GridMesh> meshes;
+/// One FlightplanMesh per camera-space object, in order, pointing into `scene` (which must outlive
+/// them).
+[[nodiscard]] inline std::vector<FlightplanMesh> grid_meshes(const CameraSpaceScene& scene) {
+  std::vector<FlightplanMesh> meshes;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const CameraSpaceObject& cs = scene.objects[o];
-    GridMesh mesh;
+    FlightplanMesh mesh;
     mesh.id = cs.object;
     mesh.key_times = cs.key_times;
     mesh.positions = cs.positions;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

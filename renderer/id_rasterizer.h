@@ -8,9 +8,9 @@
 // the rest.
 //
 // Projection. Camera space has the fov folded in, so a point (x, y, z) lies on the centre ray of
-// the continuous pixel position x / z = pixel_x, y / z = pixel_y. Sending the clip-space vertex
-// (x / aspect, y, near, z) (aspect = W / H) makes GL's normalized device coordinates exactly the
-// centre-ray coordinates, so GL's pixel centres (i + 1/2, rows counted from the bottom) sample
+// the continuous pixel position x / z = PixelRays::x, y / z = PixelRays::y. Sending the clip-space
+// vertex (x / aspect, y, near, z) (aspect = W / H) makes GL's normalized device coordinates exactly
+// the centre-ray coordinates, so GL's pixel centres (i + 1/2, rows counted from the bottom) sample
 // the rays d_ij. The depth is "reversed and infinite": with clip control [0, 1] the window depth
 // is near / z, 1 at the near plane and 0 at infinity, stored as a 32-bit float, so its relative
 // precision is that of a float (~6e-8) at every distance; the depth test keeps the greater value.

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "renderer/temporary_files.h"
-#include "scenes/error.h"
 #include "scenes/texture_image.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -5,12 +5,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/stats_json.h"
-#include "kinetic/frustum_grid.h"
+#include "kinetic/grid/frustum_grid.h"
 #include "renderer/grid_meshes.h"
 #include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/kinetic_shutter.h"
-#include "scenes/error.h"
+#include "renderer/stats_json.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

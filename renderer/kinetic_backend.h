@@ -1,5 +1,5 @@
 #pragma once
-// The kinetic backend: the kinetic grid of frusta (kinetic/frustum_grid.h) over the scene's
+// The kinetic backend: the kinetic grid of frusta (kinetic/grid/frustum_grid.h) over the scene's
 // camera-space flightplans. The grid is built by scan conversion at the first frame time; each
 // later frame processes the events up to its time and reads the front triangle of every pixel
 // out. Nothing is rasterized or traced per frame. The ID and depth buffers are written exactly as
@@ -10,7 +10,7 @@
 // BackendConfig: width, height, threads, sort (DepthSortKind), audit.
 #include <memory>
 
-#include "kinetic/grid_input.h"
+#include "kinetic/grid/grid_input.h"
 #include "renderer/backend.h"
 
 namespace kinray {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "kinetic/parallel.h"
 #include "renderer/plane_depth.h"
 #include "renderer/shading.h"
+#include "util/parallel.h"
 
 namespace kinray {
 
@@ -78,7 +78,7 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
   }
   const uint32_t m = grid.mesh_of_triangle(front);
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
-  const ImageGeometry image{grid.width(), grid.height()};
+  const PixelRays image{grid.width(), grid.height()};
   for_each_node(object, t0, t1, length, [&](double t, double w) {
     average.add(shade_hit(m_scene, image, i, j, object, prim, shading_instant(m_scene, object, t)),
                 w);
@@ -93,7 +93,7 @@ void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int
   }
   const uint32_t m = grid.mesh_of_triangle(front);
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
-  const ImageGeometry image{grid.width(), grid.height()};
+  const PixelRays image{grid.width(), grid.height()};
   for (const WindowNode& node : m_window_nodes[object])
     average.add(shade_hit(m_scene, image, i, j, object, prim, node.instant), node.weight);
 }
@@ -143,7 +143,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
     }
     changes.fetch_add(logs[b].changes.size(), std::memory_order_relaxed);
   });
-  const ImageGeometry image{w, h};
+  const PixelRays image{w, h};
   parallel_for(size_t(h), m_threads, [&](size_t row) {
     const int j = int(row);
     for (int i = 0; i < w; ++i) {

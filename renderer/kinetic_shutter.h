@@ -1,7 +1,7 @@
 #pragma once
 // Exact motion blur on the kinetic grid (DESIGN.md, "Exact motion blur"). The grid processes
 // every event of a shutter window in time order and logs each change of a pixel's front
-// (kinetic/front_change_log.h); between two changes the front is fixed, so each pixel's window
+// (kinetic/grid/front_change_log.h); between two changes the front is fixed, so each pixel's window
 // splits into intervals with one front each, and the visibility part of the time average is
 // exact. Each interval's shading (which varies smoothly while the front is fixed) is integrated
 // by Gauss-Legendre quadrature; the background counts for its share of the window.
@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "kinetic/frustum_grid.h"
+#include "kinetic/grid/frustum_grid.h"
 #include "renderer/frame.h"
 #include "renderer/shading.h"
 #include "renderer/shutter.h"

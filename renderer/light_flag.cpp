@@ -1,7 +1,7 @@
 #include "renderer/light_flag.h"
 
 #include "renderer/vector_flag.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -4,15 +4,15 @@
 #include <stdexcept>
 #include <vector>
 
-#include "kinetic/parallel.h"
 #include "renderer/shading.h"
 #include "renderer/shadow_rays.h"
+#include "util/parallel.h"
 
 namespace kinray {
 namespace {
 
 /// One hit pixel of a row: its surface and the first of its shadow rays in the row's batch.
-struct PixelRays {
+struct HitShadowRays {
   int i = 0;
   size_t first = 0;
   uint32_t traced = 0;  ///< bit l: light l faces the hit, its ray is in the batch
@@ -41,13 +41,13 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
     throw std::invalid_argument("shade_frame_lit: 1 to 32 lights");
   tracer.advance_to(frame.time);
   const std::vector<CameraSpaceLight> at_t = lights.at(frame.time);
-  const ImageGeometry image{frame.width, frame.height};
+  const PixelRays image{frame.width, frame.height};
   frame.lit.assign(frame.pixel_count(), 0u);
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
     std::vector<SurfacePoint> surfaces;
     std::vector<Vec3> origins;
-    std::vector<PixelRays> pixels;
+    std::vector<HitShadowRays> pixels;
     std::vector<ShadowRay> rays;
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
@@ -58,7 +58,7 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
       const SurfacePoint& s = surfaces.emplace_back(
           surface_point(scene, image, i, j, frame.object[p], frame.prim[p], frame.time));
       const Vec3& origin = origins.emplace_back(plane_hit(s.ray, s.p0, s.p1, s.p2));
-      PixelRays& pixel = pixels.emplace_back(PixelRays{i, rays.size(), 0u});
+      HitShadowRays& pixel = pixels.emplace_back(HitShadowRays{i, rays.size(), 0u});
       for (size_t l = 0; l < at_t.size(); ++l)
         if (auto ray = shadow_ray(origin, s.ray, s.p0, s.p1, s.p2, at_t[l], frame.object[p],
                                   frame.prim[p])) {
@@ -69,7 +69,7 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
     std::vector<uint8_t> blocked(rays.size(), 0);
     if (!rays.empty()) tracer.occluded(rays, blocked);
     for (size_t k = 0; k < pixels.size(); ++k) {
-      const PixelRays& pixel = pixels[k];
+      const HitShadowRays& pixel = pixels[k];
       uint32_t mask = 0;
       size_t r = pixel.first;
       for (size_t l = 0; l < at_t.size(); ++l)

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
-#include "scenes/error.h"
 #include "scenes/procedural.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

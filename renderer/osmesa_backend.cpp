@@ -12,9 +12,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "kinetic/check.h"
 #include "renderer/id_rasterizer.h"
-#include "scenes/error.h"
+#include "util/check.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

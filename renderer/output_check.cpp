@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "kinetic/fork_gate.h"
+#include "util/fork_gate.h"
 
 namespace kinray {
 namespace {

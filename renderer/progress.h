@@ -11,7 +11,7 @@
 #include <string>
 #include <thread>
 
-#include "kinetic/work_progress.h"
+#include "util/work_progress.h"
 
 namespace kinray {
 

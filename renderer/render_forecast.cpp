@@ -10,7 +10,7 @@
 #include "renderer/backend.h"
 #include "renderer/frame.h"
 #include "renderer/render_job.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

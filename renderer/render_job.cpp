@@ -13,7 +13,6 @@
 #include <system_error>
 #include <tuple>
 
-#include "kinetic/check.h"
 #include "renderer/contact_tint.h"
 #include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/light_flag.h"
@@ -23,8 +22,9 @@
 #include "renderer/shading.h"
 #include "renderer/shadow_rays.h"
 #include "renderer/video_writer.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "util/check.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kinetic/parallel.h"
+#include "util/parallel.h"
 
 namespace kinray {
 
@@ -11,12 +11,12 @@ ShadingInstant shading_instant(const CameraSpaceScene& scene, uint32_t object, d
   return {locate(scene.objects[object].key_times, t), scene.tan_half_fov(t)};
 }
 
-SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
                            uint32_t object, uint32_t prim, double t) {
   return surface_point(scene, image, i, j, object, prim, shading_instant(scene, object, t));
 }
 
-SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
                            uint32_t object, uint32_t prim, const ShadingInstant& instant) {
   const KeySegment& at = instant.segment;
   const CameraSpaceObject& cs = scene.objects[object];
@@ -57,12 +57,12 @@ SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& i
   return surface;
 }
 
-Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
                 uint32_t object, uint32_t prim, double t) {
   return shade_hit(scene, image, i, j, object, prim, shading_instant(scene, object, t));
 }
 
-Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i, int j,
+Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
                 uint32_t object, uint32_t prim, const ShadingInstant& instant) {
   const SurfacePoint surface = surface_point(scene, image, i, j, object, prim, instant);
   const float lambert = std::abs(surface.normal.dot(surface.view));
@@ -70,7 +70,7 @@ Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i
 }
 
 void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {
-  const ImageGeometry image{frame.width, frame.height};
+  const PixelRays image{frame.width, frame.height};
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
     for (int i = 0; i < frame.width; ++i) {

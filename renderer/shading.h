@@ -38,21 +38,21 @@ struct ShadingInstant {
                                              double t);
 
 /// The SurfacePoint of pixel (i, j) hitting (object, prim) at `instant`.
-[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image,
+[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image,
                                          int i, int j, uint32_t object, uint32_t prim,
                                          const ShadingInstant& instant);
 
 /// The SurfacePoint of pixel (i, j) hitting (object, prim) at time t.
-[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const ImageGeometry& image,
+[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image,
                                          int i, int j, uint32_t object, uint32_t prim, double t);
 
 /// Base colour (or texture) with a two-sided headlight Lambert term, using vertex normals
 /// interpolated at the exact hit of pixel (i, j) on (object, prim) at time t.
-[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i,
+[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i,
                               int j, uint32_t object, uint32_t prim, double t);
 
 /// shade_hit at `instant` (the same colour as at its time, bit for bit).
-[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const ImageGeometry& image, int i,
+[[nodiscard]] Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i,
                               int j, uint32_t object, uint32_t prim, const ShadingInstant& instant);
 
 /// Fills frame.color from frame.object / frame.prim (all cores).

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "kinetic/enum_names.h"
 #include "scenes/scene.h"
+#include "util/enum_names.h"
 
 namespace kinray {
 

@@ -1,10 +1,10 @@
 #pragma once
 // The parts of every kinetic structure's --stats JSON that are written the same way: counters
-// by their declared keys (kinetic/counters.h), events by kind with their total, and the four
-// quality measures (kinetic/quality_measures.h).
+// by their declared keys (kinetic/core/counters.h), events by kind with their total, and the four
+// quality measures (kinetic/core/quality_measures.h).
 #include <nlohmann/json.hpp>
 
-#include "kinetic/quality_measures.h"
+#include "kinetic/core/quality_measures.h"
 
 namespace kinray {
 

@@ -10,7 +10,7 @@
 #include <system_error>
 
 #include "renderer/image_io.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

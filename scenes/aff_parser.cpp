@@ -7,8 +7,8 @@
 
 #include "scenes/aff_reader.h"
 #include "scenes/aff_shapes.h"
-#include "scenes/error.h"
 #include "scenes/ppm_texture.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -6,8 +6,8 @@
 #include <map>
 
 #include "scenes/aff_parser.h"
-#include "scenes/error.h"
-#include "scenes/warning.h"
+#include "util/input_error.h"
+#include "util/warning.h"
 
 namespace kinray {
 namespace {

@@ -24,7 +24,7 @@ namespace kinray {
 [[nodiscard]] Scene build_aff_scene(const AffDocument& document, const std::string& source,
                                     double keyrate = 0);
 
-/// parse_aff + build_aff_scene; the document's warnings go to warn() (scenes/warning.h), one each.
+/// parse_aff + build_aff_scene; the document's warnings go to warn() (util/warning.h), one each.
 [[nodiscard]] Scene load_aff(const std::filesystem::path& path, double keyrate = 0);
 
 }  // namespace kinray

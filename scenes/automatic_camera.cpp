@@ -4,8 +4,8 @@
 #include <cmath>
 #include <span>
 
-#include "kinetic/parallel.h"
 #include "scenes/camera_space.h"
+#include "util/parallel.h"
 
 namespace kinray {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kinetic/parallel.h"
+#include "util/parallel.h"
 
 namespace kinray {
 

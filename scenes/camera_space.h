@@ -10,19 +10,9 @@
 #include <vector>
 
 #include "scenes/scene.h"
+#include "util/pixel_rays.h"
 
 namespace kinray {
-
-/// Pixel-centre ray directions of a W x H image: d_ij = (pixel_x(i), pixel_y(j), 1), row 0 at top.
-struct ImageGeometry {
-  int width = 0, height = 0;
-  [[nodiscard]] double pixel_x(int i) const {
-    return ((2.0 * i + 1.0) / width - 1.0) * (double(width) / double(height));
-  }
-  [[nodiscard]] double pixel_y(int j) const { return 1.0 - (2.0 * j + 1.0) / height; }
-  [[nodiscard]] Vec3 direction(int i, int j) const { return {pixel_x(i), pixel_y(j), 1.0}; }
-  [[nodiscard]] size_t pixel_count() const { return size_t(width) * size_t(height); }
-};
 
 /// Where t falls on a key grid: segment k (between keys k and k+1) and the fraction alpha in
 /// [0, 1]. Outside the grid the motion stands still (k clamps, alpha is 0 or 1).

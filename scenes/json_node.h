@@ -10,8 +10,8 @@
 #include <optional>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/scene.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "kinetic/parallel.h"
+#include "util/parallel.h"
 
 namespace kinray {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -4,9 +4,9 @@
 #include <filesystem>
 
 #include "scenes/automatic_camera.h"
-#include "scenes/error.h"
 #include "scenes/obj_reader.h"
 #include "scenes/ply_reader.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -5,8 +5,8 @@
 #include <cctype>
 #include <filesystem>
 
-#include "scenes/error.h"
 #include "scenes/mesh_sequence.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <unordered_set>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

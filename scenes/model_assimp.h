@@ -1,6 +1,6 @@
 #pragma once
 // The boundary between assimp and kinray: assimp's math types in Eigen form, and the one way the
-// model importer reports a repair (a warning, scenes/warning.h; stdout stays clean for the tools).
+// model importer reports a repair (a warning, util/warning.h; stdout stays clean for the tools).
 #include <assimp/matrix4x4.h>
 #include <assimp/quaternion.h>
 #include <assimp/vector3.h>
@@ -42,7 +42,7 @@ using Mat4 = Eigen::Matrix4d;
          "references cannot represent, reads as infinite)";
 }
 
-/// Reports a documented repair of bad model data: one warning (scenes/warning.h) naming the place.
+/// Reports a documented repair of bad model data: one warning (util/warning.h) naming the place.
 void warn_repair(const std::string& where, const std::string& what);
 
 }  // namespace kinray

@@ -16,7 +16,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "kinetic/fork_gate.h"
+#include "util/fork_gate.h"
 
 namespace kinray {
 

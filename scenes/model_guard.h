@@ -16,7 +16,7 @@ namespace kinray {
 /// nothing when `work` returned an empty string, and otherwise why not: the text it returned, the
 /// signal that killed it, or that it ran longer than `timeout_seconds` (it is then killed). When
 /// no child can be started, runs nothing and returns nothing: the caller's own attempt decides.
-/// The fork waits until no thread of the project's own is working (kinetic/fork_gate.h); `work`
+/// The fork waits until no thread of the project's own is working (util/fork_gate.h); `work`
 /// must not start threads (the child has only the one that forked).
 [[nodiscard]] std::optional<std::string> run_in_child(const std::function<std::string()>& work,
                                                       double timeout_seconds,

@@ -12,9 +12,7 @@
 #include <map>
 #include <string_view>
 
-#include "kinetic/parallel.h"
 #include "scenes/automatic_camera.h"
-#include "scenes/error.h"
 #include "scenes/model_animation.h"
 #include "scenes/model_camera.h"
 #include "scenes/model_guard.h"
@@ -24,7 +22,9 @@
 #include "scenes/model_textures.h"
 #include "scenes/model_xfile_check.h"
 #include "scenes/ply_reader.h"
-#include "scenes/warning.h"
+#include "util/input_error.h"
+#include "util/parallel.h"
+#include "util/warning.h"
 
 namespace kinray {
 

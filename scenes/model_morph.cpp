@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scenes/error.h"
 #include "scenes/model_animation.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -2,7 +2,7 @@
 // Diffuse (base colour) textures of imported models, read with OpenCV imgcodecs (and TGA, which it
 // lacks, with model_tga.h) into linear-RGB kinray::Textures: files beside the model, or textures
 // embedded in it ("*0", glb buffers, MDL skins). A texture that is missing or cannot be decoded is
-// a documented repair: a warning (scenes/warning.h), and the material keeps its base colour alone.
+// a documented repair: a warning (util/warning.h), and the material keeps its base colour alone.
 #include <filesystem>
 #include <optional>
 #include <string>

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cstdint>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

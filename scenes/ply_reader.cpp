@@ -8,7 +8,7 @@
 #include <fstream>
 #include <optional>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/texture_image.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

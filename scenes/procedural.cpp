@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "scenes/camera_space.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

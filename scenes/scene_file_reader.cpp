@@ -14,13 +14,13 @@
 #include <sstream>
 
 #include "scenes/camera_space.h"
-#include "scenes/error.h"
 #include "scenes/json_node.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/model_import.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_file_keys.h"
 #include "scenes/texture_image.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {
@@ -32,8 +32,8 @@ namespace fs = std::filesystem;
 constexpr double kMaxPrimitiveTriangles = 5e7;
 
 /// The fast path of the large arrays (vertices, triangles, uvs): reads `n` finite numbers of a
-/// JSON array straight away; on anything else returns false, and the caller goes through JsonNode for
-/// the precise error.
+/// JSON array straight away; on anything else returns false, and the caller goes through JsonNode
+/// for the precise error.
 bool read_numbers(const json& value, size_t n, double* out) {
   if (!value.is_array() || value.size() != n) return false;
   for (size_t i = 0; i < n; ++i) {

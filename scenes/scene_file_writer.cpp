@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/scene_file.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

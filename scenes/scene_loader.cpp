@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "scenes/aff_scene.h"
-#include "scenes/error.h"
 #include "scenes/mesh_sequence.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_file.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
-#include "kinetic/check.h"
+#include "util/check.h"
 
 namespace kinray {
 

@@ -10,12 +10,10 @@
 #include <tuple>
 #include <vector>
 
-#include "renderer/benchmark.h"
 #include "renderer/image_io.h"
 #include "renderer/memory_estimate.h"
 #include "renderer/option_scope.h"
 #include "renderer/output_check.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"
@@ -24,6 +22,8 @@
 #include "tools/collide_bench.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
+#include "util/input_error.h"
+#include "verification/benchmark.h"
 
 namespace kinray {
 namespace {

@@ -6,11 +6,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "renderer/benchmark.h"
 #include "renderer/image_io.h"
-#include "renderer/motion_blur_bench.h"
-#include "scenes/error.h"
 #include "tools/cli_options.h"
+#include "util/input_error.h"
+#include "verification/benchmark.h"
+#include "verification/motion_blur_bench.h"
 
 namespace kinray {
 

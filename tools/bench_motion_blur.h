@@ -1,6 +1,7 @@
 #pragma once
 // `kinray bench --shutter S`: the equal-quality motion blur comparison
-// (renderer/motion_blur_bench.h) over SCENE and --blur-scenes, instead of the frame-time sweeps.
+// (verification/motion_blur_bench.h) over SCENE and --blur-scenes, instead of the frame-time
+// sweeps.
 #include <CLI/CLI.hpp>
 #include <string>
 

@@ -10,7 +10,7 @@
 
 #include "renderer/image_io.h"
 #include "renderer/output_check.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -1,10 +1,10 @@
 #pragma once
-// `kinray bench --suite`: the benchmark suite (renderer/bench_suite.h), reached from
+// `kinray bench --suite`: the benchmark suite (verification/bench_suite.h), reached from
 // tools/bench_command.cpp, which resolves the flags it shares with `bench SCENE`.
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "renderer/bench_suite.h"
+#include "verification/bench_suite.h"
 
 namespace kinray {
 

@@ -18,10 +18,10 @@
 #include "kinetic/collision/exact_ccd.h"
 #include "kinetic/collision/primitive_ccd.h"
 #include "renderer/image_io.h"
-#include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

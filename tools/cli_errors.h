@@ -4,7 +4,7 @@
 // so every subcommand and every flag, present or future, gets the same one-line errors.
 #include <CLI/CLI.hpp>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "renderer/frame_schedule.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

@@ -8,8 +8,8 @@
 #include <span>
 #include <string>
 
-#include "kinetic/enum_names.h"
 #include "renderer/render_job.h"
+#include "util/enum_names.h"
 
 namespace kinray {
 

@@ -8,13 +8,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "renderer/bench_support.h"
-#include "renderer/benchmark.h"
 #include "renderer/image_io.h"
 #include "renderer/output_check.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/scene_contacts.h"
+#include "util/input_error.h"
+#include "verification/bench_support.h"
+#include "verification/benchmark.h"
 
 namespace kinray {
 namespace {

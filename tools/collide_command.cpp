@@ -10,12 +10,12 @@
 #include "renderer/frame_schedule.h"
 #include "renderer/image_io.h"
 #include "renderer/stats_json.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
 #include "tools/scene_contacts.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

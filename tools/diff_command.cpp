@@ -1,8 +1,8 @@
 // kinray diff SCENE ...: renders every frame with the tested backend (default kinetic) and with a
 // reference (--against embree | osmesa), classifies each differing pixel as a tie or a real
-// mismatch (renderer/image_diff.h), prints a table, writes heat maps and a JSON summary, and exits
-// 0 only when every frame's real mismatches are within the budget. It takes the same scene, frame
-// and backend flags as `kinray render`. See docs/verification.md.
+// mismatch (verification/image_diff.h), prints a table, writes heat maps and a JSON summary, and
+// exits 0 only when every frame's real mismatches are within the budget. It takes the same scene,
+// frame and backend flags as `kinray render`. See docs/verification.md.
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -11,15 +11,15 @@
 #include <memory>
 #include <stdexcept>
 
-#include "renderer/image_diff.h"
 #include "renderer/image_io.h"
 #include "renderer/option_scope.h"
 #include "renderer/output_check.h"
 #include "renderer/progress.h"
-#include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/shutter_diff.h"
+#include "util/input_error.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {

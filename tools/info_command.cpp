@@ -8,11 +8,11 @@
 #include <string>
 
 #include "renderer/camera_flags.h"
-#include "scenes/error.h"
 #include "scenes/mesh_sequence.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

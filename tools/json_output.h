@@ -4,8 +4,8 @@
 #include <string>
 #include <system_error>
 
-#include "scenes/error.h"
 #include "tools/cli_options.h"
+#include "util/input_error.h"
 
 namespace kinray {
 

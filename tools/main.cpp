@@ -10,9 +10,9 @@
 #include <string>
 
 #include "renderer/temporary_files.h"
-#include "scenes/error.h"
 #include "tools/cli_errors.h"
 #include "tools/commands.h"
+#include "util/input_error.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // kinray regress [--update-references] [--report DIR] [--case NAME]...: the image regression suite
-// (renderer/regression_suite.h). Renders every case with the kinetic backend (audit on) and with
-// Embree, compares each frame with the stored references and with Embree, prints one line per
+// (verification/regression_suite.h). Renders every case with the kinetic backend (audit on) and
+// with Embree, compares each frame with the stored references and with Embree, prints one line per
 // case, writes heat maps and frames of failing cases into the report folder, and exits 0 only when
 // every case passed (or was updated, or skipped because its model is not installed). References
 // are rewritten only with --update-references, and only for cases that agree with Embree.
@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "renderer/output_check.h"
-#include "renderer/regression_suite.h"
-#include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "util/input_error.h"
+#include "verification/regression_suite.h"
 
 namespace kinray {
 namespace {

@@ -19,13 +19,13 @@
 #include "renderer/progress.h"
 #include "renderer/render_forecast.h"
 #include "renderer/video_writer.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
-#include "scenes/warning.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/contact_frames.h"
 #include "tools/frame_sequence.h"
+#include "util/input_error.h"
+#include "util/warning.h"
 
 namespace kinray {
 namespace {

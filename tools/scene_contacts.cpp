@@ -6,7 +6,7 @@
 
 #include "kinetic/collision/kinetic_contact_finder.h"
 #include "kinetic/collision/swept_volume_hierarchy.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {
@@ -36,17 +36,17 @@ struct SegmentMeshes {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
 };
 
-/// The KSL's input: each selected object's flightplans as a GridMesh (positions flattened).
+/// The KSL's input: each selected object's flightplans as a FlightplanMesh (positions flattened).
 struct FlightplanMeshes {
   std::vector<std::vector<Vec3>> positions;
-  std::vector<GridMesh> meshes;
+  std::vector<FlightplanMesh> meshes;
   FlightplanMeshes(const Scene& scene, std::span<const std::uint32_t> objects) {
     positions.resize(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const Object& o = scene.objects[objects[i]];
       for (const std::vector<Vec3>& key : o.key_positions)
         positions[i].insert(positions[i].end(), key.begin(), key.end());
-      GridMesh m;
+      FlightplanMesh m;
       m.id = objects[i];
       m.key_times = o.key_times;
       m.positions = positions[i];

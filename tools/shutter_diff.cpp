@@ -10,9 +10,9 @@
 
 #include "renderer/image_io.h"
 #include "renderer/progress.h"
-#include "renderer/shutter_error.h"
-#include "scenes/error.h"
 #include "tools/cli_options.h"
+#include "util/input_error.h"
+#include "verification/shutter_error.h"
 
 namespace kinray {
 namespace {

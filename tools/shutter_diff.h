@@ -1,7 +1,7 @@
 #pragma once
 // `kinray diff --shutter S`: motion-blurred frames have no single id per pixel to compare, so the
 // tested backend's frames are compared by colour with the Embree reference at very many time
-// samples (renderer/shutter_error.h), frame by frame, within a stated tolerance.
+// samples (verification/shutter_error.h), frame by frame, within a stated tolerance.
 #include <string>
 
 #include "renderer/render_job.h"

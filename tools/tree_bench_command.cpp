@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "renderer/benchmark.h"
 #include "renderer/image_io.h"
-#include "renderer/tree_benchmark.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
+#include "verification/benchmark.h"
+#include "verification/tree_benchmark.h"
 
 namespace kinray {
 

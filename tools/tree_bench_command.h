@@ -1,6 +1,6 @@
 #pragma once
 // `kinray bench SCENE --structure aabb,boxtree`: the kinetic trees' benchmark
-// (renderer/tree_benchmark.h), reached from tools/bench_command.cpp.
+// (verification/tree_benchmark.h), reached from tools/bench_command.cpp.
 #include <string>
 
 #include "renderer/render_job.h"

@@ -11,9 +11,9 @@
 
 #include "renderer/image_io.h"
 #include "renderer/video_writer.h"
-#include "scenes/error.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

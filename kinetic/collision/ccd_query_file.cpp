@@ -6,7 +6,7 @@
 
 // InputError is the project's one way of refusing input; a header of its own, shared by every
 // reader (scenes, models, query files).
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -11,7 +11,7 @@
 #include <functional>
 #include <memory>
 
-#include "kinetic/collision/rational_polynomial.h"
+#include "kinetic/core/rational_polynomial.h"
 
 namespace kinray {
 namespace {

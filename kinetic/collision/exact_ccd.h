@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "kinetic/collision/contact_pair.h"
-#include "kinetic/collision/rational_polynomial.h"
+#include "kinetic/core/rational_polynomial.h"
 
 namespace kinray {
 

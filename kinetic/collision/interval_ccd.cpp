@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "kinetic/collision/exact_ccd.h"
-#include "kinetic/collision/interval_arithmetic.h"
+#include "kinetic/core/interval_arithmetic.h"
 
 namespace kinray {
 namespace {

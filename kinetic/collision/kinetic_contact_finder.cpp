@@ -6,9 +6,9 @@
 
 namespace kinray {
 
-double KineticContactFinder::contact_pad(std::span<const GridMesh> meshes, double t_end) {
+double KineticContactFinder::contact_pad(std::span<const FlightplanMesh> meshes, double t_end) {
   double scale = 0, speed = 0, time = std::isfinite(t_end) ? std::fabs(t_end) : 0;
-  for (const GridMesh& m : meshes) {
+  for (const FlightplanMesh& m : meshes) {
     for (const Eigen::Vector3d& p : m.positions) scale = std::max(scale, p.cwiseAbs().maxCoeff());
     for (size_t k = 0; k < m.key_count(); ++k) {
       time = std::max(time, std::fabs(m.key_times[k]));
@@ -22,15 +22,15 @@ double KineticContactFinder::contact_pad(std::span<const GridMesh> meshes, doubl
   return 1e-12 * scale + 64 * std::numeric_limits<double>::epsilon() * time * speed;
 }
 
-KineticContactFinder::KineticContactFinder(std::vector<GridMesh> meshes,
+KineticContactFinder::KineticContactFinder(std::vector<FlightplanMesh> meshes,
                                            std::vector<std::pair<uint32_t, uint32_t>> pairs,
                                            double t, bool audit)
     : m_pairs(std::move(pairs)), m_audit(audit) {
   m_pad = contact_pad(meshes, t);
-  for (GridMesh& mesh : meshes) {
+  for (FlightplanMesh& mesh : meshes) {
     mesh.appear = -std::numeric_limits<double>::infinity();
     mesh.disappear = std::numeric_limits<double>::infinity();
-    m_trees.push_back(std::make_unique<KineticBvh>(std::vector<GridMesh>{mesh}, t,
+    m_trees.push_back(std::make_unique<KineticBvh>(std::vector<FlightplanMesh>{mesh}, t,
                                                    KineticBvh::Config{TreeShape::aabb, audit}));
   }
   for (const auto& [i, j] : m_pairs)

@@ -21,7 +21,7 @@ class KineticContactFinder {
   /// meshes[i]: object i's flightplans (its presence is ignored: contacts are found at every
   /// time, as brute force does); pairs (i, j), i == j for self-contacts. Built at time t; with
   /// audit, the trees and the lists audit themselves after every advance.
-  KineticContactFinder(std::vector<GridMesh> meshes,
+  KineticContactFinder(std::vector<FlightplanMesh> meshes,
                        std::vector<std::pair<uint32_t, uint32_t>> pairs, double t, bool audit);
 
   /// Advances to `begin`, then begins the segment [begin, end]: segments[i] holds object i's
@@ -42,7 +42,7 @@ class KineticContactFinder {
   /// The boxes' margin: 1e-12 of the largest coordinate (the rounding between a tree's motion
   /// a + b (t - o) and a segment's interpolated positions) plus the largest speed times 64 ulps of
   /// the largest time (the rounding of t - o and of interpolation weights).
-  [[nodiscard]] static double contact_pad(std::span<const GridMesh> meshes, double t_end);
+  [[nodiscard]] static double contact_pad(std::span<const FlightplanMesh> meshes, double t_end);
 
  private:
   /// Processes every event of the trees and the lists up to t, in time order.

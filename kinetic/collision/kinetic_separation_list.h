@@ -30,7 +30,7 @@
 
 #include "kinetic/collision/ksl_stats.h"
 #include "kinetic/collision/mesh_contacts.h"
-#include "kinetic/simulator.h"
+#include "kinetic/core/simulator.h"
 #include "kinetic/tree/kinetic_bvh.h"
 
 namespace kinray {

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <string>
 
-#include "kinetic/audit_failure.h"
 #include "kinetic/collision/kinetic_separation_list.h"
+#include "kinetic/core/audit_failure.h"
 
 namespace kinray {
 

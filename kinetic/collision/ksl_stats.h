@@ -4,7 +4,7 @@
 // one asks for contacts.
 #include <cstdint>
 
-#include "kinetic/counters.h"
+#include "kinetic/core/counters.h"
 
 namespace kinray {
 

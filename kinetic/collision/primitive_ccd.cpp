@@ -9,10 +9,10 @@
 #include <optional>
 #include <utility>
 
-#include "kinetic/check.h"
 #include "kinetic/collision/exact_ccd.h"
-#include "kinetic/collision/interval_arithmetic.h"
 #include "kinetic/collision/interval_ccd.h"
+#include "kinetic/core/interval_arithmetic.h"
+#include "util/check.h"
 
 namespace kinray {
 namespace {

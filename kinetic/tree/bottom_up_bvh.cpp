@@ -2,7 +2,8 @@
 
 namespace kinray {
 
-BottomUpBvh::BottomUpBvh(std::vector<GridMesh> meshes, double t) : m_meshes(std::move(meshes), t) {
+BottomUpBvh::BottomUpBvh(std::vector<FlightplanMesh> meshes, double t)
+    : m_meshes(std::move(meshes), t) {
   std::vector<Aabb> boxes(m_meshes.triangle_count());
   for (uint32_t tri = 0; tri < m_meshes.triangle_count(); ++tri)
     for (uint32_t v : m_meshes.triangle(tri))

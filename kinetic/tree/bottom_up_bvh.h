@@ -15,7 +15,7 @@ namespace kinray {
 class BottomUpBvh {
  public:
   /// Builds the tree at time t (the kinetic trees' builder on the same boxes).
-  BottomUpBvh(std::vector<GridMesh> meshes, double t);
+  BottomUpBvh(std::vector<FlightplanMesh> meshes, double t);
 
   /// Recomputes every box at t: the present meshes' vertex positions, the leaves, then parents.
   void update(double t);
@@ -50,7 +50,7 @@ class BottomUpBvh {
   BvhTopology m_topology;
   std::vector<Aabb> m_boxes;
   std::vector<Eigen::Vector3d> m_positions;  ///< per global vertex, at the last update
-  std::vector<GridMesh::KeyBlend> m_blends;
+  std::vector<FlightplanMesh::KeyBlend> m_blends;
   double m_time = 0;
   uint64_t m_box_updates = 0, m_updates = 0;
 };

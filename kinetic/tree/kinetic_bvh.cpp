@@ -4,7 +4,7 @@
 #include <bit>
 #include <cmath>
 
-#include "kinetic/check.h"
+#include "util/check.h"
 
 namespace kinray {
 
@@ -27,7 +27,7 @@ std::vector<uint8_t> tracked_sides(const BvhTopology& topology, TreeShape shape)
 
 }  // namespace
 
-KineticBvh::KineticBvh(std::vector<GridMesh> meshes, double t, const Config& config)
+KineticBvh::KineticBvh(std::vector<FlightplanMesh> meshes, double t, const Config& config)
     : m_config(config), m_meshes(std::move(meshes), t), m_sim(t) {
   const uint32_t triangles = m_meshes.triangle_count();
   std::vector<Aabb> boxes(triangles);
@@ -193,7 +193,7 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
 
 void KineticBvh::handle_mesh(uint32_t m) {
   const double t = m_sim.now();
-  const GridMesh& mesh = m_meshes.mesh(m);
+  const FlightplanMesh& mesh = m_meshes.mesh(m);
   const bool was_present = m_meshes.present(m);
   m_meshes.set_time(m, t);
   if (m_meshes.present(m) && !was_present)

@@ -19,7 +19,7 @@
 #include <functional>
 #include <vector>
 
-#include "kinetic/simulator.h"
+#include "kinetic/core/simulator.h"
 #include "kinetic/tree/bvh_topology.h"
 #include "kinetic/tree/tree_meshes.h"
 #include "kinetic/tree/tree_query.h"
@@ -48,7 +48,7 @@ class KineticBvh {
   };
 
   /// Builds the tree at time t over the meshes' triangles (present or not).
-  KineticBvh(std::vector<GridMesh> meshes, double t, const Config& config);
+  KineticBvh(std::vector<FlightplanMesh> meshes, double t, const Config& config);
 
   /// Processes every event up to t (t never decreases).
   void advance_to(double t);

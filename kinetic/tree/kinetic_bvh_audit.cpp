@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "kinetic/check.h"
 #include "kinetic/tree/kinetic_bvh.h"
+#include "util/check.h"
 
 namespace kinray {
 

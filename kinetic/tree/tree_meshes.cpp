@@ -4,8 +4,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "kinetic/certificate_time.h"
-#include "kinetic/root_finding.h"
+#include "kinetic/core/certificate_time.h"
+#include "kinetic/core/root_finding.h"
 
 namespace kinray {
 
@@ -17,7 +17,7 @@ double LinearCertificate::failure_time_slow(double now) const {
   return certificate_failure_time(f, origin, now, end);
 }
 
-TreeMeshes::TreeMeshes(std::vector<GridMesh> meshes, double t) : m_meshes(std::move(meshes)) {
+TreeMeshes::TreeMeshes(std::vector<FlightplanMesh> meshes, double t) : m_meshes(std::move(meshes)) {
   const size_t n = m_meshes.size();
   m_triangle_begin.assign(n + 1, 0);
   m_vertex_begin.assign(n + 1, 0);
@@ -61,7 +61,7 @@ TreeMeshes::TreeMeshes(std::vector<GridMesh> meshes, double t) : m_meshes(std::m
 }
 
 void TreeMeshes::set_time(uint32_t m, double t) {
-  const GridMesh& mesh = m_meshes[m];
+  const FlightplanMesh& mesh = m_meshes[m];
   const auto keys = mesh.key_times;
   const size_t n = keys.size();
   // The segment index is the number of keys <= t (GridScene::segment_at): 0 and n stand still.
@@ -86,7 +86,7 @@ void TreeMeshes::set_time(uint32_t m, double t) {
 }
 
 double TreeMeshes::next_change(uint32_t m, double t) const {
-  const GridMesh& mesh = m_meshes[m];
+  const FlightplanMesh& mesh = m_meshes[m];
   double next = mesh.is_static ? kInfinityTime : m_segment_end[m];
   if (mesh.appear > t) next = std::min(next, mesh.appear);
   if (mesh.disappear > t) next = std::min(next, mesh.disappear);
@@ -112,7 +112,7 @@ LinearCertificate TreeMeshes::beyond(uint32_t r, uint32_t q, int axis, int sign)
   return c;
 }
 
-void TreeMeshes::blends_at(double t, std::vector<GridMesh::KeyBlend>& out) const {
+void TreeMeshes::blends_at(double t, std::vector<FlightplanMesh::KeyBlend>& out) const {
   out.resize(m_meshes.size());
   for (size_t m = 0; m < m_meshes.size(); ++m) out[m] = m_meshes[m].blend_at(t);
 }

@@ -1,10 +1,10 @@
 #pragma once
 // The input of the kinetic trees, indexed: the triangles of camera-space meshes with
-// piecewise-linear flightplans (kinetic/grid_input.h's GridMesh), with global triangle and vertex
-// ids, and every vertex's motion on its mesh's current flightplan segment, x(t) = a + b (t - o).
-// The certificates of the trees are linear in t on a segment (DESIGN.md, "Kinetic AABB tree and
-// kinetic BoxTree"), and every comparison of two vertices builds the same polynomial from these
-// motions, so an event sees the sign change its failure time was computed for.
+// piecewise-linear flightplans (kinetic/motion/flightplan_mesh.h's FlightplanMesh), with global
+// triangle and vertex ids, and every vertex's motion on its mesh's current flightplan segment, x(t)
+// = a + b (t - o). The certificates of the trees are linear in t on a segment (DESIGN.md, "Kinetic
+// AABB tree and kinetic BoxTree"), and every comparison of two vertices builds the same polynomial
+// from these motions, so an event sees the sign change its failure time was computed for.
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
@@ -13,8 +13,8 @@
 #include <span>
 #include <vector>
 
-#include "kinetic/grid_input.h"
-#include "kinetic/root_finding.h"
+#include "kinetic/core/root_finding.h"
+#include "kinetic/motion/flightplan_mesh.h"
 
 namespace kinray {
 
@@ -47,10 +47,10 @@ class TreeMeshes {
  public:
   /// The spans of `meshes` must outlive this object. Throws std::invalid_argument on malformed
   /// meshes (key times not increasing, positions not keys x vertices, indices out of range).
-  explicit TreeMeshes(std::vector<GridMesh> meshes, double t);
+  explicit TreeMeshes(std::vector<FlightplanMesh> meshes, double t);
 
   [[nodiscard]] uint32_t mesh_count() const { return uint32_t(m_meshes.size()); }
-  [[nodiscard]] const GridMesh& mesh(uint32_t m) const { return m_meshes[m]; }
+  [[nodiscard]] const FlightplanMesh& mesh(uint32_t m) const { return m_meshes[m]; }
   [[nodiscard]] uint32_t triangle_count() const { return uint32_t(m_triangle_vertices.size()); }
   [[nodiscard]] uint32_t vertex_count() const { return uint32_t(m_a.size()); }
   [[nodiscard]] uint32_t triangle_begin(uint32_t m) const { return m_triangle_begin[m]; }
@@ -84,7 +84,7 @@ class TreeMeshes {
   [[nodiscard]] bool still(uint32_t m) const { return m_still[m] != 0; }
 
   /// Coordinate `axis` of vertex v at t on its current segment: a + b (t - o). The kinetic trees'
-  /// boxes; within a few ulps of GridMesh::position (a key blend), which the queries pad for.
+  /// boxes; within a few ulps of FlightplanMesh::position (a key blend), which the queries pad for.
   [[nodiscard]] double coordinate(uint32_t v, int axis, double t) const {
     return m_a[v][axis] + m_b[v][axis] * (t - m_origin[m_vertex_mesh[v]]);
   }
@@ -116,17 +116,18 @@ class TreeMeshes {
   [[nodiscard]] const Eigen::Vector3d& key_start(uint32_t v) const { return m_a[v]; }
   [[nodiscard]] const Eigen::Vector3d& key_end(uint32_t v) const { return m_end[v]; }
 
-  /// The key blend of every mesh at t, for exact positions (GridMesh::position) in queries.
-  void blends_at(double t, std::vector<GridMesh::KeyBlend>& out) const;
-  /// Vertex v's position as GridMesh::position computes it (the Embree reference's arithmetic).
-  [[nodiscard]] Eigen::Vector3d position(uint32_t v,
-                                         const std::vector<GridMesh::KeyBlend>& blends) const {
+  /// The key blend of every mesh at t, for exact positions (FlightplanMesh::position) in queries.
+  void blends_at(double t, std::vector<FlightplanMesh::KeyBlend>& out) const;
+  /// Vertex v's position as FlightplanMesh::position computes it (the Embree reference's
+  /// arithmetic).
+  [[nodiscard]] Eigen::Vector3d position(
+      uint32_t v, const std::vector<FlightplanMesh::KeyBlend>& blends) const {
     const uint32_t m = m_vertex_mesh[v];
     return m_meshes[m].position(v - m_vertex_begin[m], blends[m]);
   }
 
  private:
-  std::vector<GridMesh> m_meshes;
+  std::vector<FlightplanMesh> m_meshes;
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin, m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;
   std::vector<Eigen::Vector3d> m_a, m_b;           ///< per vertex, on the mesh's current segment

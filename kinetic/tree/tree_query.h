@@ -10,10 +10,10 @@
 #include <optional>
 #include <vector>
 
-#include "kinetic/check.h"
 #include "kinetic/tree/bvh_topology.h"
 #include "kinetic/tree/ray_triangle.h"
 #include "kinetic/tree/tree_meshes.h"
+#include "util/check.h"
 
 namespace kinray {
 
@@ -34,7 +34,7 @@ struct TreeHit {
 /// What the queries of one frame share: the time and every mesh's key blend at it.
 struct TreeFrame {
   double t = 0;
-  std::vector<GridMesh::KeyBlend> blends;
+  std::vector<FlightplanMesh::KeyBlend> blends;
   double pad = 0;  ///< added on every side of every box
   TreeFrame() = default;
   TreeFrame(const TreeMeshes& meshes, double time) : t(time), pad(1e-12 * meshes.scale()) {

@@ -4,7 +4,7 @@
 // appearing or disappearing; none depends on how many frames are queried.
 #include <cstdint>
 
-#include "kinetic/counters.h"
+#include "kinetic/core/counters.h"
 
 namespace kinray {
 

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray::fuzz {
 

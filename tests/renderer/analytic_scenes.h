@@ -58,7 +58,7 @@ inline Frame exact_frame(const CameraSpaceScene& scene, int width, int height, d
   Frame frame;
   frame.resize(width, height);
   frame.time = t;
-  const ImageGeometry image{width, height};
+  const PixelRays image{width, height};
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) {
       const Vec3 d = image.direction(i, j);

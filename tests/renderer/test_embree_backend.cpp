@@ -13,8 +13,8 @@
 #include "renderer/backend.h"
 #include "renderer/embree_backend.h"
 #include "scenes/camera_space.h"
-#include "scenes/error.h"
 #include "scenes/scene.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {
@@ -60,15 +60,15 @@ double side(double px, double py, double qx, double qy, double x, double y) {
 }
 
 TEST(EmbreeBackend, QuadParallelToImagePlaneHasExactIdsAndDepth) {
-  const ImageGeometry image{kWidth, kHeight};
+  const PixelRays image{kWidth, kHeight};
   const double z = 3;
   // Columns [i0, i1) and rows [j0, j1) are covered: the quad's edges lie half-way between pixel
   // centres (scaled by the depth), so no centre ray is near an edge.
   const int i0 = 11, i1 = 41, j0 = 7, j1 = 30;
-  const double x0 = z * 0.5 * (image.pixel_x(i0 - 1) + image.pixel_x(i0));
-  const double x1 = z * 0.5 * (image.pixel_x(i1 - 1) + image.pixel_x(i1));
-  const double y0 = z * 0.5 * (image.pixel_y(j1 - 1) + image.pixel_y(j1));  // bottom
-  const double y1 = z * 0.5 * (image.pixel_y(j0 - 1) + image.pixel_y(j0));  // top
+  const double x0 = z * 0.5 * (image.x(i0 - 1) + image.x(i0));
+  const double x1 = z * 0.5 * (image.x(i1 - 1) + image.x(i1));
+  const double y0 = z * 0.5 * (image.y(j1 - 1) + image.y(j1));  // bottom
+  const double y1 = z * 0.5 * (image.y(j0 - 1) + image.y(j0));  // top
   Scene scene = empty_scene();
   scene.objects.push_back(quad({x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}));
   scene.validate("test");
@@ -98,7 +98,7 @@ TEST(EmbreeBackend, QuadParallelToImagePlaneHasExactIdsAndDepth) {
           EXPECT_EQ(frame.object[p], 0u) << i << "," << j;
           EXPECT_EQ(frame.depth[p], 3.0f) << i << "," << j;
           // Triangle 0 (a, b, c) lies right of the diagonal a -> c.
-          const double s = side(x0, y0, x1, y1, z * image.pixel_x(i), z * image.pixel_y(j));
+          const double s = side(x0, y0, x1, y1, z * image.x(i), z * image.y(j));
           if (std::abs(s) < 1e-6) continue;  // on the diagonal: a tie between the two triangles
           EXPECT_EQ(frame.prim[p], s < 0 ? 0u : 1u) << i << "," << j;
           ++checked_prims;
@@ -117,7 +117,7 @@ TEST(EmbreeBackend, TiltedQuadDepthFollowsTheAnalyticPlane) {
   scene.objects.push_back(
       quad(plane(-1.5, -1.2), plane(1.4, -1.2), plane(1.4, 1.1), plane(-1.5, 1.1)));
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
-  const ImageGeometry image{kWidth, kHeight};
+  const PixelRays image{kWidth, kHeight};
   for (int packet : {1, embree_packet_widths().back()}) {
     auto backend = make_embree_backend(cs, config("refit", packet));
     Frame frame;
@@ -125,7 +125,7 @@ TEST(EmbreeBackend, TiltedQuadDepthFollowsTheAnalyticPlane) {
     int hits = 0;
     for (int j = 0; j < kHeight; ++j) {
       for (int i = 0; i < kWidth; ++i) {
-        const double x = image.pixel_x(i), y = image.pixel_y(j);
+        const double x = image.x(i), y = image.y(j);
         const double depth = 3 / (1 - 0.5 * x - 0.25 * y);
         const Vec3 hit = depth * image.direction(i, j);
         const size_t p = frame.index(i, j);

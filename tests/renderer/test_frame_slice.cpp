@@ -8,7 +8,7 @@
 
 #include "renderer/frame_slice.h"
 #include "renderer/render_job.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

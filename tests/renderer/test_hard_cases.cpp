@@ -1,7 +1,7 @@
-// The hard instants of kinetic ray tracing, each built in code, rendered by the kinetic backend with
-// its audit on and compared frame by frame with Embree (zero real mismatches; near a vertex at the
-// eye, where Embree is no reference, with the brute-force sign rule) at frame times that hit the
-// instant exactly: coplanar overlapping triangles, edges exactly through pixel centres, a depth
+// The hard instants of kinetic ray tracing, each built in code, rendered by the kinetic backend
+// with its audit on and compared frame by frame with Embree (zero real mismatches; near a vertex at
+// the eye, where Embree is no reference, with the brute-force sign rule) at frame times that hit
+// the instant exactly: coplanar overlapping triangles, edges exactly through pixel centres, a depth
 // swap exactly at a frame time, a vertex exactly on a row plane at a keyframe, objects inserted and
 // removed mid-shot, geometry passing behind the camera and through the eye, and zero-area
 // triangles. Where the mathematics gives the answer (who is in front just after a swap, what a ray
@@ -27,8 +27,8 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/backend.h"
-#include "renderer/image_diff.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {

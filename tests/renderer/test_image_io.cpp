@@ -11,7 +11,7 @@
 
 #include "renderer/image_io.h"
 #include "scenes/texture_image.h"
-#include "scenes/error.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

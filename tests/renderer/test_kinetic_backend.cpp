@@ -14,12 +14,12 @@
 #include "renderer/backend.h"
 #include "renderer/embree_backend.h"
 #include "renderer/frame_schedule.h"
-#include "renderer/image_diff.h"
 #include "renderer/kinetic_backend.h"
 #include "scenes/camera_space.h"
-#include "scenes/error.h"
 #include "scenes/procedural.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "util/input_error.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {
@@ -36,13 +36,13 @@ BackendConfig small_config(int width, int height, const std::string& sort = "lis
 
 TEST(KineticBackend, QuadAtKnownDepthMatchesEmbreeExactly) {
   constexpr int kW = 64, kH = 48;
-  const ImageGeometry image{kW, kH};
+  const PixelRays image{kW, kH};
   const double z = 3;
   const int i0 = 11, i1 = 41, j0 = 7, j1 = 30;
-  const double x0 = z * 0.5 * (image.pixel_x(i0 - 1) + image.pixel_x(i0));
-  const double x1 = z * 0.5 * (image.pixel_x(i1 - 1) + image.pixel_x(i1));
-  const double y0 = z * 0.5 * (image.pixel_y(j1 - 1) + image.pixel_y(j1));
-  const double y1 = z * 0.5 * (image.pixel_y(j0 - 1) + image.pixel_y(j0));
+  const double x0 = z * 0.5 * (image.x(i0 - 1) + image.x(i0));
+  const double x1 = z * 0.5 * (image.x(i1 - 1) + image.x(i1));
+  const double y0 = z * 0.5 * (image.y(j1 - 1) + image.y(j1));
+  const double y1 = z * 0.5 * (image.y(j0 - 1) + image.y(j0));
   const Scene scene = test::analytic_scene({test::camera_space_object(
       "quad", {{0, 1, 2}, {0, 2, 3}}, {{Vec3(x0, y0, z), Vec3(x1, y0, z), Vec3(x1, y1, z), Vec3(x0, y1, z)}})});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);

@@ -8,14 +8,14 @@
 #include <vector>
 
 #include "renderer/backend.h"
-#include "renderer/image_diff.h"
 #include "renderer/shading.h"
 #include "renderer/shutter.h"
-#include "renderer/shutter_error.h"
 #include "scenes/camera_space.h"
-#include "scenes/error.h"
 #include "scenes/procedural.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "util/input_error.h"
+#include "verification/image_diff.h"
+#include "verification/shutter_error.h"
 
 namespace kinray {
 namespace {
@@ -113,7 +113,7 @@ TEST(MotionBlur, KineticMatchesTheExactAverageOfASlidingQuad) {
   Frame blurred, sampled;
   kinetic->render_shutter(window, blurred);
   embree->render_shutter(window, sampled);
-  const ImageGeometry image{64, 32};
+  const PixelRays image{64, 32};
   const int j = 16;
   for (int i = 0; i < 64; ++i) {
     // The left edge is at column 50.25 - 40 t (in pixel units); centre i + 0.5 is covered once

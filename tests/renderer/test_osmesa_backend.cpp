@@ -7,12 +7,12 @@
 
 #include "renderer/embree_backend.h"
 #include "renderer/id_rasterizer.h"
-#include "renderer/image_diff.h"
 #include "renderer/osmesa_backend.h"
 #include "renderer/shading.h"
-#include "scenes/error.h"
 #include "scenes/procedural.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "util/input_error.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {
@@ -48,7 +48,7 @@ TEST(OsmesaBackend, QuadInTopHalfHasExactIdsAndDepths) {
   backend->render(0.0, frame);
   ASSERT_EQ(frame.width, kSize);
   ASSERT_EQ(frame.height, kSize);
-  const ImageGeometry image{kSize, kSize};
+  const PixelRays image{kSize, kSize};
   const Triangle* triangles = scene.objects[0].triangles.data();
   for (int j = 0; j < kSize; ++j)
     for (int i = 0; i < kSize; ++i) {
@@ -80,7 +80,7 @@ TEST(OsmesaBackend, NearerObjectWinsAndEveryObjectDecodes) {
   auto backend = make_osmesa_backend(cs, BackendConfig{.width = kSize, .height = kSize});
   Frame frame;
   backend->render(0.0, frame);
-  const ImageGeometry image{kSize, kSize};
+  const PixelRays image{kSize, kSize};
   int quad_pixels = 0, wall_pixels = 0;
   for (int j = 0; j < kSize; ++j)
     for (int i = 0; i < kSize; ++i) {
@@ -147,7 +147,7 @@ TEST(OsmesaBackend, TriangleCrossingTheEyePlaneIsClippedOnlyAtTheNearPlane) {
   auto backend = make_osmesa_backend(cs, BackendConfig{.width = kSize, .height = kSize});
   Frame frame;
   backend->render(0.0, frame);
-  const ImageGeometry image{kSize, kSize};
+  const PixelRays image{kSize, kSize};
   int covered = 0;
   for (int j = 0; j < kSize; ++j)
     for (int i = 0; i < kSize; ++i) {
@@ -223,7 +223,7 @@ TEST(OsmesaBackend, ShadesLikeEveryOtherBackend) {
   Frame frame;
   backend->render(0.0, frame);
   shade_frame(cs, frame, 1);
-  const ImageGeometry image{kSize, kSize};
+  const PixelRays image{kSize, kSize};
   EXPECT_EQ(frame.color[frame.index(0, 0)], kBackground);
   EXPECT_EQ(frame.color[frame.index(12, 8)],
             shade_hit(cs, image, 12, 8, 0, frame.prim[frame.index(12, 8)], 0.0));

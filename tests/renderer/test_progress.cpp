@@ -2,8 +2,8 @@
 // (elapsed seconds, and the share done when the step counts its work).
 #include <gtest/gtest.h>
 
-#include "kinetic/work_progress.h"
 #include "renderer/progress.h"
+#include "util/work_progress.h"
 
 namespace kinray {
 namespace {

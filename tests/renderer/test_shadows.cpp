@@ -7,11 +7,11 @@
 
 #include "renderer/backend.h"
 #include "renderer/brute_force_shadow_tracer.h"
-#include "renderer/image_diff.h"
 #include "renderer/lighting.h"
 #include "renderer/render_job.h"
 #include "renderer/shadow_rays.h"
 #include "scenes/camera_space_lights.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {
@@ -46,8 +46,8 @@ Scene quad_over_plane(std::vector<Light> lights, double occluder_x1 = 0.5) {
 
 /// The world point where pixel (i, j)'s ray meets the ground y = -1, or nullopt above the horizon.
 std::optional<Vec3> ground_point(int i, int j) {
-  const ImageGeometry image{kSize, kSize};
-  const double x = image.pixel_x(i), y = image.pixel_y(j);
+  const PixelRays image{kSize, kSize};
+  const double x = image.x(i), y = image.y(j);
   if (!(y < 0)) return std::nullopt;
   const double s = -1.0 / y;
   return Vec3(x * s, -1.0, -s);

@@ -18,12 +18,12 @@
 
 #include "renderer/backend.h"
 #include "renderer/frame_schedule.h"
-#include "renderer/image_diff.h"
 #include "renderer/image_io.h"
 #include "renderer/shading.h"
 #include "scenes/camera_space.h"
 #include "scenes/model_import.h"
 #include "scenes/procedural.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "kinetic/frustum_grid.h"
+#include "kinetic/grid/frustum_grid.h"
 #include "renderer/kinetic_backend.h"
 #include "scenes/camera_space.h"
 #include "scenes/scene_loader.h"

@@ -1,10 +1,11 @@
-// Counters declared once (kinetic/counters.h): every declared counter is summed and reaches the
+// Counters declared once (kinetic/core/counters.h): every declared counter is summed and reaches
+// the
 // --stats JSON under its key, and the quality measures are the same function for every structure.
 #include <gtest/gtest.h>
 
 #include "kinetic/collision/ksl_stats.h"
-#include "kinetic/grid_stats.h"
-#include "kinetic/kinetic_sort.h"
+#include "kinetic/grid/grid_stats.h"
+#include "kinetic/sort/kinetic_sort.h"
 #include "kinetic/tree/tree_stats.h"
 #include "renderer/stats_json.h"
 

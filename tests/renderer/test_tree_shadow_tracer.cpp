@@ -7,12 +7,12 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "renderer/embree_shadow_peer.h"
 #include "renderer/tree_shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_loader.h"
 #include "tests/scenes/model_test_support.h"
+#include "verification/embree_shadow_peer.h"
 
 namespace kinray {
 namespace {

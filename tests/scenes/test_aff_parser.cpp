@@ -12,8 +12,8 @@
 #include "scenes/aff_parser.h"
 #include "scenes/aff_scene.h"
 #include "scenes/aff_tessellate.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

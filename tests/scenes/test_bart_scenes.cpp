@@ -7,10 +7,10 @@
 #include <filesystem>
 
 #include "renderer/backend.h"
-#include "renderer/image_diff.h"
 #include "scenes/aff_scene.h"
 #include "scenes/camera_space.h"
-#include "scenes/warning.h"
+#include "util/warning.h"
+#include "verification/image_diff.h"
 
 namespace kinray {
 namespace {
@@ -79,7 +79,7 @@ TEST(BartScenes, Robots) {
       {"robots/Robot.aff", 71708, 50,
        Eigen::AlignedBox3d(Vec3(-164.148, -0.651981, -435.355), Vec3(164.148, 535.355, 250.097))},
       // Audited: at t = 1.4997 two nearly edge-on triangles sharing an edge have a depth
-      // certificate whose products cancel below their rounding (kinetic/exact_certificate.h).
+      // certificate whose products cancel below their rounding (kinetic/core/exact_certificate.h).
       true);
 }
 

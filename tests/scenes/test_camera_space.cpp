@@ -195,12 +195,12 @@ TEST(CameraSpace, LocateOnTheKeyGrid) {
 }
 
 TEST(CameraSpace, PixelCentreRays) {
-  const ImageGeometry image{4, 2};
+  const PixelRays image{4, 2};
   // Aspect 2: x spans [-2, 2] over the image width, y spans [-1, 1]; row 0 at the top.
-  EXPECT_DOUBLE_EQ(image.pixel_x(0), -1.5);
-  EXPECT_DOUBLE_EQ(image.pixel_x(3), 1.5);
-  EXPECT_DOUBLE_EQ(image.pixel_y(0), 0.5);
-  EXPECT_DOUBLE_EQ(image.pixel_y(1), -0.5);
+  EXPECT_DOUBLE_EQ(image.x(0), -1.5);
+  EXPECT_DOUBLE_EQ(image.x(3), 1.5);
+  EXPECT_DOUBLE_EQ(image.y(0), 0.5);
+  EXPECT_DOUBLE_EQ(image.y(1), -0.5);
   EXPECT_EQ(image.direction(2, 1), Vec3(0.5, -0.5, 1));
   EXPECT_EQ(image.pixel_count(), 8u);
   // A point on the right of a camera lands in the right half of the image.

@@ -9,9 +9,9 @@
 #include <fstream>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/mesh_sequence.h"
 #include "scenes/scene_loader.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -18,13 +18,13 @@
 #include <thread>
 #include <vector>
 
-#include "kinetic/parallel.h"
-#include "scenes/error.h"
 #include "scenes/model_guard.h"
 #include "scenes/model_import.h"
-#include "scenes/warning.h"
 #include "tests/address_sanitizer.h"
 #include "tests/scenes/model_test_support.h"
+#include "util/input_error.h"
+#include "util/parallel.h"
+#include "util/warning.h"
 
 namespace kinray {
 namespace {

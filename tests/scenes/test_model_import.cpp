@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "scenes/error.h"
 #include "scenes/model_import.h"
-#include "scenes/warning.h"
 #include "tests/scenes/model_test_support.h"
+#include "util/input_error.h"
+#include "util/warning.h"
 
 namespace kinray {
 namespace {

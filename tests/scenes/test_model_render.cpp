@@ -11,8 +11,8 @@
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
 #include "scenes/model_import.h"
-#include "scenes/warning.h"
 #include "tests/scenes/model_test_support.h"
+#include "util/warning.h"
 
 namespace kinray {
 namespace {

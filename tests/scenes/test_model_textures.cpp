@@ -13,10 +13,10 @@
 #include "scenes/model_guard.h"
 #include "scenes/model_import.h"
 #include "scenes/model_textures.h"
-#include "scenes/texture_image.h"
 #include "scenes/model_tga.h"
-#include "scenes/warning.h"
+#include "scenes/texture_image.h"
 #include "tests/scenes/model_test_support.h"
+#include "util/warning.h"
 
 namespace kinray {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/obj_reader.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -7,8 +7,8 @@
 #include <limits>
 #include <string>
 
-#include "scenes/error.h"
 #include "scenes/ply_reader.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

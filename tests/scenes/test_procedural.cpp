@@ -10,9 +10,9 @@
 #include <map>
 
 #include "scenes/camera_space.h"
-#include "scenes/error.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/procedural.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {
@@ -21,7 +21,7 @@ constexpr uint32_t kNoPrim = std::numeric_limits<uint32_t>::max();
 
 /// Calls hit(object, prim, pixel, depth) for every pixel-centre ray of `image` that pierces a
 /// visible triangle at time t (DESIGN.md's sign rule; depth = camera-space z of the hit).
-void rasterize(const CameraSpaceScene& scene, const ImageGeometry& image, double t,
+void rasterize(const CameraSpaceScene& scene, const PixelRays& image, double t,
                const std::function<void(uint32_t, uint32_t, size_t, double)>& hit) {
   std::vector<Vec3> p;
   const double aspect = double(image.width) / image.height;
@@ -208,7 +208,7 @@ TEST(Procedural, WavySphereScalesFromAHundredToAMillionTriangles) {
 TEST(Procedural, WavySphereFillsAThirdOfTheImageAndMovesAboutAPixelPerKey) {
   const Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 6000}});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
-  const ImageGeometry image{512, 512};
+  const PixelRays image{512, 512};
   const CameraSpaceObject& sphere = cs.objects[0];
   const std::vector<Triangle>& triangles = scene.objects[0].triangles;
   ASSERT_EQ(sphere.key_times.size(), 49u);
@@ -275,7 +275,7 @@ TEST(Procedural, WavySphereFillsAThirdOfTheImageAndMovesAboutAPixelPerKey) {
 struct DepthSwaps {
   size_t a_in_front = 0, b_in_front = 0, both = 0;  ///< pixel counts
 };
-DepthSwaps depth_swaps(const Scene& scene, const ImageGeometry& image,
+DepthSwaps depth_swaps(const Scene& scene, const PixelRays& image,
                        const std::function<int(uint32_t object, uint32_t prim)>& part) {
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   std::vector<uint8_t> seen(image.pixel_count(), 0);  // bit 0: A in front, bit 1: B in front
@@ -310,7 +310,7 @@ TEST(Procedural, ClothFoldsOverItselfAndSwapsDepthOrder) {
   ASSERT_EQ(size_t(n + 1) * (n + 1), cloth.vertex_count());
   // Part A: the upper half of the sheet (grid rows run down its length); part B: its lowest third.
   const DepthSwaps swaps =
-      depth_swaps(scene, ImageGeometry{96, 96}, [&](uint32_t object, uint32_t prim) {
+      depth_swaps(scene, PixelRays{96, 96}, [&](uint32_t object, uint32_t prim) {
         if (object != 0) return -1;
         const double down = double(prim / 2 / n) / n;
         return down < 0.5 ? 0 : down > 2.0 / 3.0 ? 1 : -1;
@@ -331,7 +331,7 @@ TEST(Procedural, OrbitersPassInFrontOfEachOtherAndInterpenetrate) {
   for (uint32_t o = 1; o < scene.objects.size(); ++o) {
     SCOPED_TRACE(scene.objects[o].name);
     const DepthSwaps swaps =
-        depth_swaps(scene, ImageGeometry{64, 64}, [o](uint32_t object, uint32_t) {
+        depth_swaps(scene, PixelRays{64, 64}, [o](uint32_t object, uint32_t) {
           return object == o ? 0 : object == 0 ? 1 : -1;
         });
     EXPECT_GT(swaps.a_in_front, 0u);

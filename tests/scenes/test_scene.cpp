@@ -5,8 +5,8 @@
 #include <functional>
 #include <limits>
 
-#include "scenes/error.h"
 #include "scenes/scene.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scenes/error.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_file.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scenes/error.h"
 #include "scenes/model_import.h"
 #include "scenes/scene_file.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

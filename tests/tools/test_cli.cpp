@@ -14,9 +14,9 @@
 
 #include "renderer/image_io.h"
 #include "renderer/render_job.h"
-#include "scenes/error.h"
 #include "scenes/scene_loader.h"
 #include "tests/tools/kinray_process.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

@@ -206,7 +206,7 @@ TEST_F(CliOutputs, ParseErrorsAreKinraysOwnAndNameTheFlag) {
   }
 }
 
-// Option values spelled once (kinetic/enum_names.h): every command that takes the flag refuses a
+// Option values spelled once (util/enum_names.h): every command that takes the flag refuses a
 // bad value at parse time with one line naming the flag and every allowed value, and exit 2.
 TEST_F(CliOutputs, BadOptionValuesNameTheFlagAndTheAllowedValues) {
   const std::string scene = std::string(kTiny) + " ";
@@ -235,7 +235,7 @@ TEST_F(CliOutputs, BadOptionValuesNameTheFlagAndTheAllowedValues) {
   EXPECT_FALSE(fs::exists(path("base")));
 }
 
-// A backend names what it rejects by its config field (OptionError, scenes/error.h); the user
+// A backend names what it rejects by its config field (OptionError, util/input_error.h); the user
 // reads the flag that set it.
 TEST_F(CliOutputs, BackendErrorsNameTheFlag) {
   const std::string render = std::string("render ") + kTiny + " --size 16x16 --frames 1 --out " +

@@ -7,8 +7,8 @@
 
 #include "renderer/light_flag.h"
 #include "renderer/render_job.h"
-#include "scenes/error.h"
 #include "tests/tools/kinray_process.h"
+#include "util/input_error.h"
 
 namespace kinray {
 namespace {

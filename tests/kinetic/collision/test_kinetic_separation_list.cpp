@@ -41,10 +41,10 @@ struct RandomScene {
       }
     }
   }
-  [[nodiscard]] std::vector<GridMesh> meshes() const {
-    std::vector<GridMesh> out;
+  [[nodiscard]] std::vector<FlightplanMesh> meshes() const {
+    std::vector<FlightplanMesh> out;
     for (size_t o = 0; o < positions.size(); ++o) {
-      GridMesh m;
+      FlightplanMesh m;
       m.id = uint32_t(o);
       m.key_times = times;
       m.positions = positions[o];
@@ -136,7 +136,7 @@ TEST(KineticSeparationList, ContactsComeOutInTimeOrderAndEventsDoNotDependOnQuer
 
 TEST(KineticSeparationList, FrontEqualsAFreshTraversalAndAdjacentTrianglesAreNeverPaired) {
   const RandomScene scene(3, 1, 8, 3);
-  std::vector<GridMesh> meshes = scene.meshes();
+  std::vector<FlightplanMesh> meshes = scene.meshes();
   KineticBvh tree(meshes, 0, KineticBvh::Config{});
   KineticSeparationList list(tree, tree, 1e-12);
   const MeshSegment segment = scene.segment(0, 0);

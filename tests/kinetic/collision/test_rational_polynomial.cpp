@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "kinetic/collision/rational_polynomial.h"
+#include "kinetic/core/rational_polynomial.h"
 
 namespace kinray {
 namespace {

@@ -1,0 +1,63 @@
+#pragma once
+// Certificates of the kinetic core and when to look at them again: a certificate "a before b" is
+// a polynomial f(t - origin) > 0 valid until `end`; schedule_certificate turns its first failure
+// (root_finding.h, exact_certificate.h) into the absolute event time that the owner pushes, such
+// that the handler, evaluating at that double time, sees the change. The sorts, the grid's pixel
+// orders and their audits share it.
+#include <cstdint>
+#include <limits>
+#include <memory>
+
+#include "kinetic/core/exact_certificate.h"
+#include "kinetic/core/polynomial.h"
+
+namespace kinray {
+
+/// "a sorts before b" holds while f(t - origin) > 0, valid for t in [origin, end]
+/// (end = when either motion changes next).
+struct OrderCertificate {
+  Polynomial f;
+  double origin = 0;
+  double end = std::numeric_limits<double>::infinity();
+  /// When set, the exact polynomial that f rounds, too close to call in double near its roots:
+  /// signs and failure times are then decided on it (kinetic/core/exact_certificate.h).
+  std::shared_ptr<const ExactPolynomial> exact;
+
+  /// The certificate of the swapped pair: -f (exactly, as the keys contract requires).
+  void negate() {
+    f = -f;
+    if (exact) exact = exact_negated(*exact);
+  }
+};
+
+namespace detail {
+
+/// Sign of c's polynomial just after local time s (exact when c carries its exact polynomial).
+[[nodiscard]] int certificate_sign_after(const OrderCertificate& c, double s);
+
+/// Sign of "a before b" just after `now` for certificate c of (a, b): +1, -1, or by the id rule
+/// when f is the zero polynomial.
+[[nodiscard]] int order_sign(const OrderCertificate& c, double now, uint32_t a, uint32_t b);
+
+/// When to look at certificate c of (a, b) again, computed at `now`.
+struct Schedule {
+  double time = std::numeric_limits<double>::infinity();  ///< +inf: never
+  bool failure = false;     ///< true: c fails at `time`; false: renewal at c.end (or never)
+  bool degenerate = false;  ///< a near-tie was given up (see schedule_degenerate)
+  double broken_until = -std::numeric_limits<double>::infinity();  ///< degenerate: c < 0 until
+};
+/// The absolute event time of certificate c of (a, b) (already holding just after now, or
+/// broken: then time = now). The time t returned for a failure satisfies
+/// sign_after(f, t - origin) < 0 with the subtraction in double, as the structure will compute
+/// it when the event is handled, so processing the swap gives a successor that holds.
+[[nodiscard]] Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
+                                            uint32_t b);
+
+/// Same-instant guard: counts events per instant; beyond a budget, a certificate created broken
+/// at now is treated as a numerical near-tie and scheduled after its next - to + change.
+[[nodiscard]] Schedule schedule_degenerate(const OrderCertificate& c, double now, uint32_t a,
+                                           uint32_t b);
+
+}  // namespace detail
+
+}  // namespace kinray

@@ -1,0 +1,148 @@
+#include "kinetic/core/certificate_time.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "kinetic/core/certificate_schedule.h"
+#include "kinetic/core/double_steps.h"
+#include "kinetic/core/root_finding.h"
+
+namespace kinray {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+using detail::next_up;
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// Horner's rule on c[0..N], highest first.
+template <int N>
+double horner(const double* c, double s) {
+  double acc = c[N];
+  for (int k = N - 1; k >= 0; --k) acc = acc * s + c[k];
+  return acc;
+}
+
+/// Exact f (coefficients c[0..N]) exceeds 8 N eps (|c0| + |c1| S + ... + |cN| S^N) (S = max |s|)
+/// at both ends of [a, b]: then Horner's value there, and wherever exact f is at least as large,
+/// is positive (its error is at most gamma_2N times that sum, with or without fused
+/// multiply-adds; the factor 2 covers the rounding of the bound itself).
+template <int N>
+bool ends_clear(const double* c, double a, double b, double big_s) {
+  double scale = 0;
+  for (int k = N; k >= 0; --k) scale = scale * big_s + std::fabs(c[k]);
+  const double margin = 16 * double(std::max(N, 1)) * kEps * scale;
+  return std::isfinite(margin) && horner<N>(c, a) > margin && horner<N>(c, b) > margin;
+}
+
+/// ends_clear, and the minimum of f on the window is at an end: f is linear, opens downwards, or
+/// its slope passes the same test with one sign. The slope's coefficients k c_k are rounded
+/// (3 c_3), by far less than the margin it is then certified with.
+template <int N>
+bool clear_through(const double* c, double a, double b, double big_s) {
+  if (!ends_clear<N>(c, a, b, big_s)) return false;
+  if constexpr (N <= 1) {
+    return true;
+  } else {
+    if (N == 2 && c[2] < 0) return true;
+    double slope[N], minus[N];
+    for (int k = 1; k <= N; ++k) {
+      slope[k - 1] = double(k) * c[k];
+      minus[k - 1] = -slope[k - 1];
+    }
+    return clear_through<N - 1>(slope, a, b, big_s) || clear_through<N - 1>(minus, a, b, big_s);
+  }
+}
+
+/// Interval Horner over [a, b] (0 <= a <= b): the lower end of an enclosure of f's range there
+/// exceeds twice ends_clear's margin. Rounding moves the computed end by at most what it moves
+/// Horner's value (gamma_2N times the same magnitudes), so exact f exceeds the margin throughout
+/// and Horner's value is positive at every double of the window. It decides the windows
+/// clear_through cannot, a minimum inside the window far above zero, as the depth certificates
+/// of a pixel order have where two surfaces are far apart and their distance turns.
+template <int N>
+bool range_clear(const double* c, double a, double b, double big_s) {
+  if (!(a >= 0)) return false;
+  double scale = 0, lo = c[N], hi = c[N];
+  for (int k = N; k >= 0; --k) scale = scale * big_s + std::fabs(c[k]);
+  for (int k = N - 1; k >= 0; --k) {
+    const double l = lo >= 0 ? lo * a : lo * b, h = hi >= 0 ? hi * b : hi * a;
+    lo = l + c[k];
+    hi = h + c[k];
+  }
+  const double margin = 16 * double(N) * kEps * scale;
+  return std::isfinite(margin) && lo > 2 * margin;
+}
+
+}  // namespace
+
+bool holds_through(const Polynomial& f, double s_now, double s_end) {
+  if (!(std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now)) return false;
+  const double big_s = std::max(std::fabs(s_now), std::fabs(s_end));
+  switch (f.degree) {
+    case 0:
+    case 1: return clear_through<1>(f.c.data(), s_now, s_end, big_s);
+    case 2: return clear_through<2>(f.c.data(), s_now, s_end, big_s);
+    case 3: return clear_through<3>(f.c.data(), s_now, s_end, big_s);
+    case 4:
+      return range_clear<4>(f.c.data(), s_now, s_end, big_s) ||
+             clear_through<4>(f.c.data(), s_now, s_end, big_s);
+    case 5:
+      return range_clear<5>(f.c.data(), s_now, s_end, big_s) ||
+             clear_through<5>(f.c.data(), s_now, s_end, big_s);
+    default: return false;
+  }
+}
+
+std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now, double s_end) {
+  if (f.effective_degree() != 2) return first_failure(f, s_now, s_end);
+  if (sign_after(f, s_now) < 0) return s_now;
+  if (!(s_end > s_now)) return std::nullopt;
+  auto negative = [&](double s) { return sign_after(f, s) < 0; };
+  const double c0 = f.c[0], c1 = f.c[1], c2 = f.c[2];
+  // The discriminant in extended precision: it decides between a crossing and a touch.
+  const long double disc = (long double)c1 * c1 - 4.0L * (long double)c2 * c0;
+  if (disc <= 0) {
+    // No crossing in exact arithmetic; a double root may still dip below zero in Horner's
+    // values at its vertex, and then the general path decides.
+    const double vertex = -c1 / (2 * c2);
+    if (vertex > s_now && vertex <= s_end && negative(vertex)) return first_failure(f, s_now, s_end);
+    return std::nullopt;
+  }
+  const double root = double(std::sqrt(disc));
+  const double q = -0.5 * (c1 + std::copysign(root, c1));
+  const double r1 = q / c2, r2 = c0 / q;
+  // f goes from + to - at the smaller root when it opens upwards, at the larger one otherwise.
+  const double r = c2 > 0 ? std::min(r1, r2) : std::max(r1, r2);
+  if (!std::isfinite(r)) return first_failure(f, s_now, s_end);
+  const double slack = 64 * std::numeric_limits<double>::epsilon() * std::max({std::fabs(r), std::fabs(s_now), 1e-300});
+  if (r < s_now - slack) return std::nullopt;  // the crossing is behind us
+  if (r > s_end + slack) return std::nullopt;  // beyond the segment
+  // From the rounded root to the first double where f is negative, as Horner's values say.
+  const double g = std::clamp(r, next_up(s_now), s_end);
+  const std::optional<double> t = detail::first_negative_near(negative, g, s_now, s_end, slack, 24);
+  return t ? t : first_failure(f, s_now, s_end);
+}
+
+double certificate_failure_time(const Polynomial& f, double origin, double now, double end) {
+  const double s_now = now - origin;
+  if (holds_through(f, s_now, end - origin)) return kInf;
+  const std::optional<double> r = first_failure_low_degree(f, s_now, end - origin);
+  if (!r) return kInf;
+  if (*r == s_now) return now;
+  double t = std::max(now, origin + *r);
+  for (int k = 0; k < 16; ++k, t = next_up(t))
+    if (sign_after(f, t - origin) < 0) return t;
+  // The dip is not representable near the root in absolute time: the general schedule decides.
+  OrderCertificate c;
+  c.f = f;
+  c.origin = origin;
+  c.end = end;
+  const detail::Schedule s = detail::schedule_certificate(c, now, 0, 0);
+  return s.failure ? s.time : kInf;
+}
+
+}  // namespace kinray

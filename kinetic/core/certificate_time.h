@@ -1,0 +1,36 @@
+#pragma once
+// Failure times of the kinetic grid's coverage certificates. Most of them are quadratics (an edge
+// function along one pixel-centre ray), and a boundary that moves across the image makes its
+// certificates fail inside almost every segment, so the general root isolation of
+// root_finding.h (Bernstein subdivision) would run its slow path for half of them. A quadratic's
+// roots are known in closed form: the stable formula gives the crossing to within a few ulps, and
+// a short gallop and bisection on Horner's values (exactly as sign_after evaluates them) turns it
+// into the time the contract of first_failure asks for. Anything unusual falls back to
+// first_failure / schedule_certificate.
+#include <optional>
+
+#include "kinetic/core/polynomial.h"
+
+namespace kinray {
+
+/// The floating-point filter in front of the exact search: true when f (stored degree <= 5) is
+/// positive on all of [s_now, s_end] by more than any rounding of Horner's rule can take away
+/// there, so that no evaluation in the window (all that the exact search and the event handler
+/// look at) can see it fail: its two end values clear an error bound, and its minimum on the
+/// window is at an end (it opens downwards, or its derivative passes the same test with one
+/// sign). False means undecided. Most certificates the grid schedules hold through their
+/// segment (every key recomputes all of them), and this spares them the root isolation; degrees
+/// 4 and 5 are the pixel orders' depth certificates and their envelopes (decided_despite).
+[[nodiscard]] bool holds_through(const Polynomial& f, double s_now, double s_end);
+
+/// first_failure(f, s_now, s_end) (root_finding.h), with a closed-form path for degree 2.
+[[nodiscard]] std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now,
+                                                             double s_end);
+
+/// Absolute time of the first failure of the certificate f(t - origin) > 0 after `now`, searched
+/// up to `end` (the next flightplan update): `now` when it is already broken just after now, +inf
+/// when it holds until end. The returned t satisfies sign_after(f, t - origin) < 0 with the
+/// subtraction in double, as the event handler will evaluate it, so the event sees the change.
+[[nodiscard]] double certificate_failure_time(const Polynomial& f, double origin, double now, double end);
+
+}  // namespace kinray

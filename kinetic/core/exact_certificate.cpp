@@ -1,0 +1,273 @@
+#include "kinetic/core/exact_certificate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "kinetic/core/certificate_time.h"
+#include "kinetic/core/double_steps.h"
+#include "kinetic/core/rational_polynomial.h"
+#include "kinetic/core/root_finding.h"
+
+namespace kinray {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kU = 0x1p-53;  // unit roundoff
+
+// ---- double-double evaluation with an error bound ----------------------------------------
+
+struct Pair {
+  double hi = 0, lo = 0;
+};
+Pair two_sum(double a, double b) {
+  const double s = a + b, bb = s - a;
+  return {s, (a - (s - bb)) + (b - bb)};
+}
+Pair two_product(double a, double b) {
+  const double p = a * b;
+  return {p, std::fma(a, b, -p)};
+}
+
+/// p(t) as hi + lo by compensated Horner (Graillat, Langlois and Louvet 2005), and `bound` >=
+/// |hi + lo - p(t)|: gamma_2n^2 times sum |c_k| |t|^k, taken generously.
+Pair compensated_horner(const Polynomial& p, double t, double& bound) {
+  const int n = p.degree;
+  double r = p.c[size_t(n)], c = 0, m = std::abs(r);
+  for (int k = n - 1; k >= 0; --k) {
+    const Pair pr = two_product(r, t);
+    const Pair sm = two_sum(pr.hi, p.c[size_t(k)]);
+    r = sm.hi;
+    c = c * t + (pr.lo + sm.lo);
+    m = m * std::abs(t) + std::abs(p.c[size_t(k)]);
+  }
+  bound = (8.0 * n * n + 8) * kU * kU * m;
+  return {r, c};
+}
+
+/// The sign of p1(t) q1(t) - p2(t) q2(t) when double-double arithmetic proves it, else 2.
+int filtered_sign(const ExactPolynomial& f, double t) {
+  double e[4];
+  const Pair a = compensated_horner(f.p1, t, e[0]), b = compensated_horner(f.q1, t, e[1]);
+  const Pair c = compensated_horner(f.p2, t, e[2]), d = compensated_horner(f.q2, t, e[3]);
+  const Pair x = two_product(a.hi, b.hi), y = two_product(c.hi, d.hi);
+  const double rest1 = x.lo + (a.hi * b.lo + a.lo * b.hi);
+  const double rest2 = y.lo + (c.hi * d.lo + c.lo * d.hi);
+  const Pair head = two_sum(x.hi, -y.hi);
+  const double tail = head.lo + (rest1 - rest2);
+  const double v = head.hi + tail;
+  auto absum = [](Pair p) { return std::abs(p.hi) + std::abs(p.lo); };
+  // Errors of the factors carried through the products, the dropped lo * lo terms and the
+  // rounding of the tails (each well under 16 u^2 |product| + 8 u |tail|).
+  const double bound = e[0] * absum(b) + e[1] * absum(a) + e[0] * e[1] + e[2] * absum(d) +
+                       e[3] * absum(c) + e[2] * e[3] +
+                       16 * kU * kU * (absum(a) * absum(b) + absum(c) * absum(d)) +
+                       8 * kU * (std::abs(tail) + std::abs(v));
+  if (!(std::abs(v) > 2 * bound)) return 2;
+  return (v > 0 ? 1 : -1) * f.sign;
+}
+
+// ---- exact rationals ------------------------------------------------------------------
+
+RationalPolynomial rational(const Polynomial& p) {
+  std::vector<mpq_class> c;
+  for (int k = 0; k <= p.degree; ++k) c.emplace_back(p.c[size_t(k)]);
+  return RationalPolynomial(std::move(c));
+}
+
+RationalPolynomial rational(const ExactPolynomial& f) {
+  RationalPolynomial r = rational(f.p1) * rational(f.q1) - rational(f.p2) * rational(f.q2);
+  return f.sign < 0 ? RationalPolynomial{} - r : r;
+}
+
+/// Sign of f just after the rational x: the first derivative that does not vanish there.
+int sign_after_at(RationalPolynomial f, const mpq_class& x) {
+  while (!f.is_zero()) {
+    const int s = sgn(f(x));
+    if (s != 0) return s;
+    f = f.derivative();
+  }
+  return 0;
+}
+
+/// The smallest double >= x.
+double double_at_or_above(const mpq_class& x) {
+  double d = x.get_d();  // truncates towards zero
+  while (mpq_class(d) < x) d = std::nextafter(d, kInf);
+  return d;
+}
+
+/// A double beyond every real root of f (Cauchy's bound 1 + max |c_k / c_n|, doubled).
+double root_bound(const RationalPolynomial& f) {
+  mpq_class largest = 0;
+  const mpq_class lead = abs(f.c.back());
+  for (size_t k = 0; k + 1 < f.c.size(); ++k)
+    largest = std::max(largest, mpq_class(abs(f.c[k]) / lead));
+  const double b = 2 * (1 + largest.get_d()) + 1;
+  return std::isfinite(b) ? b : std::numeric_limits<double>::max();
+}
+
+/// exact_first_failure by exact root isolation over (s_now, s_end] (f holds just after s_now).
+std::optional<double> isolated_failure(const ExactPolynomial& F, double s_now, double s_end) {
+  const RationalPolynomial f = rational(F);
+  if (f.is_zero()) return std::nullopt;
+  const double end =
+      std::isfinite(s_end) ? s_end : std::max(root_bound(f), std::nextafter(s_now, kInf));
+  std::vector<IsolatedRoot> roots = isolate_roots(f, mpq_class(s_now), mpq_class(end));
+  for (IsolatedRoot& r : roots) {
+    // The sign between this root and the next: at the interval's upper end when the root is
+    // irrational, else just after the rational root. The upper end is no root of the deflated
+    // polynomial the interval isolates a root of, but it can be one of f: a root of f at s_end
+    // is divided out before isolation (a certificate whose pair touches exactly at the end of
+    // its segment). Then f's sign there is 0, and read as "no failure" it hid the crossing
+    // inside; the interval is halved until its upper end is no root of f either.
+    while (!r.is_rational() && sgn(f(r.hi)) == 0) r.refine();
+    const int after = r.is_rational() ? sign_after_at(f, r.lo) : sgn(f(r.hi));
+    if (after >= 0) continue;  // a - to + change, or a touch from +
+    // f < 0 from r to the next root: the first double at or after r, if one lies before it.
+    r.refine_to(mpq_class(std::max(std::abs(r.hi.get_d()), 1e-300) * 0x1p-80));
+    double t = double_at_or_above(r.lo);
+    for (int k = 0; k < 8 && t <= end; ++k, t = std::nextafter(t, kInf))
+      if (t > s_now && exact_sign_after(F, t) < 0) return t;
+  }
+  return std::nullopt;
+}
+
+Polynomial with_error(const Polynomial& f, const Polynomial& error, double k) {
+  Polynomial out = f;
+  out.degree = std::max(f.degree, error.degree);
+  for (int i = 0; i <= out.degree; ++i) out.c[size_t(i)] = f.c[size_t(i)] + k * error.c[size_t(i)];
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial& p1,
+                                                                const Polynomial& q1,
+                                                                const Polynomial& p2,
+                                                                const Polynomial& q2, int sign) {
+  ExactPolynomial f{p1, q1, p2, q2, sign, {}, {}};
+  const int n =
+      std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
+  f.close.degree = f.close_error.degree = n;
+  for (int k = 0; k <= n; ++k) {
+    // Sum of the exact products (two doubles each) with the sum's error compensated.
+    double sum = 0, tail = 0, magnitude = 0;
+    auto add = [&](double a, double b) {
+      const Pair p = two_product(a, b);
+      const Pair s = two_sum(sum, p.hi);
+      sum = s.hi;
+      tail += s.lo + p.lo;
+      magnitude += std::abs(p.hi);
+    };
+    for (int i = 0; i <= k; ++i) {
+      if (i <= p1.degree && k - i <= q1.degree) add(p1.c[size_t(i)], q1.c[size_t(k - i)]);
+      if (i <= p2.degree && k - i <= q2.degree) add(-p2.c[size_t(i)], q2.c[size_t(k - i)]);
+    }
+    const double c = sum + tail;
+    f.close.c[size_t(k)] = sign < 0 ? -c : c;
+    // Rounding c (u |c|), the compensated sum (<= 16 u^2 magnitude), Horner on the envelopes
+    // (gamma_10 |c|): 16 u |c| + 64 u^2 magnitude, with room to spare.
+    f.close_error.c[size_t(k)] = 16 * kU * std::abs(c) + 64 * kU * kU * magnitude;
+  }
+  return std::make_shared<const ExactPolynomial>(std::move(f));
+}
+
+std::shared_ptr<const ExactPolynomial> exact_negated(const ExactPolynomial& f) {
+  ExactPolynomial g = f;
+  g.sign = -f.sign;
+  g.close = -f.close;
+  return std::make_shared<const ExactPolynomial>(std::move(g));
+}
+
+int exact_sign_after(const ExactPolynomial& f, double s) {
+  const int filtered = filtered_sign(f, s);
+  if (filtered != 2) return filtered;
+  return sign_after_at(rational(f), mpq_class(s));
+}
+
+std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now, double s_end) {
+  if (exact_sign_after(F, s_now) < 0) return s_now;
+  if (!(s_end > s_now)) return std::nullopt;
+  // F lies between the envelopes (s >= 0). Invariant: F > 0 just after `from` and at every
+  // double of (s_now, from]. Each round either decides, or proves F > 0 up to where the lower
+  // envelope holds again, or gives up to exact isolation.
+  const Polynomial lower = with_error(F.close, F.close_error, -1);
+  const Polynomial upper = with_error(F.close, F.close_error, 1);
+  const Polynomial rising = with_error(F.close.derivative(), F.close_error.derivative(), -2);
+  const Polynomial falling = -with_error(F.close.derivative(), F.close_error.derivative(), 2);
+  double from = s_now;
+  auto negative = [&](double t) { return exact_sign_after(F, t) < 0; };
+  for (int round = 0; round < 8; ++round) {
+    // F > 0 at every double of (from, low); F < 0 just after `high`.
+    const std::optional<double> low = first_failure(lower, from, s_end);
+    if (!low) return std::nullopt;
+    const std::optional<double> high = first_failure(upper, from, s_end);
+    if (high && *high == *low) return low;
+    // Without `high`: up to where the lower envelope holds again (F > 0 there).
+    const std::optional<double> back = high ? high : first_failure(-lower, *low, s_end);
+    const double hi = back ? *back : s_end;
+    if (!std::isfinite(hi) || hi < *low) break;
+    if (sign_after(falling, *low) > 0 && !first_failure(falling, *low, hi)) {
+      // F decreasing on [low, hi]: one crossing at most, pinned down by the exact sign from
+      // the close polynomial's own failure.
+      if (negative(*low)) return low;
+      if (!negative(hi)) {
+        if (high) break;
+        if (!back) return std::nullopt;  // F > 0 up to s_end
+        from = hi;
+        continue;
+      }
+      const double guess = std::clamp(first_failure(F.close, *low, hi).value_or(hi),
+                                      std::nextafter(*low, kInf), hi);
+      const double step = std::max(std::abs(guess), 1e-300) * 0x1p-52;
+      const std::optional<double> r = detail::first_negative_near(
+          negative, guess, *low, hi, step, std::numeric_limits<int>::max());
+      if (r) return r;
+      break;
+    }
+    // F increasing on [low, hi]: positive there (it is just before low, or after from).
+    if (high || !(sign_after(rising, *low) > 0 && !first_failure(rising, *low, hi))) break;
+    if (!back) return std::nullopt;  // F > 0 up to s_end
+    from = hi;
+  }
+  return isolated_failure(F, s_now, s_end);
+}
+
+Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
+                                    const Polynomial& p2, const Polynomial& q2) {
+  Polynomial e;
+  e.degree = std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
+  // Summed in pairs, so that swapping (p1, q1) with (p2, q2) gives the same bits.
+  const int dp = std::max(p1.degree, p2.degree), dq = std::max(q1.degree, q2.degree);
+  for (int i = 0; i <= dp; ++i)
+    for (int j = 0; j <= dq && i + j <= kMaxPolynomialDegree; ++j)
+      e.c[size_t(i + j)] +=
+          std::abs(p1.c[size_t(i)] * q1.c[size_t(j)]) + std::abs(p2.c[size_t(i)] * q2.c[size_t(j)]);
+  // Forming: at most 4 products summed and one subtraction per coefficient (gamma_5); Horner
+  // on the envelopes: gamma_10 of the same magnitudes. 64 u leaves a factor 4 for the rounding
+  // of these bounds and of the envelopes' own coefficients.
+  for (double& c : e.c) c *= 64 * kU;
+  return e;
+}
+
+bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now, double s_end) {
+  // Both ways: a structure that swaps the pair schedules -f, computed from the same call.
+  const Polynomial lower = with_error(f, error, -1), upper = with_error(f, error, 1);
+  auto decided = [&](const Polynomial& below, const Polynomial& above) {
+    // first_failure returns s_now exactly when sign_after is negative there; else the filter,
+    // which decides only where first_failure(below) finds no failure either: most depth
+    // certificates hold through their segment one way and are broken now the other.
+    if (sign_after(below, s_now) < 0) return sign_after(above, s_now) < 0;
+    if (holds_through(below, s_now, s_end)) return true;
+    const std::optional<double> low = first_failure(below, s_now, s_end);
+    if (!low) return true;
+    const std::optional<double> high = first_failure(above, s_now, s_end);
+    return high && *high == *low;
+  };
+  return decided(lower, upper) && decided(-upper, -lower);
+}
+
+}  // namespace kinray

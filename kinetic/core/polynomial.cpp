@@ -1,0 +1,183 @@
+#include "kinetic/core/polynomial.h"
+
+#include <algorithm>
+
+#include "kinetic/core/binomial.h"
+#include "util/check.h"
+
+namespace kinray {
+
+namespace {
+constexpr int kN = kMaxPolynomialDegree;
+
+using detail::kBinomial;
+}  // namespace
+
+Polynomial::Polynomial(double constant) { c[0] = constant; }
+
+Polynomial::Polynomial(std::initializer_list<double> coefficients) {
+  KINRAY_CHECK(coefficients.size() <= static_cast<size_t>(kN + 1));
+  int i = 0;
+  for (double x : coefficients) c[i++] = x;
+  degree = std::max(0, i - 1);
+}
+
+Polynomial Polynomial::derivative() const {
+  Polynomial d;
+  for (int k = 1; k <= degree; ++k) d.c[k - 1] = k * c[k];
+  d.degree = std::max(0, degree - 1);
+  return d;
+}
+
+Polynomial Polynomial::trimmed() const {
+  Polynomial p = *this;
+  p.degree = effective_degree();
+  return p;
+}
+
+Polynomial operator+(const Polynomial& f, const Polynomial& g) {
+  Polynomial h;
+  h.degree = std::max(f.degree, g.degree);
+  for (int k = 0; k <= h.degree; ++k) h.c[k] = f.c[k] + g.c[k];
+  return h;
+}
+
+Polynomial operator-(const Polynomial& f, const Polynomial& g) {
+  Polynomial h;
+  h.degree = std::max(f.degree, g.degree);
+  for (int k = 0; k <= h.degree; ++k) h.c[k] = f.c[k] - g.c[k];
+  return h;
+}
+
+Polynomial operator-(const Polynomial& f) {
+  Polynomial h = f;
+  for (int k = 0; k <= h.degree; ++k) h.c[k] = -h.c[k];
+  return h;
+}
+
+Polynomial operator*(const Polynomial& f, const Polynomial& g) {
+  const int df = f.effective_degree(), dg = g.effective_degree();
+  KINRAY_CHECK_MSG(df + dg <= kN, "polynomial product exceeds kMaxPolynomialDegree");
+  Polynomial h;
+  h.degree = df + dg;
+  for (int k = 0; k <= h.degree; ++k) {
+    // Pairs (i, k-i) and (k-i, i) are summed together so that f * g == g * f bit for bit.
+    double sum = 0;
+    for (int i = 0; 2 * i <= k; ++i) {
+      const int j = k - i;
+      double term;
+      if (i == j) {
+        term = (i <= df && i <= dg) ? f.c[i] * g.c[i] : 0.0;
+      } else {
+        const double x = (i <= df && j <= dg) ? f.c[i] * g.c[j] : 0.0;
+        const double y = (j <= df && i <= dg) ? f.c[j] * g.c[i] : 0.0;
+        term = x + y;
+      }
+      sum += term;
+    }
+    h.c[k] = sum;
+  }
+  return h;
+}
+
+Polynomial operator*(double k, const Polynomial& f) {
+  Polynomial h = f;
+  for (int i = 0; i <= h.degree; ++i) h.c[i] = k * f.c[i];
+  return h;
+}
+
+bool operator==(const Polynomial& f, const Polynomial& g) {
+  for (int k = 0; k <= kN; ++k)
+    if (f.c[k] != g.c[k]) return false;
+  return true;
+}
+
+Polynomial shifted(const Polynomial& f, double shift) {
+  Polynomial g = f;
+  const int n = f.degree;
+  // Repeated synthetic division (Taylor shift); the first pass is Horner's rule for f(shift).
+  for (int i = 0; i < n; ++i)
+    for (int k = n - 1; k >= i; --k) g.c[k] += shift * g.c[k + 1];
+  return g;
+}
+
+Polynomial scaled(const Polynomial& f, double k) {
+  Polynomial g = f;
+  double p = 1;
+  for (int i = 1; i <= f.degree; ++i) {
+    p *= k;
+    g.c[i] *= p;
+  }
+  return g;
+}
+
+BernsteinPolynomial to_bernstein(const Polynomial& f, double a, double b) {
+  KINRAY_CHECK(a < b);
+  const int n = f.degree;
+  const Polynomial g = scaled(shifted(f, a), b - a);  // g(u) = f(a + (b - a) u)
+  BernsteinPolynomial r;
+  r.degree = n;
+  r.a = a;
+  r.bnd = b;
+  // b_i = sum_{j <= i} C(i, j) / C(n, j) g_j
+  for (int i = 0; i <= n; ++i) {
+    double s = 0;
+    for (int j = 0; j <= i; ++j) s += kBinomial[i][j] / kBinomial[n][j] * g.c[j];
+    r.b[i] = s;
+  }
+  return r;
+}
+
+Polynomial to_power(const BernsteinPolynomial& f) {
+  const int n = f.degree;
+  // g_j = C(n, j) sum_{i <= j} (-1)^(j-i) C(j, i) b_i, polynomial in u.
+  Polynomial g;
+  g.degree = n;
+  for (int j = 0; j <= n; ++j) {
+    double s = 0;
+    for (int i = 0; i <= j; ++i) s += ((j - i) % 2 ? -1.0 : 1.0) * kBinomial[j][i] * f.b[i];
+    g.c[j] = kBinomial[n][j] * s;
+  }
+  // u = (s - a) / w  ->  scale by 1/w, then shift by -a.
+  const double w = f.bnd - f.a;
+  Polynomial h;
+  h.degree = n;
+  double p = 1;
+  for (int j = 0; j <= n; ++j) {
+    h.c[j] = g.c[j] / p;
+    p *= w;
+  }
+  return shifted(h, -f.a);
+}
+
+double evaluate(const BernsteinPolynomial& f, double s) {
+  const double u = (s - f.a) / (f.bnd - f.a);
+  std::array<double, kN + 1> t = f.b;
+  for (int r = 1; r <= f.degree; ++r)
+    for (int i = 0; i <= f.degree - r; ++i) t[i] = (1 - u) * t[i] + u * t[i + 1];
+  return t[0];
+}
+
+std::pair<BernsteinPolynomial, BernsteinPolynomial> subdivide(const BernsteinPolynomial& f,
+                                                              double s) {
+  KINRAY_CHECK(f.a < s && s < f.bnd);
+  const int n = f.degree;
+  const double u = (s - f.a) / (f.bnd - f.a);
+  BernsteinPolynomial left, right;
+  left.degree = right.degree = n;
+  left.a = f.a;
+  left.bnd = s;
+  right.a = s;
+  right.bnd = f.bnd;
+  std::array<double, kN + 1> t = f.b;
+  left.b[0] = t[0];
+  right.b[n] = t[n];
+  for (int r = 1; r <= n; ++r) {
+    for (int i = 0; i <= n - r; ++i) t[i] = (1 - u) * t[i] + u * t[i + 1];
+    left.b[r] = t[0];
+    right.b[n - r] = t[n - r];
+  }
+  return {left, right};
+}
+
+}  // namespace kinray

@@ -1,0 +1,323 @@
+// Exact polynomial arithmetic over the rationals and Descartes root isolation in the Bernstein
+// basis (Collins and Akritas 1976; Mourrain, Rouillier and Roy 2005 for the Bernstein form).
+#include "kinetic/core/rational_polynomial.h"
+
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "kinetic/core/interval_arithmetic.h"
+
+namespace kinray {
+namespace {
+
+using detail::Interval;
+
+void trim(std::vector<mpq_class>& c) {
+  while (!c.empty() && sgn(c.back()) == 0) c.pop_back();
+}
+
+/// Quotient and remainder of f / g (g non-zero).
+std::pair<RationalPolynomial, RationalPolynomial> divide(const RationalPolynomial& f,
+                                                         const RationalPolynomial& g) {
+  std::vector<mpq_class> r = f.c;
+  const int dg = g.degree();
+  std::vector<mpq_class> q(r.size() >= g.c.size() ? r.size() - g.c.size() + 1 : 0);
+  while (static_cast<int>(r.size()) - 1 >= dg && !r.empty()) {
+    const int shift = static_cast<int>(r.size()) - 1 - dg;
+    const mpq_class k = r.back() / g.c.back();
+    q[shift] = k;
+    for (int i = 0; i <= dg; ++i) r[shift + i] -= k * g.c[i];
+    r.pop_back();  // the leading term cancels exactly
+    trim(r);
+  }
+  return {RationalPolynomial(std::move(q)), RationalPolynomial(std::move(r))};
+}
+
+RationalPolynomial monic(RationalPolynomial f) {
+  if (f.is_zero()) return f;
+  const mpq_class lead = f.c.back();
+  for (mpq_class& x : f.c) x /= lead;
+  return f;
+}
+
+int sign_variations(const std::vector<mpq_class>& b) {
+  int variations = 0, last = 0;
+  for (const mpq_class& x : b) {
+    const int s = sgn(x);
+    if (s == 0) continue;
+    if (last != 0 && s != last) ++variations;
+    last = s;
+  }
+  return variations;
+}
+
+/// Roots of p, none multiple in [a, b], in the open (a, b), whose ends are not roots, in order.
+void descartes(const RationalPolynomial& p, const mpq_class& a, const mpq_class& b,
+               std::vector<IsolatedRoot>& out) {
+  const int variations = sign_variations(bernstein_coefficients(p, a, b));
+  if (variations == 0) return;
+  if (variations == 1) {
+    out.push_back({p, a, b});
+    return;
+  }
+  // Split at a point that is not a root (one of any deg + 1 distinct points is not), so that
+  // every interval handed out has non-root ends.
+  mpq_class m = (a + b) / 2;
+  for (int k = 1; sgn(p(m)) == 0; ++k) m = a + (b - a) * mpq_class(k, p.degree() + 2);
+  descartes(p, a, m, out);
+  descartes(p, m, b, out);
+}
+
+/// Bounds that keep interval Horner evaluation far from overflow (so its ends are never NaN):
+/// coefficients below 2^300, |t| below 2^32, degree at most 16.
+constexpr double kMaxFilterCoefficient = 0x1p300, kMaxFilterTime = 0x1p32;
+constexpr int kMaxFilterDegree = 16;
+
+/// f's coefficients as double intervals that contain them (mpq_get_d truncates, off by less
+/// than an ulp); nothing when one is too large for the filter.
+std::optional<std::vector<Interval>> enclose(const RationalPolynomial& f) {
+  if (f.degree() > kMaxFilterDegree) return std::nullopt;
+  std::vector<Interval> c;
+  c.reserve(f.c.size());
+  for (const mpq_class& x : f.c) {
+    const double d = x.get_d();
+    if (!(std::fabs(d) < kMaxFilterCoefficient)) return std::nullopt;
+    c.push_back(Interval::around(d));
+  }
+  return c;
+}
+
+/// Horner's scheme in interval arithmetic: an enclosure of f over t.
+Interval horner(const std::vector<Interval>& f, Interval t) {
+  Interval value = Interval::point(0);
+  for (auto it = f.rbegin(); it != f.rend(); ++it) value = value * t + *it;
+  return value;
+}
+
+/// Bernstein coefficients of f on [lo, hi] in interval arithmetic, each scaled by a positive
+/// constant: b_k = sum_{i <= k} C(k, i) / C(n, i) q_i (bernstein_coefficients) times n! / k! is
+/// sum_{i <= k} (n - i)! / (k - i)! q_i, whose weights are integers, exact in doubles. Their
+/// signs are the Bernstein coefficients' signs; f lies in their hull on [lo, hi].
+std::vector<Interval> scaled_interval_bernstein(std::vector<Interval> q, double lo, double hi) {
+  const int n = int(q.size()) - 1;
+  const Interval a = Interval::point(lo);
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j) q[size_t(j)] = q[size_t(j)] + a * q[size_t(j) + 1];
+  const Interval h = Interval::point(hi) - a;
+  Interval power = Interval::point(1);
+  for (int i = 0; i <= n; ++i, power = power * h) q[size_t(i)] = q[size_t(i)] * power;
+  std::vector<Interval> out(size_t(n) + 1, Interval::point(0));
+  for (int k = 0; k <= n; ++k)
+    for (int i = 0; i <= k; ++i) {
+      double weight = 1;  // (n - i)! / (k - i)!, at most 16!: exact
+      for (int f = k - i + 1; f <= n - i; ++f) weight *= f;
+      out[size_t(k)] = out[size_t(k)] + Interval::point(weight) * q[size_t(i)];
+    }
+  return out;
+}
+
+/// f certainly has no root in [lo, hi] (f non-zero): its Bernstein coefficients there, in
+/// double intervals, all certainly share one sign. False when doubles cannot tell.
+bool certainly_no_root(const RationalPolynomial& f, const mpq_class& lo, const mpq_class& hi) {
+  const double l = lo.get_d(), h = hi.get_d();
+  if (!(l < h) || mpq_class(l) != lo || mpq_class(h) != hi) return false;
+  if (!(std::fabs(l) < kMaxFilterTime && std::fabs(h) < kMaxFilterTime)) return false;
+  const std::optional<std::vector<Interval>> q = enclose(f);
+  if (!q) return false;
+  int positive = 0, negative = 0;
+  for (const Interval& b : scaled_interval_bernstein(*q, l, h)) {
+    positive += b.certainly_positive();
+    negative += b.certainly_negative();
+  }
+  const int count = int(q->size());
+  return positive == count || negative == count;
+}
+
+/// The double interval [lo, hi] around x: exact when x is a double.
+Interval enclose(const mpq_class& x) {
+  const double d = x.get_d();  // truncated towards zero
+  if (mpq_class(d) == x) return Interval::point(d);
+  return {std::nextafter(d, -INFINITY), std::nextafter(d, INFINITY)};
+}
+
+/// The floating-point filter of sign_at: g's sign over the root's interval in outward-rounded
+/// double intervals. While that does not decide and the interval's ends are doubles, the
+/// interval is halved where the isolating polynomial's sign at the midpoint is certain, and
+/// the narrowed ends are written back (each has a certain, non-zero sign, so the root stays
+/// isolated), for later calls and the exact path to start from. 0 when doubles cannot decide.
+int interval_sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
+  const Interval lo0 = enclose(root.lo), hi0 = enclose(root.hi);
+  if (!(std::fabs(lo0.lo) < kMaxFilterTime && std::fabs(hi0.hi) < kMaxFilterTime)) return 0;
+  const std::optional<std::vector<Interval>> gi = enclose(g);
+  if (!gi) return 0;
+  int sign = horner(*gi, {lo0.lo, hi0.hi}).certain_sign();
+  if (sign != 0 || root.is_rational() || lo0.lo != lo0.hi || hi0.lo != hi0.hi) return sign;
+  const std::optional<std::vector<Interval>> pi = enclose(root.poly);
+  if (!pi) return 0;
+  double lo = lo0.lo, hi = hi0.hi;
+  const int sign_lo = horner(*pi, Interval::point(lo)).certain_sign();
+  while (sign == 0 && sign_lo != 0) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    const int sign_mid = horner(*pi, Interval::point(mid)).certain_sign();
+    if (sign_mid == 0) break;
+    (sign_mid == sign_lo ? lo : hi) = mid;
+    sign = horner(*gi, {lo, hi}).certain_sign();
+  }
+  if (lo != lo0.lo) root.lo = lo;
+  if (hi != hi0.hi) root.hi = hi;
+  return sign;
+}
+
+}  // namespace
+
+RationalPolynomial::RationalPolynomial(std::vector<mpq_class> coefficients)
+    : c(std::move(coefficients)) {
+  trim(c);
+}
+
+RationalPolynomial RationalPolynomial::linear(const mpq_class& a, const mpq_class& b) {
+  return RationalPolynomial({a, b});
+}
+
+mpq_class RationalPolynomial::operator()(const mpq_class& t) const {
+  mpq_class value = 0;
+  for (auto it = c.rbegin(); it != c.rend(); ++it) value = value * t + *it;
+  return value;
+}
+
+RationalPolynomial RationalPolynomial::derivative() const {
+  std::vector<mpq_class> d;
+  for (std::size_t i = 1; i < c.size(); ++i) d.push_back(c[i] * static_cast<long>(i));
+  return RationalPolynomial(std::move(d));
+}
+
+RationalPolynomial operator+(const RationalPolynomial& f, const RationalPolynomial& g) {
+  std::vector<mpq_class> s(std::max(f.c.size(), g.c.size()));
+  for (std::size_t i = 0; i < f.c.size(); ++i) s[i] += f.c[i];
+  for (std::size_t i = 0; i < g.c.size(); ++i) s[i] += g.c[i];
+  return RationalPolynomial(std::move(s));
+}
+
+RationalPolynomial operator-(const RationalPolynomial& f, const RationalPolynomial& g) {
+  std::vector<mpq_class> s(std::max(f.c.size(), g.c.size()));
+  for (std::size_t i = 0; i < f.c.size(); ++i) s[i] += f.c[i];
+  for (std::size_t i = 0; i < g.c.size(); ++i) s[i] -= g.c[i];
+  return RationalPolynomial(std::move(s));
+}
+
+RationalPolynomial operator*(const RationalPolynomial& f, const RationalPolynomial& g) {
+  if (f.is_zero() || g.is_zero()) return {};
+  std::vector<mpq_class> p(f.c.size() + g.c.size() - 1);
+  for (std::size_t i = 0; i < f.c.size(); ++i)
+    for (std::size_t j = 0; j < g.c.size(); ++j) p[i + j] += f.c[i] * g.c[j];
+  return RationalPolynomial(std::move(p));
+}
+
+RationalPolynomial gcd(RationalPolynomial f, RationalPolynomial g) {
+  while (!g.is_zero()) {
+    RationalPolynomial r = divide(f, g).second;
+    f = std::move(g);
+    g = monic(std::move(r));  // monic remainders keep the coefficients small
+  }
+  return monic(std::move(f));
+}
+
+RationalPolynomial squarefree_part(const RationalPolynomial& f) {
+  if (f.degree() <= 1) return f;
+  const RationalPolynomial g = gcd(f, f.derivative());
+  return g.degree() <= 0 ? f : divide(f, g).first;
+}
+
+int sign(const mpq_class& x) {
+  return sgn(x);
+}
+
+std::vector<mpq_class> bernstein_coefficients(const RationalPolynomial& f, const mpq_class& a,
+                                              const mpq_class& b) {
+  std::vector<mpq_class> q = f.c;
+  const int n = f.degree();
+  if (n < 0) return {};
+  // q(s) = f(a + (b - a) s): a Taylor shift by a, then a scaling by b - a.
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j) q[j] += a * q[j + 1];
+  const mpq_class h = b - a;
+  mpq_class power = 1;
+  for (int i = 0; i <= n; ++i, power *= h) q[i] *= power;
+  // b_k = sum_{i <= k} C(k, i) / C(n, i) q_i
+  std::vector<mpq_class> binomial_n(n + 1);
+  binomial_n[0] = 1;
+  for (int i = 1; i <= n; ++i) binomial_n[i] = binomial_n[i - 1] * (n - i + 1) / i;
+  std::vector<mpq_class> out(n + 1);
+  for (int k = 0; k <= n; ++k) {
+    mpq_class binomial_k = 1;  // C(k, i)
+    for (int i = 0; i <= k; ++i) {
+      out[k] += binomial_k / binomial_n[i] * q[i];
+      binomial_k = binomial_k * (k - i) / (i + 1);
+    }
+  }
+  return out;
+}
+
+void IsolatedRoot::refine() {
+  if (is_rational()) return;
+  const mpq_class m = (lo + hi) / 2;
+  const int sm = sgn(poly(m));
+  if (sm == 0)
+    lo = hi = m;
+  else if (sgn(poly(lo)) != sm)
+    hi = m;
+  else
+    lo = m;
+}
+
+void IsolatedRoot::refine_to(const mpq_class& width) {
+  while (!is_rational() && hi - lo > width) refine();
+}
+
+std::vector<IsolatedRoot> isolate_roots(const RationalPolynomial& f, const mpq_class& lo,
+                                        const mpq_class& hi) {
+  std::vector<IsolatedRoot> roots;
+  if (lo < hi && certainly_no_root(f, lo, hi)) return roots;
+  // f' without a root in [lo, hi]: f's roots there are simple, and f serves as the square-free
+  // part on [lo, hi] (all that the isolation, refinement and sign_at's gcd test need of it).
+  const bool monotone = lo < hi && f.degree() >= 2 && certainly_no_root(f.derivative(), lo, hi);
+  RationalPolynomial p = monotone ? f : squarefree_part(f);
+  if (p.degree() <= 0) return roots;
+  const bool root_at_lo = sgn(p(lo)) == 0, root_at_hi = lo < hi && sgn(p(hi)) == 0;
+  if (root_at_lo) roots.push_back({p, lo, lo});
+  if (lo == hi) return roots;
+  // Divide out the roots at the ends (simple, as every root of p in [lo, hi]), so that the
+  // open interval's roots are isolated by a polynomial that does not vanish at its ends.
+  if (root_at_lo) p = divide(p, RationalPolynomial::linear(-lo, 1)).first;
+  if (root_at_hi) p = divide(p, RationalPolynomial::linear(-hi, 1)).first;
+  if (p.degree() >= 1) descartes(p, lo, hi, roots);
+  if (root_at_hi) roots.push_back({p, hi, hi});
+  return roots;
+}
+
+int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
+  if (g.is_zero()) return 0;
+  if (const int s = interval_sign_at(g, root); s != 0) return s;
+  if (root.is_rational()) return sgn(g(root.lo));
+  // Doubles did not decide even on the narrowed interval: most likely g vanishes there.
+  // h = gcd divides poly, so inside [lo, hi] its only possible root is the isolated one,
+  // simple; the ends are not roots of poly, hence not of h.
+  const RationalPolynomial h = gcd(root.poly, g);
+  if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
+  for (;;) {
+    const std::vector<mpq_class> b = bernstein_coefficients(g, root.lo, root.hi);
+    bool positive = true, negative = true;
+    for (const mpq_class& x : b) {
+      positive = positive && sgn(x) > 0;
+      negative = negative && sgn(x) < 0;
+    }
+    if (positive) return 1;
+    if (negative) return -1;
+    root.refine();  // g(root) != 0, so the hull shrinks onto one sign
+    if (root.is_rational()) return sgn(g(root.lo));
+  }
+}
+
+}  // namespace kinray

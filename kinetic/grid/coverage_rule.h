@@ -1,0 +1,96 @@
+#pragma once
+// The sign rule for coverage (DESIGN.md, "Coverage"): the ray d (not the line) pierces the
+// triangle iff E_01(d), E_12(d), E_20(d) all have the sign of O and O != 0. It holds for
+// triangles in front of, straddling and behind the eye, so nothing is ever clipped.
+//
+// Signs are always taken "just after now" (sign_after), in initialisation, events and audit
+// alike, so that the structure and its certificates agree exactly and an event never re-fires at
+// the instant it was processed. An edge function that vanishes identically on a segment (a ray
+// lying exactly in the plane of the eye and an edge for a whole segment) is decided by a symbolic
+// perturbation of the ray, d -> d + (eps, eps^2, 0) (EdgeNormal::perturbed): its sign is that of
+// n_x, or of n_y when n_x vanishes too (n = p x q). The two triangles sharing an edge have opposite
+// normals, so exactly one of them claims such a ray, whatever their winding: no crack and no
+// double cover. Along a row the perturbed signs are those of the linear function E at x + eps, so
+// they still form one step (a zero column joins the side of sign n_x) and the boundary slots stay
+// valid. The same perturbed sign decides coverage, slots, certificates and the audit. O must be
+// strictly non-zero, so an edge-on or degenerate triangle covers nothing.
+#include <array>
+
+#include "kinetic/core/polynomial.h"
+#include "kinetic/core/root_finding.h"
+#include "kinetic/motion/triangle_motion.h"
+
+namespace kinray {
+
+/// sign_after(f, s) with 0 (the zero polynomial) read as +1: the perturbed sign of a vertex's side
+/// of a row plane, and of an edge function whose edge passes through the eye all segment long.
+[[nodiscard]] inline int sign_plus(const Polynomial& f, double s) {
+  return sign_after(f, s) >= 0 ? 1 : -1;
+}
+
+/// The sign (+1 or -1) of edge function n . d along the perturbed ray of (x, y, 1) just after s.
+[[nodiscard]] inline int edge_sign(const EdgeNormal& n, double x, double y, double s) {
+  // Horner's value of along(x, y) at s, with the same operations on the same values: when it is
+  // not zero it is the sign, and E is not the zero polynomial (no perturbation, no derivative).
+  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
+  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
+  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
+  const double v = (c2 * s + c1) * s + c0;
+  if (v != 0) return v > 0 ? 1 : -1;
+  return sign_plus(n.perturbed(x, y), s);
+}
+
+/// CoverageRule(m, s, orientation_sign).covers_in_row(x, y, a, b) for a single ray, building only
+/// the two edge normals it tests (`known`, when given, is edge `known_edge` already built): the
+/// same operations on the same values, so the same answer bit for bit.
+[[nodiscard]] inline bool covers_in_row(const TriangleMotion& m, double s, int orientation_sign,
+                                        double x, double y, int a, int b,
+                                        const EdgeNormal* known = nullptr, int known_edge = -1) {
+  if (orientation_sign == 0) return false;
+  auto sign_of = [&](int e) {
+    return e == known_edge ? edge_sign(*known, x, y, s) : edge_sign(m.edge(e), x, y, s);
+  };
+  return sign_of(a) == orientation_sign && sign_of(b) == orientation_sign;
+}
+
+/// The sign rule at one instant for many rays of one triangle: the orientation's sign is taken
+/// once, the edge functions per ray.
+class CoverageRule {
+ public:
+  /// The triangle `m` (in its segment's local time) just after local time s.
+  CoverageRule(const TriangleMotion& m, double s) : m_s(s) {
+    for (int e = 0; e < 3; ++e) m_edges[e] = m.edge(e);
+    m_orientation = sign_after(m.orientation(), s);
+  }
+  /// The same with the sign of O just after s already known (the band keeps it per triangle).
+  CoverageRule(const TriangleMotion& m, double s, int orientation_sign)
+      : m_orientation(orientation_sign), m_s(s) {
+    for (int e = 0; e < 3; ++e) m_edges[e] = m.edge(e);
+  }
+  /// Sign of O just after s (0 when O vanishes identically).
+  [[nodiscard]] int orientation_sign() const { return m_orientation; }
+  [[nodiscard]] const EdgeNormal& edge(int e) const { return m_edges[e]; }
+  /// Does the (perturbed) ray (x, y, 1) pierce the triangle just after s?
+  [[nodiscard]] bool covers(double x, double y) const {
+    if (m_orientation == 0) return false;
+    for (int e = 0; e < 3; ++e)
+      if (edge_sign(m_edges[e], x, y, m_s) != m_orientation) return false;
+    return true;
+  }
+  /// The sign rule restricted to a row plane that edges a and b cross: there the third edge's
+  /// sign follows from the other two (the cone from the eye over the row segment is the wedge
+  /// between the planes of a and b), so only a and b are tested. This equals covers() except at
+  /// degenerate instants (the third edge lying in the row plane, when rounding can make its sign
+  /// lag the vertex-row event by an ulp), and depends only on what the row record tracks.
+  [[nodiscard]] bool covers_in_row(double x, double y, int a, int b) const {
+    return m_orientation != 0 && edge_sign(m_edges[a], x, y, m_s) == m_orientation &&
+           edge_sign(m_edges[b], x, y, m_s) == m_orientation;
+  }
+
+ private:
+  std::array<EdgeNormal, 3> m_edges;
+  int m_orientation = 0;
+  double m_s = 0;
+};
+
+}  // namespace kinray

@@ -1,0 +1,48 @@
+#pragma once
+// The edge normals p x q (triangle_motion.h) of a band's mesh edges on their meshes' current
+// segments, computed once per edge and segment instead of once per use: a boundary event tests
+// the edge functions of its own edge and of the two records' other edges, and each was rebuilt
+// from the vertex motions every time (three cross products of polynomials, about 6% of an
+// event's instructions). The cached normal is the same function of the same motions, so every
+// sign and certificate built from it is bit for bit the one built before; the normal of a
+// triangle's edge taken against the edge's own direction is its exact negation
+// (EdgeNormal::reversed).
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "kinetic/motion/triangle_motion.h"
+
+namespace kinray {
+
+class EdgeNormalCache {
+ public:
+  explicit EdgeNormalCache(size_t edge_count) : m_normals(edge_count), m_stamps(edge_count, 0) {}
+
+  /// The normal of edge `edge` from p to q (its own direction), built on first use after the
+  /// last invalidate().
+  [[nodiscard]] const EdgeNormal& get(uint32_t edge, const PointMotion& p, const PointMotion& q) {
+    if (m_stamps[edge] != m_generation) {
+      m_normals[edge] = edge_normal(p, q);
+      m_stamps[edge] = m_generation;
+    }
+    return m_normals[edge];
+  }
+  /// Forgets every normal (some vertex motions changed).
+  void invalidate() {
+    if (++m_generation == 0) {  // wrapped: no stale stamp may match
+      std::fill(m_stamps.begin(), m_stamps.end(), 0);
+      m_generation = 1;
+    }
+  }
+  [[nodiscard]] size_t memory_bytes() const {
+    return m_normals.capacity() * sizeof(EdgeNormal) + m_stamps.capacity() * sizeof(uint32_t);
+  }
+
+ private:
+  std::vector<EdgeNormal> m_normals;
+  std::vector<uint32_t> m_stamps;  ///< the generation each normal was built in
+  uint32_t m_generation = 1;
+};
+
+}  // namespace kinray

@@ -1,0 +1,126 @@
+// Geometry just after now: the motion of a triangle, an edge or a vertex on its mesh's current
+// segment, and where vertices and boundaries sit among the band's row planes and columns.
+#include "kinetic/grid/frustum_band.h"
+
+#include "kinetic/grid/frustum_band_sorts.h"
+
+namespace kinray {
+
+template <class Sort>
+typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t tri) const {
+  TriangleNow tn;
+  const uint32_t m = m_scene.mesh_of_triangle(tri);
+  tn.segment = m_motion.segment(m);
+  tn.motion = m_motion.triangle(tri);
+  tn.s = m_now - tn.segment.origin;
+  tn.moving = !m_scene.mesh(m).is_static;
+  return tn;
+}
+
+template <class Sort>
+typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) const {
+  EdgeNow en;
+  const auto& ends = m_scene.edge_vertices(edge);
+  const uint32_t m = m_scene.mesh_of_vertex(ends[0]);
+  en.segment = m_motion.segment(m);
+  en.p = m_motion.vertex(ends[0]);
+  en.q = m_motion.vertex(ends[1]);
+  en.s = m_now - en.segment.origin;
+  en.moving = !m_scene.mesh(m).is_static;
+  en.edge = edge;
+  return en;
+}
+
+template <class Sort>
+PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const {
+  s = m_now - m_motion.segment(m_scene.mesh_of_vertex(v)).origin;
+  return m_motion.vertex(v);
+}
+
+template <class Sort>
+typename FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const PointMotion& p,
+                                                                        double s) const {
+  auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
+  RowPattern pattern;
+  pattern.slot = m_rows.locate(sign_at);
+  const auto [lo, hi] = m_rows.watched(pattern.slot);
+  pattern.sign_lo = sign_at(lo);
+  pattern.sign_hi = lo == hi ? pattern.sign_lo : sign_at(hi);
+  if (!SlotCircle::consistent(pattern.slot, pattern.sign_lo, pattern.sign_hi))
+    pattern.sign_hi = pattern.slot == 0 ? pattern.sign_lo : -pattern.sign_lo;
+  return pattern;
+}
+
+template <class Sort>
+Polynomial FrustumBand<Sort>::boundary_front(const EdgeNow& en, int row) const {
+  const double y = m_scene.row_y(row);
+  const Polynomial z = boundary_depth(en.p, en.q, y);
+  return sign_plus(row_side(en.q, y), en.s) > 0 ? z : -z;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const {
+  SlotTracker& t = b.tracker;
+  if (sign_plus(boundary_front(en, b.row), en.s) < 0) {
+    t.slot = kBehindEye;
+    t.sign_lo = t.sign_hi = 1;
+    return;
+  }
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
+  const double y = m_scene.row_y(b.row);
+  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
+  t.slot = m_columns.locate(sign_at);
+  const auto [lo, hi] = m_columns.watched(t.slot);
+  t.sign_lo = int8_t(sign_at(lo));
+  t.sign_hi = int8_t(lo == hi ? t.sign_lo : sign_at(hi));
+  // A sign pattern that is not monotone (rounding of a nearly constant edge function) still
+  // gets a consistent slot; the audit reports such rows if they ever matter.
+  if (!SlotCircle::consistent(t.slot, t.sign_lo, t.sign_hi))
+    t.sign_hi = int8_t(t.slot == 0 ? t.sign_lo : -t.sign_lo);
+}
+
+template <class Sort>
+bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en,
+                                       const SlotTracker& hint) const {
+  // The new edge's point is the same point: on the same side of the eye, in the same slot.
+  SlotTracker& t = b.tracker;
+  const bool front = sign_plus(boundary_front(en, b.row), en.s) > 0;
+  if (hint.slot == kBehindEye) {
+    if (front) return false;
+    t.slot = kBehindEye;
+    t.sign_lo = t.sign_hi = 1;
+    return true;
+  }
+  if (!front) return false;
+  const EdgeNormal& edge = m_motion.edge_normal(en.edge);
+  const double y = m_scene.row_y(b.row);
+  const auto [lo, hi] = m_columns.watched(hint.slot);
+  const int sl = edge_sign(edge, m_scene.column_x(lo), y, en.s);
+  const int sh = lo == hi ? sl : edge_sign(edge, m_scene.column_x(hi), y, en.s);
+  if (!SlotCircle::consistent(hint.slot, sl, sh)) return false;
+  t.slot = hint.slot;
+  t.sign_lo = int8_t(sl);
+  t.sign_hi = int8_t(sh);
+  return true;
+}
+
+template <class Sort>
+std::array<int, 3> FrustumBand<Sort>::row_sides(const TriangleNow& tn, int row) const {
+  const double y = m_scene.row_y(row);
+  return {sign_plus(row_side(tn.motion.v[0], y), tn.s), sign_plus(row_side(tn.motion.v[1], y), tn.s),
+          sign_plus(row_side(tn.motion.v[2], y), tn.s)};
+}
+
+#define KINRAY_INSTANTIATE(Sort) \
+  template FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t tri) const; \
+  template FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) const; \
+  template PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const; \
+  template FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const PointMotion& p, double s) const; \
+  template Polynomial FrustumBand<Sort>::boundary_front(const EdgeNow& en, int row) const; \
+  template void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const; \
+  template bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en, const SlotTracker& hint) const; \
+  template std::array<int, 3> FrustumBand<Sort>::row_sides(const TriangleNow& tn, int row) const;
+KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
+#undef KINRAY_INSTANTIATE
+
+}  // namespace kinray

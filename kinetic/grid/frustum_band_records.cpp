@@ -1,0 +1,313 @@
+// Records: the (triangle, row) records, the interval of columns each covers, and the pixel
+// orders that interval feeds (a change of coverage is an insert or an erase in a pixel order).
+#include "kinetic/grid/frustum_band.h"
+
+#include <algorithm>
+
+#include "kinetic/grid/frustum_band_sorts.h"
+#include "kinetic/grid/row_crossings.h"
+
+namespace kinray {
+
+using detail::crossing_edges;
+using detail::sort_cuts;
+
+template <class Sort>
+std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const CoverageRule& rule,
+                                                     bool full) {
+  if (rule.orientation_sign() == 0) return {0, -1};
+  const double y = m_scene.row_y(r.row);
+  int lo = m_width, hi = -1, count = 0;
+  if (!full) {
+    // Coverage is constant between consecutive cuts: the boundary slots and the image borders
+    // (the covered columns end only where the ray passes a boundary point in front of the eye).
+    // A boundary behind the eye changes no coverage where it crosses (no cut).
+    int cuts[4] = {0, std::max(m_boundaries[r.boundary[0]].tracker.slot, 0),
+                   std::max(m_boundaries[r.boundary[1]].tracker.slot, 0), m_width};
+    sort_cuts(cuts);
+    for (int k = 0; k + 1 < 4; ++k) {
+      const int a = cuts[k], b = cuts[k + 1];
+      if (a >= b) continue;
+      if (rule.covers_in_row(m_scene.column_x(a), y, r.edge[0], r.edge[1])) {
+        lo = std::min(lo, a);
+        hi = std::max(hi, b - 1);
+        count += b - a;
+      }
+    }
+    if (count == hi - lo + 1 || count == 0) return count == 0 ? std::pair{0, -1} : std::pair{lo, hi};
+    // Covered runs that are not contiguous: numerically degenerate; fall back to every column.
+  }
+  lo = m_width, hi = -1, count = 0;
+  for (int c = 0; c < m_width; ++c)
+    if (rule.covers_in_row(m_scene.column_x(c), y, r.edge[0], r.edge[1])) {
+      lo = std::min(lo, c);
+      hi = c;
+      ++count;
+    }
+  if (count == 0) return {0, -1};
+  return {lo, hi};
+}
+
+template <class Sort>
+void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
+  PixelCell& p = cell(column, row);
+  const size_t bytes = p.order.memory_bytes();
+  p.order.insert(tri, m_now);
+  m_pixel_bytes += p.order.memory_bytes() - bytes;
+  ++m_pixel_entries;
+  ++m_stats.coverage_changes;
+  if (refresh_front(column, row)) m_front_changed = true;
+  if (m_config.audit) audit_pixel(column, row, m_now);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
+  PixelCell& p = cell(column, row);
+  const size_t bytes = p.order.memory_bytes();
+  p.order.erase(tri, m_now);
+  m_pixel_bytes -= bytes - p.order.memory_bytes();
+  --m_pixel_entries;
+  ++m_stats.coverage_changes;
+  if (refresh_front(column, row)) m_front_changed = true;
+  if (m_config.audit) audit_pixel(column, row, m_now);
+}
+
+template <class Sort>
+uint32_t FrustumBand<Sort>::find_record(uint32_t tri, int row) const {
+  for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next)
+    if (m_records[rec].row == row) return rec;
+  return kNoRecord;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::set_coverage(uint32_t rec, int lo, int hi) {
+  // Apply the difference between the old and the new interval to the pixel orders.
+  const RowRecord old = m_records[rec];
+  const bool empty = lo > hi;
+  for (int c = old.lo; c <= old.hi; ++c)
+    if (empty || c < lo || c > hi) pixel_erase(old.triangle, c, old.row);
+  for (int c = lo; c <= hi; ++c)
+    if (!old.covers(c)) pixel_insert(old.triangle, c, old.row);
+  RowRecord& r = m_records[rec];
+  r.lo = empty ? 0 : lo;
+  r.hi = empty ? -1 : hi;
+}
+
+template <class Sort>
+uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int edge_b,
+                                          const TriangleNow& tn) {
+  uint32_t rec;
+  if (!m_free_records.empty()) {
+    rec = m_free_records.back();
+    m_free_records.pop_back();
+    m_records[rec] = RowRecord{};
+  } else {
+    rec = uint32_t(m_records.size());
+    m_records.emplace_back();
+  }
+  TriangleState& ts = m_triangles[tri];
+  // With culling the orientation is kept for every triangle, records or not.
+  const bool first = ts.head == kNoRecord && m_scene.cull_sign_of_triangle(tri) == 0;
+  RowRecord& r = m_records[rec];
+  r.triangle = tri;
+  r.row = row;
+  r.next = ts.head;
+  ts.head = rec;
+  r.edge = {uint8_t(edge_a), uint8_t(edge_b)};
+  bind_boundary(rec, 0);
+  bind_boundary(rec, 1);
+  ++m_stats.records_born;
+  const CoverageRule rule = first ? CoverageRule(tn.motion, tn.s)
+                                  : CoverageRule(tn.motion, tn.s, ts.orientation);
+  if (first) {
+    ts.orientation = int8_t(rule.orientation_sign());
+    if (tn.moving) ++m_live_orientations;
+    schedule_orientation(tri, tn);
+  }
+  const auto [lo, hi] = scan_coverage(m_records[rec], rule, false);
+  set_coverage(rec, lo, hi);
+  return rec;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::kill_record(uint32_t rec) {
+  set_coverage(rec, 0, -1);
+  RowRecord& r = m_records[rec];
+  const uint32_t tri = r.triangle;
+  const bool moving = !m_scene.mesh(m_scene.mesh_of_triangle(tri)).is_static;
+  release_boundary(rec, 0);
+  release_boundary(rec, 1);
+  TriangleState& ts = m_triangles[tri];
+  if (ts.head == rec) {
+    ts.head = r.next;
+  } else {
+    uint32_t prev = ts.head;
+    while (m_records[prev].next != rec) prev = m_records[prev].next;
+    m_records[prev].next = r.next;
+  }
+  if (ts.head == kNoRecord && m_scene.cull_sign_of_triangle(tri) == 0) {
+    if (ts.event != kNoEvent) m_queue.erase(ts.event);
+    ts.event = kNoEvent;
+    ts.orientation = 0;
+    if (moving) --m_live_orientations;
+  }
+  r.next = kNoRecord;
+  r.triangle = ~0u;
+  m_free_records.push_back(rec);
+  ++m_stats.records_died;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full) {
+  ++m_stats.row_rebuilds;
+  int crossing[2];
+  if (crossing_edges(row_sides(tn, m_records[rec].row), crossing) == 2) {
+    // Keep a boundary whose edge still crosses; give the other the remaining crossing edge.
+    const int e0 = m_records[rec].edge[0], e1 = m_records[rec].edge[1];
+    auto crosses = [&](int e) { return e == crossing[0] || e == crossing[1]; };
+    auto remaining = [&](int e) { return e == crossing[0] ? crossing[1] : crossing[0]; };
+    std::array<int, 2> edges = {e0, e1};
+    if (!(crosses(e0) && crosses(e1) && e0 != e1)) {
+      if (crosses(e0))
+        edges[1] = remaining(e0);
+      else if (crosses(e1))
+        edges[0] = remaining(e1);
+      else
+        edges = {crossing[0], crossing[1]};
+    }
+    for (int k = 0; k < 2; ++k) {
+      if (edges[size_t(k)] == m_records[rec].edge[size_t(k)]) continue;
+      release_boundary(rec, k);
+      m_records[rec].edge[size_t(k)] = uint8_t(edges[size_t(k)]);
+      bind_boundary(rec, k);
+    }
+  }
+  // An event of a boundary at this very instant may still be pending (a rebuild at an
+  // orientation event, when the plane sweeps through the eye and its boundaries with it): the
+  // scan starts from their slots, so they are located afresh.
+  for (int k = 0; k < 2; ++k) relocate_boundary(m_records[rec].boundary[size_t(k)], rec);
+  rescan_record(rec, tn, full);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) {
+  const CoverageRule rule(tn.motion, tn.s);
+  const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
+  set_coverage(rec, lo, hi);
+}
+
+template <class Sort>
+bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const {
+  const RowRecord& r = m_records[rec];
+  // The triangle's orientation sign is kept up to date by its orientation events (a change at
+  // this very instant is still pending and rebuilds the record when processed). The edge
+  // normals come from the cache: covers_in_row of the triangle's motion, bit for bit.
+  const int o = m_triangles[r.triangle].orientation;
+  if (o == 0) return false;
+  const double x = m_scene.column_x(column), y = m_scene.row_y(r.row);
+  auto sign_of = [&](int e) {
+    const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
+    return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, s)
+                                             : edge_sign(n.reversed(), x, y, s);
+  };
+  return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
+}
+
+template <class Sort>
+void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered) {
+  const RowRecord& r = m_records[rec];
+  if (covered == r.covers(column)) return;
+  int lo = r.lo, hi = r.hi;
+  if (covered) {
+    if (r.empty())
+      lo = hi = column;
+    else if (column == r.lo - 1)
+      lo = column;
+    else if (column == r.hi + 1)
+      hi = column;
+    else
+      lo = hi = -2;
+  } else {
+    if (r.lo == r.hi)
+      lo = 0, hi = -1;
+    else if (column == r.lo)
+      ++lo;
+    else if (column == r.hi)
+      --hi;
+    else
+      lo = hi = -2;
+  }
+  if (lo == -2) {
+    // Not at an end of the interval: several columns changed at one instant (degenerate).
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, triangle_now(r.triangle), true);
+    return;
+  }
+  set_coverage(rec, lo, hi);
+}
+
+template <class Sort>
+void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
+  if (culled(tri)) return;  // no records while it faces away
+  const TriangleNow tn = triangle_now(tri);
+  int crossing[2];
+  const int n = crossing_edges(row_sides(tn, row), crossing);
+  const uint32_t rec = find_record(tri, row);
+  if (n == 0) {
+    if (rec != kNoRecord) kill_record(rec);
+    return;
+  }
+  if (rec == kNoRecord) {
+    create_record(tri, row, crossing[0], crossing[1], tn);
+    return;
+  }
+  RowRecord& r = m_records[rec];
+  const int e0 = r.edge[0], e1 = r.edge[1];
+  const bool has0 = e0 == crossing[0] || e0 == crossing[1];
+  const bool has1 = e1 == crossing[0] || e1 == crossing[1];
+  if (has0 && has1 && e0 != e1) return;  // this vertex was not an end of a crossing edge here
+  ++m_stats.reties;
+  if (has0 == has1) {  // both edges changed at once (degenerate)
+    ++m_stats.degenerate_rebuilds;
+    rebuild_record(rec, tn, true);
+    return;
+  }
+  // The boundary on the edge that stopped crossing moves on to the new edge through the vertex:
+  // the point is continuous, so its slot stays (the new edge's boundary may already be held by
+  // the triangle across that edge); only its certificates change.
+  const int bi = has0 ? 1 : 0;
+  const int other = r.edge[size_t(1 - bi)];
+  const SlotTracker old = m_boundaries[r.boundary[size_t(bi)]].tracker;
+  release_boundary(rec, bi);
+  m_records[rec].edge[size_t(bi)] = uint8_t(crossing[0] == other ? crossing[1] : crossing[0]);
+  if (!bind_boundary(rec, bi, &old)) {
+    ++m_stats.degenerate_rebuilds;
+    rescan_record(rec, tn, true);
+    return;
+  }
+  const int slot = m_boundaries[m_records[rec].boundary[size_t(bi)]].tracker.slot;
+  if (slot == kBehindEye) return;
+  // At the instant of the re-tie the boundary is the vertex itself; a vertex exactly on a
+  // pixel-centre ray may change that pixel, so the two watched columns are re-evaluated.
+  const auto [lo, hi] = m_columns.watched(slot);
+  update_pixel(rec, lo, tn);
+  if (hi != lo) update_pixel(rec, hi, tn);
+}
+
+#define KINRAY_INSTANTIATE(Sort) \
+  template std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const CoverageRule& rule, bool full); \
+  template void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row); \
+  template void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row); \
+  template uint32_t FrustumBand<Sort>::find_record(uint32_t tri, int row) const; \
+  template void FrustumBand<Sort>::set_coverage(uint32_t rec, int lo, int hi); \
+  template uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int edge_b, const TriangleNow& tn); \
+  template void FrustumBand<Sort>::kill_record(uint32_t rec); \
+  template void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full); \
+  template void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool full); \
+  template bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const; \
+  template void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered); \
+  template void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row);
+KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
+#undef KINRAY_INSTANTIATE
+
+}  // namespace kinray

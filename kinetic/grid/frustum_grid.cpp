@@ -1,0 +1,449 @@
+#include "kinetic/grid/frustum_grid.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "kinetic/core/root_finding.h"
+#include "kinetic/grid/frustum_band.h"
+#include "kinetic/grid/plane_pairs.h"
+#include "kinetic/sort/kinetic_heap.h"
+#include "kinetic/sort/kinetic_sorted_list.h"
+#include "kinetic/sort/kinetic_tournament.h"
+#include "util/parallel.h"
+
+namespace kinray {
+
+namespace {
+
+constexpr int kBandsPerThread = 4;
+constexpr size_t kPlaneCache = 2048;  ///< read-out: planes kept per thread (a few rows' runs)
+constexpr int kReadoutBlocksPerThread = 8;  ///< read-out: blocks of rows handed out per thread
+constexpr size_t kReadoutMinBlockRows = 16;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+// The virtual calls are per advance or per read-out, never per event.
+class FrustumGrid::Bands {
+ public:
+  virtual ~Bands() = default;
+  virtual void start(double t0, int threads) = 0;
+  virtual void advance_to(double t, int threads) = 0;
+  /// The front triangles (global ids, kNoGridHit for none) of the width pixels of row j.
+  virtual const uint32_t* front_row(int j) const = 0;
+  virtual size_t depth_complexity(int i, int j) const = 0;
+  virtual uint32_t front(int i, int j) const = 0;
+  /// Every triangle of pixel (i, j)'s order into `out` (cleared first): front to back for the
+  /// sorted list, the front first for the tournament and the heap.
+  virtual void members(int i, int j, std::vector<uint32_t>& out) const = 0;
+  virtual std::vector<std::string> audit(double t, int threads) const = 0;
+  virtual GridStats stats() const = 0;
+  virtual int count() const = 0;
+  /// Band b logs its front changes into logs[b] (logs == nullptr: no band logs).
+  virtual void set_front_logs(FrontChangeLog* logs) = 0;
+};
+
+namespace {
+
+template <class Sort>
+class BandsOf final : public FrustumGrid::Bands {
+ public:
+  BandsOf(const GridScene& scene, int bands, bool audit, WorkProgress* init_progress) {
+    const int h = scene.height();
+    for (int b = 0; b < bands; ++b) {
+      const int r0 = int(int64_t(h) * b / bands), r1 = int(int64_t(h) * (b + 1) / bands);
+      typename FrustumBand<Sort>::Config config;
+      config.audit = audit;
+      config.counts_meshes = b == 0;
+      config.init_progress = init_progress;
+      m_bands.push_back(std::make_unique<FrustumBand<Sort>>(scene, r0, r1, config));
+      m_row_begin.push_back(r0);
+    }
+    m_row_begin.push_back(h);
+  }
+  void start(double t0, int threads) override {
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
+  }
+  void advance_to(double t, int threads) override {
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
+  }
+  const uint32_t* front_row(int j) const override {
+    static_assert(kNoFront == kNoGridHit);
+    return m_bands[band_of(j)]->front_row(j);
+  }
+  uint32_t front(int i, int j) const override {
+    return m_bands[band_of(j)]->front(i, j).value_or(kNoGridHit);
+  }
+  void members(int i, int j, std::vector<uint32_t>& out) const override {
+    out.clear();
+    m_bands[band_of(j)]->for_each_member(i, j, [&](uint32_t tri) { out.push_back(tri); });
+  }
+  size_t depth_complexity(int i, int j) const override {
+    return m_bands[band_of(j)]->depth_complexity(i, j);
+  }
+  std::vector<std::string> audit(double t, int threads) const override {
+    std::vector<std::vector<std::string>> found(m_bands.size());
+    parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
+    std::vector<std::string> all;
+    for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
+    return all;
+  }
+  GridStats stats() const override {
+    GridStats s;
+    for (const auto& band : m_bands) s += band->stats();
+    return s;
+  }
+  int count() const override { return int(m_bands.size()); }
+  void set_front_logs(FrontChangeLog* logs) override {
+    for (size_t b = 0; b < m_bands.size(); ++b) m_bands[b]->set_front_log(logs ? &logs[b] : nullptr);
+  }
+
+ private:
+  size_t band_of(int row) const {
+    return size_t(std::upper_bound(m_row_begin.begin(), m_row_begin.end(), row) - m_row_begin.begin()) - 1;
+  }
+  std::vector<std::unique_ptr<FrustumBand<Sort>>> m_bands;
+  std::vector<int> m_row_begin;
+};
+
+}  // namespace
+
+FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridConfig& config)
+    : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input), config.threads, config.init_progress), m_config(config),
+      m_now(start_time) {
+  m_threads = resolve_threads(config.threads);
+  // The events gather where the geometry moves (a horizon, a fold of the cloth), so with several
+  // threads the rows are split into more bands than threads, handed out dynamically: a band
+  // costs a little (its vertex and orientation certificates), an idle thread much more.
+  const int automatic = m_threads == 1 ? 1 : kBandsPerThread * m_threads;
+  const int bands = std::clamp(config.bands > 0 ? config.bands : automatic, 1, m_scene.height());
+  switch (config.sort) {
+    case DepthSortKind::kList:
+      m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit,
+                                                                          config.init_progress);
+      break;
+    case DepthSortKind::kTournament:
+      m_bands = std::make_unique<BandsOf<KineticTournament<PixelDepthKeys>>>(m_scene, bands, config.audit,
+                                                                          config.init_progress);
+      break;
+    case DepthSortKind::kHeap:
+      m_bands = std::make_unique<BandsOf<KineticHeap<PixelDepthKeys>>>(m_scene, bands, config.audit,
+                                                                          config.init_progress);
+      break;
+  }
+  if (config.init_progress != nullptr) {
+    uint64_t present = 0;
+    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
+      if (m_scene.mesh(m).present(start_time))
+        present += m_scene.triangle_end(m) - m_scene.triangle_begin(m);
+    config.init_progress->begin("scan conversion", present * uint64_t(bands));
+  }
+  m_bands->start(start_time, m_threads);
+  m_timings.init = seconds_since(m_created);
+  m_memory_peak = m_bands->stats().memory_bytes;
+  if (config.audit) {
+    const auto problems = audit();
+    if (!problems.empty()) throw std::logic_error("kinetic grid audit at start: " + problems.front());
+  }
+}
+
+FrustumGrid::~FrustumGrid() = default;
+
+int FrustumGrid::band_count() const { return m_bands->count(); }
+
+void FrustumGrid::log_front_changes(bool on) {
+  m_front_logs.resize(on ? size_t(m_bands->count()) : 0);
+  m_bands->set_front_logs(on ? m_front_logs.data() : nullptr);
+}
+
+void FrustumGrid::advance_to(double t) {
+  if (!(t >= m_now)) throw std::invalid_argument("kinetic grid: frame times must not decrease");
+  const auto started = std::chrono::steady_clock::now();
+  m_bands->advance_to(t, m_threads);
+  m_now = t;
+  m_timings.events += seconds_since(started);
+  m_memory_peak = std::max(m_memory_peak, m_bands->stats().memory_bytes);
+  if (m_config.audit) {
+    const auto problems = audit();
+    if (!problems.empty()) {
+      std::string text = "kinetic grid audit failed (" + std::to_string(problems.size()) + "):";
+      for (size_t k = 0; k < std::min<size_t>(problems.size(), 5); ++k) text += "\n  " + problems[k];
+      throw std::logic_error(text);
+    }
+  }
+}
+
+std::optional<GridHit> FrustumGrid::front(int i, int j) const {
+  const uint32_t tri = m_bands->front(i, j);
+  if (tri == kNoGridHit) return std::nullopt;
+  const uint32_t m = m_scene.mesh_of_triangle(tri);
+  return GridHit{m, tri - m_scene.triangle_begin(m)};
+}
+
+size_t FrustumGrid::depth_complexity(int i, int j) const { return m_bands->depth_complexity(i, j); }
+
+namespace {
+
+/// One read-out thread: the rows it is handed, written into the buffers. Everything the per-pixel
+/// loop reads is a member or a local (not reached through references the buffers' stores could
+/// alias), and the rare paths are out of line, so the loop keeps its state in registers.
+class RowReader {
+ public:
+  RowReader(const GridScene& scene, const FrustumGrid::Bands& bands,
+            std::span<const FlightplanMesh::KeyBlend> blends)
+      : m_scene(scene), m_bands(bands), m_blends(blends), m_width(scene.width()),
+        m_column_x(size_t(scene.width())), m_cache(kPlaneCache), m_missing(size_t(scene.width())) {
+    for (int i = 0; i < m_width; ++i) m_column_x[size_t(i)] = scene.column_x(i);
+  }
+
+  /// Row j of the read-out into the rows of the buffers.
+  void read(int j, uint32_t* object, uint32_t* prim, float* depth) {
+    const uint32_t* fronts = m_bands.front_row(j);
+    const int width = m_width;
+    // Background comes in long runs (a few per row), filled in bulk; the covered runs between
+    // them are noted, with the triangles whose planes are not in the cache. Those planes are
+    // computed before any depth, two at a time: a miss met pixel by pixel would be a mispredicted
+    // branch each time.
+    m_segments.clear();
+    size_t missing = 0;
+    int i = 0;
+    while (i < width) {
+      int end = i;
+      for (; end + 4 <= width; end += 4) {  // four pixels at once: kNoGridHit has every bit set
+        uint64_t a = 0, b = 0;
+        std::memcpy(&a, fronts + end, sizeof a);
+        std::memcpy(&b, fronts + end + 2, sizeof b);
+        if ((a & b) != ~uint64_t(0)) break;
+      }
+      while (end < width && fronts[end] == kNoGridHit) ++end;
+      std::fill(object + i, object + end, kNoGridHit);
+      std::fill(prim + i, prim + end, kNoGridHit);
+      std::fill(depth + i, depth + end, std::numeric_limits<float>::infinity());
+      if (end == width) break;
+      uint32_t previous = kNoGridHit;
+      for (i = end; i < width && fronts[i] != kNoGridHit; ++i) {
+        const uint32_t tri = fronts[i];
+        m_missing[missing] = tri;  // kept when it starts a run and is not cached: no branch
+        missing += size_t(tri != previous) & size_t(m_cache[tri % kPlaneCache].tri != tri);
+        previous = tri;
+      }
+      m_segments.emplace_back(end, i);
+    }
+    size_t k = 0;
+    for (; k + 2 <= missing; k += 2) fill_pair(m_missing[k], m_missing[k + 1]);
+    if (k < missing) plane(m_missing[k]);
+    const double y = m_scene.row_y(j);
+    const double* xs = m_column_x.data();
+    for (const auto& [begin, end] : m_segments) {
+      // Two pixels at a time (one division for both, plane_pairs.h). A triangle covers only
+      // a couple of pixels of a row, so its changes are not branched on: every pixel looks its
+      // triangle's plane up in the cache.
+      int p = begin;
+      for (; p + 2 <= end; p += 2) {
+        const uint32_t t0 = fronts[p], t1 = fronts[p + 1];
+        const CachedPlane& c0 = plane(t0);
+        const CachedPlane& c1 = plane(t1);
+        DoublePair x;
+        std::memcpy(&x, xs + p, sizeof x);
+        const DoublePair z = plane_depth_pair(c0.plane, c1.plane, x, y);
+        // c0 was evicted by c1 (two triangles of one cache slot), or a front does not pierce.
+        if (c0.tri != t0 || !pierces(z[0]) || !pierces(z[1])) [[unlikely]] {
+          pixel(p, j, t0, y, object, prim, depth);
+          pixel(p + 1, j, t1, y, object, prim, depth);
+          continue;
+        }
+        object[p] = c0.mesh_id;
+        object[p + 1] = c1.mesh_id;
+        prim[p] = c0.local;
+        prim[p + 1] = c1.local;
+        depth[p] = float(z[0]);
+        depth[p + 1] = float(z[1]);
+      }
+      if (p < end) pixel(p, j, fronts[p], y, object, prim, depth);
+    }
+  }
+
+ private:
+  /// A triangle meets a few consecutive rows: the planes of recent rows are kept in a small
+  /// direct-mapped cache (plane_of's values bit for bit, also from fill_pair, so the same depths).
+  struct CachedPlane {
+    uint32_t tri = kNoGridHit, mesh_id = 0, local = 0;
+    TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  };
+
+  /// A triangle in a pixel's order pierces its ray just after now; exactly at now it may not:
+  /// when its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers
+  /// nothing at that instant (DESIGN.md's strict rule), and its hit is not in front of the eye.
+  /// That is measure zero, so the front is checked and only then are the other members visited.
+  static bool pierces(double z) { return std::isfinite(z) && z > 0; }
+
+  /// The plane of triangle `tri` at now, from its interpolated vertices.
+  [[nodiscard]] TrianglePlane plane_of(uint32_t tri) const {
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    const FlightplanMesh& mesh = m_scene.mesh(m);
+    const auto& vs = mesh.triangles[tri - m_scene.triangle_begin(m)];
+    return TrianglePlane(mesh.position(vs[0], m_blends[m]), mesh.position(vs[1], m_blends[m]),
+                         mesh.position(vs[2], m_blends[m]));
+  }
+
+  /// Triangle tri's slot of the cache, filled if it held another triangle.
+  const CachedPlane& plane(uint32_t tri) {
+    CachedPlane& c = m_cache[tri % kPlaneCache];
+    if (c.tri != tri) [[unlikely]]
+      fill(c, tri);
+    return c;
+  }
+
+  /// Pixel (i, j), whose front is tri, one at a time.
+  void pixel(int i, int j, uint32_t tri, double y, uint32_t* object, uint32_t* prim, float* depth) {
+    const CachedPlane& c = plane(tri);
+    const double z = c.plane.depth(m_column_x[size_t(i)], y);
+    if (!pierces(z)) [[unlikely]] {
+      nearest_piercing(i, j, tri, object[i], prim[i], depth[i]);
+      return;
+    }
+    object[i] = c.mesh_id;
+    prim[i] = c.local;
+    depth[i] = float(z);
+  }
+
+  [[gnu::noinline]] void fill(CachedPlane& c, uint32_t tri) const {
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    c.tri = tri;
+    c.mesh_id = m_scene.mesh(m).id;
+    c.local = tri - m_scene.triangle_begin(m);
+    c.plane = plane_of(tri);
+  }
+
+  /// The planes of two triangles into their slots, computed together (plane_pairs.h); when both
+  /// have one slot the second stays, and the pixel loop refills the first.
+  void fill_pair(uint32_t t0, uint32_t t1) {
+    const uint32_t m0 = m_scene.mesh_of_triangle(t0), m1 = m_scene.mesh_of_triangle(t1);
+    const FlightplanMesh::KeyBlend &b0 = m_blends[m0], &b1 = m_blends[m1];
+    if (b0.still || b1.still) {  // the positions are the keys', unblended
+      fill(m_cache[t0 % kPlaneCache], t0);
+      fill(m_cache[t1 % kPlaneCache], t1);
+      return;
+    }
+    const FlightplanMesh &mesh0 = m_scene.mesh(m0), &mesh1 = m_scene.mesh(m1);
+    const uint32_t local0 = t0 - m_scene.triangle_begin(m0), local1 = t1 - m_scene.triangle_begin(m1);
+    const auto &vs0 = mesh0.triangles[local0], &vs1 = mesh1.triangles[local1];
+    const DoublePair alpha = {b0.alpha, b1.alpha};
+    auto vertex = [&](int v) {
+      return blend_pair(point_pair(mesh0.key_position(b0.k, vs0[v]), mesh1.key_position(b1.k, vs1[v])),
+                        point_pair(mesh0.key_position(b0.k + 1, vs0[v]), mesh1.key_position(b1.k + 1, vs1[v])),
+                        alpha);
+    };
+    CachedPlane& c0 = m_cache[t0 % kPlaneCache];
+    CachedPlane& c1 = m_cache[t1 % kPlaneCache];
+    TrianglePlane plane1 = c1.plane;
+    triangle_plane_pair(vertex(0), vertex(1), vertex(2), c0.plane, plane1);
+    c0.tri = t0;
+    c0.mesh_id = mesh0.id;
+    c0.local = local0;
+    c1.tri = t1;
+    c1.mesh_id = mesh1.id;
+    c1.local = local1;
+    c1.plane = plane1;
+  }
+
+  /// Pixel (i, j) whose front does not pierce its ray at now: the nearest member that does, at
+  /// equal depths the earlier one in the order (the sorted list visits front to back).
+  [[gnu::noinline]] void nearest_piercing(int i, int j, uint32_t front, uint32_t& object,
+                                          uint32_t& prim, float& depth) {
+    const double x = m_scene.column_x(i), y = m_scene.row_y(j);
+    uint32_t tri = kNoGridHit;
+    double z = 0;
+    m_bands.members(i, j, m_members);
+    for (uint32_t other : m_members) {
+      if (other == front) continue;
+      const double zo = plane_of(other).depth(x, y);
+      if (pierces(zo) && (tri == kNoGridHit || zo < z)) {
+        tri = other;
+        z = zo;
+      }
+    }
+    if (tri == kNoGridHit) {
+      object = prim = kNoGridHit;
+      depth = std::numeric_limits<float>::infinity();
+      return;
+    }
+    const uint32_t m = m_scene.mesh_of_triangle(tri);
+    object = m_scene.mesh(m).id;
+    prim = tri - m_scene.triangle_begin(m);
+    depth = float(z);
+  }
+
+  const GridScene& m_scene;
+  const FrustumGrid::Bands& m_bands;
+  std::span<const FlightplanMesh::KeyBlend> m_blends;  ///< each mesh's place on its key grid at now
+  int m_width;
+  std::vector<double> m_column_x;
+  std::vector<CachedPlane> m_cache;
+  std::vector<uint32_t> m_members;
+  std::vector<std::pair<int, int>> m_segments;  ///< a row's covered runs [begin, end)
+  std::vector<uint32_t> m_missing;  ///< a row's triangles whose planes were not cached
+};
+
+}  // namespace
+
+void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
+                           std::span<float> depth) const {
+  const auto started = std::chrono::steady_clock::now();
+  const int w = m_scene.width(), h = m_scene.height();
+  const size_t n = size_t(w) * size_t(h);
+  if (object.size() != n || prim.size() != n || depth.size() != n)
+    throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
+  // Where each mesh is on its key grid at now, once per frame.
+  std::vector<FlightplanMesh::KeyBlend> blends(m_scene.mesh_count());
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) blends[m] = m_scene.mesh(m).blend_at(m_now);
+  // Rows are handed out in blocks: a thread that starts late (the machine is shared) takes fewer,
+  // and a block is long enough that the plane cache is reused from row to row.
+  const size_t block_rows =
+      std::max<size_t>(kReadoutMinBlockRows, size_t(h) / size_t(kReadoutBlocksPerThread * m_threads));
+  const size_t blocks = (size_t(h) + block_rows - 1) / block_rows;
+  std::atomic<size_t> next_block{0};
+  parallel_chunks(size_t(m_threads), m_threads, [&](size_t, size_t) {
+    RowReader reader(m_scene, *m_bands, blends);
+    for (size_t b = next_block.fetch_add(1, std::memory_order_relaxed); b < blocks;
+         b = next_block.fetch_add(1, std::memory_order_relaxed))
+      for (size_t j = b * block_rows; j < std::min(size_t(h), (b + 1) * block_rows); ++j) {
+        const size_t row = j * size_t(w);
+        reader.read(int(j), object.data() + row, prim.data() + row, depth.data() + row);
+      }
+  });
+  m_timings.readout += seconds_since(started);
+}
+
+std::vector<std::string> FrustumGrid::audit() const { return m_bands->audit(m_now, m_threads); }
+
+GridStats FrustumGrid::stats() const {
+  GridStats s = m_bands->stats();
+  uint64_t present = 0, culled = 0;
+  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
+    if (!m_scene.mesh(m).present(m_now)) continue;
+    present += m_scene.triangle_end(m) - m_scene.triangle_begin(m);
+    const int cull = m_scene.cull_sign(m);
+    if (cull == 0) continue;
+    const MeshSegment seg = m_scene.segment_at(m, m_now);
+    for (uint32_t tri = m_scene.triangle_begin(m); tri < m_scene.triangle_end(m); ++tri)
+      if (sign_after(m_scene.triangle_motion(tri, seg).orientation(), m_now - seg.origin) != cull)
+        ++culled;
+  }
+  s.triangles_present = present;
+  s.triangles_culled = culled;
+  return s;
+}
+
+uint64_t FrustumGrid::event_count() const { return m_bands->stats().events.total(); }
+
+}  // namespace kinray

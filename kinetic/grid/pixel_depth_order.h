@@ -1,0 +1,148 @@
+#pragma once
+// Per-pixel depth order (DESIGN.md, "Depth order: kinetic sorting per pixel"). Along the centre
+// ray d of a pixel the depth of triangle A is z_A = N_A / D_A with N_A = det(v0, v1, v2) (cubic)
+// and D_A = (e1 x e2) . d (quadratic), so "A before B" holds while
+//     sign(D_A D_B) (N_B D_A - N_A D_B) > 0,
+// a degree-5 certificate. While both cover the pixel D has the sign of O = N (the sign rule), so
+// sign(D_A D_B) changes only where O_A or O_B does. At such an orientation event a triangle keeps
+// covering the pixel only if the ray lies in its plane at that instant: then N and D vanish
+// together, z stays finite and N_B D_A - N_A D_B has a root that is no change of order. Taken
+// with a fixed sign(D_A D_B), that root would swap the pair (and, computed apart from the
+// orientation event's root, an ulp before or after it, no recomputation at the event can stop
+// it). So each such common root r of N_A and D_A (or of N_B and D_B) in the certificate's window
+// is divided out: f = sigma (N_B D_A - N_A D_B) / (s - r), sigma = sign of D_A D_B / (s - r) just
+// after now, which is constant across r. The certificate is exactly antisymmetric
+// in (A, B), its origin is the later of the two segment starts and it ends at the earlier of the
+// two next flightplan updates, as the kinetic sorts of kinetic_sort.h require; exact ties
+// (identical triangles) give the zero polynomial and are broken by triangle id there.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "kinetic/grid/band_motion.h"
+#include "kinetic/grid/grid_scene.h"
+#include "kinetic/motion/triangle_motion.h"
+#include "kinetic/sort/kinetic_sort.h"
+
+namespace kinray {
+
+namespace detail {
+
+/// The real simple roots of a polynomial of degree <= 2 (none for a double root).
+struct QuadraticRoots {
+  std::array<double, 2> r{};
+  int n = 0;
+  [[nodiscard]] const double* begin() const { return r.data(); }
+  [[nodiscard]] const double* end() const { return r.data() + n; }
+};
+[[nodiscard]] inline QuadraticRoots quadratic_roots(const Polynomial& p) {
+  QuadraticRoots out;
+  const double c0 = p.c[0], c1 = p.c[1], c2 = p.degree >= 2 ? p.c[2] : 0.0;
+  if (c2 == 0) {
+    if (c1 != 0) out.r[size_t(out.n++)] = -c0 / c1;
+    return out;
+  }
+  const double disc = c1 * c1 - 4 * c2 * c0;
+  if (!(disc > 0)) return out;
+  const double q = -0.5 * (c1 + std::copysign(std::sqrt(disc), c1));
+  out.r[size_t(out.n++)] = q / c2;
+  if (q != 0) out.r[size_t(out.n++)] = c0 / q;
+  return out;
+}
+
+/// Does f vanish at r, up to the rounding of r and of f's evaluation?
+[[nodiscard]] inline bool vanishes_at(const Polynomial& f, double r) {
+  double value = 0, scale = 0;
+  for (int i = f.degree; i >= 0; --i) {
+    value = value * r + f.c[size_t(i)];
+    scale = scale * std::abs(r) + std::abs(f.c[size_t(i)]);
+  }
+  return std::abs(value) <= 1e-9 * scale;
+}
+
+/// f / (s - r) by synthetic division, the remainder (f(r), zero up to rounding) dropped.
+[[nodiscard]] inline Polynomial divide_root(const Polynomial& f, double r) {
+  const int n = f.effective_degree();
+  Polynomial q;
+  q.degree = std::max(n - 1, 0);
+  double carry = 0;
+  for (int i = n; i >= 1; --i) {
+    carry = f.c[size_t(i)] + carry * r;
+    q.c[size_t(i - 1)] = carry;
+  }
+  return q;
+}
+
+}  // namespace detail
+
+/// The depth keys of one pixel: ids are global triangle ids (kinetic_sort.h's Keys concept).
+class PixelDepthKeys {
+ public:
+  PixelDepthKeys(const BandMotion* source, int column, int row)
+      : m_source(source), m_column(column), m_row(row) {}
+
+  [[nodiscard]] OrderCertificate order_certificate(uint32_t a, uint32_t b, double now) const {
+    const MeshSegment& sa = m_source->segment_of(a);
+    const MeshSegment& sb = m_source->segment_of(b);
+    OrderCertificate c;
+    c.origin = std::max(sa.origin, sb.origin);
+    c.end = std::min(sa.end, sb.end);
+    // Copies: the memo may recycle the first entry while computing the second.
+    const DepthPolynomials pa = m_source->depth(a, m_column, m_row, c.origin);
+    const DepthPolynomials pb = m_source->depth(b, m_column, m_row, c.origin);
+    const double s = now - c.origin;
+    Polynomial f = pb.numerator * pa.denominator - pa.numerator * pb.denominator;
+    Polynomial da = pa.denominator, db = pb.denominator;
+    // The common roots, in one order for (a, b) and (b, a), so that f stays exactly antisymmetric.
+    std::array<double, 4> roots;
+    int n = 0;
+    for (const DepthPolynomials* p : {&pa, &pb})
+      for (double r : detail::quadratic_roots(p->denominator))
+        if (r >= 0 && r <= c.end - c.origin && detail::vanishes_at(p->numerator, r)) roots[size_t(n++)] = r;
+    for (int k = 1; k < n; ++k)  // insertion sort of at most four
+      for (int j = k; j > 0 && roots[size_t(j)] < roots[size_t(j - 1)]; --j) std::swap(roots[size_t(j)], roots[size_t(j - 1)]);
+    for (int k = 0; k < n; ++k) {
+      f = detail::divide_root(f, roots[size_t(k)]);
+      // Only one of the two denominators has this root (or both do, the same root twice).
+      Polynomial& d = std::abs(da(roots[size_t(k)])) <= std::abs(db(roots[size_t(k)])) ? da : db;
+      if (d.effective_degree() > 0) d = detail::divide_root(d, roots[size_t(k)]);
+    }
+    const int sigma = sign_after(da, s) * sign_after(db, s);
+    if (sigma == 0) return c;  // D vanishes only for a triangle that covers nothing: by id
+    c.f = sigma < 0 ? -f : f;
+    // Near a cluster of roots (both triangles nearly edge-on with the ray nearly in both planes)
+    // the two products cancel below their rounding: decide on the exact difference there.
+    if (n == 0) {
+      const Polynomial& na = pa.numerator;
+      const Polynomial& nb = pb.numerator;
+      if (!decided_despite(c.f, product_difference_error(nb, da, na, db), s, c.end - c.origin))
+        c.exact = exact_product_difference(nb, da, na, db, sigma);
+    }
+    return c;
+  }
+
+  /// Camera-space depth of triangle a along this pixel's ray at t (for audits); at an instant
+  /// where the ray lies in the triangle's plane (N = D = 0) the limit N' / D'.
+  [[nodiscard]] double value(uint32_t a, double t) const {
+    const MeshSegment& sa = m_source->segment_of(a);
+    const DepthPolynomials& p = m_source->depth(a, m_column, m_row, sa.origin);
+    const double s = t - sa.origin;
+    const double n = p.numerator(s), d = p.denominator(s);
+    if (d == 0 && n == 0) return p.numerator.derivative()(s) / p.denominator.derivative()(s);
+    return n / d;
+  }
+
+  [[nodiscard]] int column() const { return m_column; }
+  [[nodiscard]] int row() const { return m_row; }
+
+ private:
+  const BandMotion* m_source;
+  int32_t m_column, m_row;
+};
+
+static_assert(KineticKeys<PixelDepthKeys>);
+
+}  // namespace kinray

@@ -1,0 +1,35 @@
+#pragma once
+// Small helpers of the frustum band (kinetic/frustum_band_*.cpp) for the rows a triangle meets and
+// the runs of columns or rows between cuts.
+#include <array>
+#include <cstddef>
+
+#include "kinetic/motion/triangle_motion.h"
+
+namespace kinray::detail {
+
+/// The edges whose end points lie on different sides (`sides`, one per vertex): none or two of
+/// them; the first two are written to `out`.
+inline int crossing_edges(const std::array<int, 3>& sides, int out[2]) {
+  int n = 0;
+  for (int e = 0; e < 3; ++e)
+    if (sides[size_t(kEdgeStart[e])] != sides[size_t(kEdgeEnd[e])]) {
+      if (n < 2) out[n] = e;
+      ++n;
+    }
+  return n;
+}
+
+/// Sorts the 4 or 5 cuts of a row or a band in place: an insertion sort, inline (std::sort's call
+/// and introsort set-up cost more than the sort itself here; the result is the same).
+template <size_t N>
+void sort_cuts(int (&cuts)[N]) {
+  for (size_t i = 1; i < N; ++i) {
+    const int v = cuts[i];
+    size_t j = i;
+    for (; j > 0 && cuts[j - 1] > v; --j) cuts[j] = cuts[j - 1];
+    cuts[j] = v;
+  }
+}
+
+}  // namespace kinray::detail

@@ -1,0 +1,290 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+#include <tuple>
+#include <vector>
+
+#include "kinetic/core/event_queue.h"
+#include "kinetic/core/simulator.h"
+
+namespace kinray {
+namespace {
+
+auto as_tuple(const EventKey& k) { return std::make_tuple(k.time, k.kind, k.a, k.b); }
+
+TEST(EventQueue, OrderIsLexicographic) {
+  EXPECT_LT((EventKey{1, 5, 5, 5}), (EventKey{2, 0, 0, 0}));
+  EXPECT_LT((EventKey{1, 0, 5, 5}), (EventKey{1, 1, 0, 0}));
+  EXPECT_LT((EventKey{1, 1, 0, 5}), (EventKey{1, 1, 1, 0}));
+  EXPECT_LT((EventKey{1, 1, 1, 0}), (EventKey{1, 1, 1, 1}));
+  EXPECT_FALSE((EventKey{1, 1, 1, 1}) < (EventKey{1, 1, 1, 1}));
+}
+
+TEST(EventQueue, DeterministicTieOrder) {
+  // Equal times pushed in several random orders always pop in (time, kind, a, b) order.
+  std::vector<EventKey> keys;
+  for (uint32_t kind = 0; kind < 3; ++kind)
+    for (uint32_t a = 0; a < 3; ++a)
+      for (uint64_t b = 0; b < 3; ++b) keys.push_back({1.0, kind, a, b});
+  keys.push_back({0.5, 9, 9, 9});
+  keys.push_back({2.0, 0, 0, 0});
+  std::mt19937_64 rng(3);
+  for (int round = 0; round < 20; ++round) {
+    std::shuffle(keys.begin(), keys.end(), rng);
+    EventQueue q;
+    for (size_t i = 0; i < keys.size(); ++i) q.push(keys[i], i);
+    EventKey previous{-1, 0, 0, 0};
+    size_t popped = 0;
+    while (!q.empty()) {
+      const EventKey k = q.top_key();
+      EXPECT_EQ(as_tuple(keys[q.top_payload()]), as_tuple(k));
+      EXPECT_LT(previous, k);
+      previous = k;
+      q.pop();
+      ++popped;
+    }
+    EXPECT_EQ(popped, keys.size());
+  }
+}
+
+TEST(EventQueue, RandomOperationsAgainstMultiset) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> u(0, 100);
+  EventQueue q;
+  // Model: (time, kind, a, b, handle) so that ties are resolved as the queue does; payload = a
+  // function of the handle's generation to catch stale slots.
+  std::set<std::tuple<double, uint32_t, uint32_t, uint64_t, EventHandle>> model;
+  std::vector<EventHandle> live;
+  std::vector<uint64_t> payload_of(1, 0);
+  uint64_t next_payload = 1;
+  auto random_key = [&] {
+    // Coarse times: many exact ties.
+    return EventKey{std::floor(u(rng)) * 0.5, static_cast<uint32_t>(rng() % 3),
+                    static_cast<uint32_t>(rng() % 4), rng() % 5};
+  };
+  for (int step = 0; step < 200000; ++step) {
+    const int op = static_cast<int>(rng() % 10);
+    if (op < 4 || live.empty()) {
+      const EventKey k = random_key();
+      const uint64_t p = next_payload++;
+      const EventHandle h = q.push(k, p);
+      ASSERT_FALSE(std::find(live.begin(), live.end(), h) != live.end());
+      if (h >= payload_of.size()) payload_of.resize(h + 1);
+      payload_of[h] = p;
+      live.push_back(h);
+      model.insert({k.time, k.kind, k.a, k.b, h});
+    } else if (op < 6) {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      const EventKey k = random_key();
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      q.update(h, k);
+      model.insert({k.time, k.kind, k.a, k.b, h});
+      if (op == 5) {  // a new payload (with high bits, which the hint drops)
+        payload_of[h] = (next_payload++) | (uint64_t{h} << 40);
+        q.set_payload(h, payload_of[h]);
+      }
+    } else if (op < 8) {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      ASSERT_EQ(q.payload(h), payload_of[h]);
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      q.erase(h);
+      EXPECT_FALSE(q.contains(h));
+      live[i] = live.back();
+      live.pop_back();
+    } else {
+      ASSERT_FALSE(q.empty());
+      const auto& [time, kind, a, b, h_model] = *model.begin();
+      const EventKey top = q.top_key();
+      ASSERT_EQ(as_tuple(top), std::make_tuple(time, kind, a, b));
+      // Equal full keys may come out in any handle order; compare keys, then drop that handle.
+      const EventHandle h = q.top();
+      ASSERT_EQ(q.top_payload(), payload_of[h]);
+      ASSERT_EQ(q.top_payload_hint(), uint32_t(payload_of[h]));
+      model.erase({time, kind, a, b, h});
+      q.pop();
+      live.erase(std::find(live.begin(), live.end(), h));
+      (void)h_model;
+    }
+    ASSERT_EQ(q.size(), model.size());
+    if (step % 5000 == 0) q.audit();
+  }
+  q.audit();
+  EXPECT_GT(q.memory_bytes(), 0u);
+  q.clear();
+  EXPECT_TRUE(q.empty());
+}
+
+// A kinetic simulation's pattern: most events are rescheduled far after the one being processed,
+// so the queue keeps them in its time buckets and heapifies the next one as the heap runs dry;
+// the events still come out in exact (time, kind, a, b) order, ties included.
+TEST(EventQueue, RescheduledFarEventsComeOutInOrder) {
+  std::mt19937_64 rng(777);
+  std::exponential_distribution<double> later(1.0);
+  EventQueue q;
+  std::set<std::tuple<double, uint32_t, uint32_t, uint64_t, EventHandle>> model;
+  std::vector<EventHandle> live;
+  double now = 0;
+  auto key_at = [&](double t) {
+    // Times on a grid of 1/64: exact ties between near and far events.
+    return EventKey{std::ceil(t * 64) / 64, static_cast<uint32_t>(rng() % 2),
+                    static_cast<uint32_t>(rng() % 3), rng() % 3};
+  };
+  for (int i = 0; i < 20000; ++i) {
+    const EventKey k = key_at(now + 50 * later(rng));
+    const EventHandle h = q.push(k, 0);
+    live.push_back(h);
+    model.insert({k.time, k.kind, k.a, k.b, h});
+  }
+  for (int step = 0; step < 200000; ++step) {
+    const int op = static_cast<int>(rng() % 10);
+    if (op < 6) {
+      ASSERT_FALSE(q.empty());
+      const auto& [time, kind, a, b, h_model] = *model.begin();
+      ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+      ASSERT_GE(time, now);
+      now = time;
+      const EventHandle h = q.top();
+      model.erase({time, kind, a, b, h});
+      q.pop();
+      live.erase(std::find(live.begin(), live.end(), h));
+      (void)h_model;
+      // Rescheduled: usually much later, sometimes at this very instant.
+      const EventKey k = key_at(op == 0 ? now : now + 50 * later(rng));
+      const EventHandle n = q.push(k, 0);
+      live.push_back(n);
+      model.insert({k.time, k.kind, k.a, k.b, n});
+    } else if (op < 9) {
+      const EventHandle h = live[rng() % live.size()];
+      const EventKey old = q.key(h);
+      const EventKey k = key_at(now + (op == 6 ? 0.01 : 50) * later(rng));
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      q.update(h, k);
+      model.insert({k.time, k.kind, k.a, k.b, h});
+    } else {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      q.erase(h);
+      live[i] = live.back();
+      live.pop_back();
+      const EventKey k = key_at(now + 50 * later(rng));
+      const EventHandle n = q.push(k, 0);
+      live.push_back(n);
+      model.insert({k.time, k.kind, k.a, k.b, n});
+    }
+    ASSERT_EQ(q.size(), model.size());
+    if (step % 997 == 0) q.audit();
+  }
+  while (!q.empty()) {
+    const auto& [time, kind, a, b, h] = *model.begin();
+    ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+    model.erase({time, kind, a, b, q.top()});
+    q.pop();
+  }
+  q.audit();
+}
+
+// The calendar of time buckets under the distributions it handles worst: one burst of equal
+// times (a zero-width calendar), times spread over twenty decades (most buckets empty, the rest
+// crowded), and infinite times (always past the calendar); updates move events between buckets,
+// into the heap and back out. The pops follow the sorted model exactly.
+TEST(EventQueue, CalendarKeepsTheOrderOverAnySpreadOfTimes) {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> decade(-10, 10);
+  const double inf = std::numeric_limits<double>::infinity();
+  EventQueue q;
+  std::set<std::tuple<double, uint32_t, uint32_t, uint64_t, EventHandle>> model;
+  std::vector<EventHandle> live;
+  double now = 0;
+  uint64_t serial = 0;  // unique keys: the order is total, handles never break a tie
+  auto key_at = [&](int mode) {
+    const double t = mode == 0 ? now : (mode == 1 ? inf : now + std::pow(10.0, decade(rng)));
+    return EventKey{t, static_cast<uint32_t>(rng() % 2), static_cast<uint32_t>(rng() % 2), ++serial};
+  };
+  auto push = [&](const EventKey& k) {
+    const EventHandle h = q.push(k, 0);
+    live.push_back(h);
+    model.insert({k.time, k.kind, k.a, k.b, h});
+  };
+  for (int i = 0; i < 3000; ++i) push(EventKey{1.0, 0, uint32_t(i), ++serial});  // one instant
+  for (int i = 0; i < 20000; ++i) push(key_at(i % 50 == 0 ? 1 : 2));
+  for (int step = 0; step < 100000; ++step) {
+    const int op = static_cast<int>(rng() % 8);
+    if (op < 5) {
+      const auto& [time, kind, a, b, h] = *model.begin();
+      ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+      ASSERT_EQ(q.top(), h);
+      if (std::isfinite(time)) now = time;
+      model.erase(model.begin());
+      live.erase(std::find(live.begin(), live.end(), q.top()));
+      q.pop();
+      push(key_at(op == 0 ? 0 : (op == 1 ? 1 : 2)));
+    } else {
+      const size_t i = rng() % live.size();
+      const EventHandle h = live[i];
+      const EventKey old = q.key(h);
+      const EventKey k = key_at(op == 5 ? 0 : 2);
+      model.erase({old.time, old.kind, old.a, old.b, h});
+      if (op == 7) {
+        q.erase(h);
+        live[i] = live.back();
+        live.pop_back();
+        push(k);
+      } else {
+        q.update(h, k);
+        model.insert({k.time, k.kind, k.a, k.b, h});
+      }
+    }
+    ASSERT_EQ(q.size(), model.size());
+    if (step % 4999 == 0) q.audit();
+  }
+  while (!q.empty()) {
+    const auto& [time, kind, a, b, h] = *model.begin();
+    ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+    ASSERT_EQ(q.top(), h);
+    model.erase(model.begin());
+    q.pop();
+  }
+  q.audit();
+}
+
+TEST(EventQueue, SimulatorAdvanceTo) {
+  Simulator sim(1.0);
+  EXPECT_EQ(sim.now(), 1.0);
+  std::vector<std::pair<double, uint64_t>> seen;
+  sim.queue().push({3.0, 0, 0, 0}, 30);
+  sim.queue().push({2.0, 0, 0, 0}, 20);
+  sim.queue().push({5.0, 0, 0, 0}, 50);
+  sim.advance_to(4.0, [&](const EventKey& k, uint64_t payload) {
+    EXPECT_EQ(sim.now(), k.time);
+    seen.push_back({k.time, payload});
+    if (payload == 20) {
+      // Scheduled during handling, at a time <= t: processed in the same call, in order.
+      sim.queue().push({2.0, 1, 0, 0}, 21);
+      sim.queue().push({3.5, 0, 0, 0}, 35);
+      sim.queue().push({4.5, 0, 0, 0}, 45);
+    }
+  });
+  EXPECT_EQ(sim.now(), 4.0);
+  const std::vector<std::pair<double, uint64_t>> expected{{2.0, 20}, {2.0, 21}, {3.0, 30},
+                                                          {3.5, 35}};
+  EXPECT_EQ(seen, expected);
+  EXPECT_EQ(sim.next_event_time(), 4.5);
+  EXPECT_EQ(sim.events_processed(), 4u);
+  sim.advance_to(4.0, [&](const EventKey&, uint64_t) { FAIL(); });  // nothing at <= 4
+  EXPECT_DEATH(sim.advance_to(3.0, [](const EventKey&, uint64_t) {}), "t >= m_now \\(3 vs 4\\)");
+  sim.queue().push({3.9, 0, 0, 0}, 39);  // in the past
+  EXPECT_DEATH(sim.advance_to(5.0, [](const EventKey&, uint64_t) {}), "past");
+}
+
+}  // namespace
+}  // namespace kinray

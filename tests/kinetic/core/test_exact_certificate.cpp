@@ -1,0 +1,196 @@
+// Exact depth certificates (kinetic/core/exact_certificate.h): the certificate of BART robots' two
+// nearly edge-on triangles at t = 1.4997 s (the sort audit's "key values out of order"), signs
+// against GMP rationals, and failure times against exact root isolation on products that nearly
+// cancel.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "kinetic/core/exact_certificate.h"
+#include "kinetic/core/rational_polynomial.h"
+#include "kinetic/core/root_finding.h"
+
+namespace kinray {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+RationalPolynomial rational(const Polynomial& p) {
+  std::vector<mpq_class> c;
+  for (int k = 0; k <= p.degree; ++k) c.emplace_back(p.c[size_t(k)]);
+  return RationalPolynomial(std::move(c));
+}
+
+// sign (p1 q1 - p2 q2) in rationals: the reference.
+RationalPolynomial reference(const Polynomial& p1, const Polynomial& q1, const Polynomial& p2,
+                             const Polynomial& q2, int sign) {
+  RationalPolynomial f = rational(p1) * rational(q1) - rational(p2) * rational(q2);
+  return sign < 0 ? RationalPolynomial{} - f : f;
+}
+
+int reference_sign_after(RationalPolynomial f, double s) {
+  const mpq_class x(s);
+  while (!f.is_zero()) {
+    if (const int v = sgn(f(x)); v != 0) return v;
+    f = f.derivative();
+  }
+  return 0;
+}
+
+// The first double of (s_now, s_end] where f is negative just after, by exact root isolation:
+// every root's isolating interval narrowed below an ulp, then the doubles around it tried.
+std::optional<double> reference_failure(const RationalPolynomial& f, double s_now, double s_end) {
+  if (reference_sign_after(f, s_now) < 0) return s_now;
+  for (IsolatedRoot r : isolate_roots(f, mpq_class(s_now), mpq_class(s_end))) {
+    r.refine_to(mpq_class(std::ldexp(std::max(std::abs(r.lo.get_d()), 1e-300), -80)));
+    double t = std::nextafter(std::nextafter(r.lo.get_d(), -kInf), -kInf);
+    for (int k = 0; k < 6; ++k, t = std::nextafter(t, kInf))
+      if (t > s_now && t <= s_end && reference_sign_after(f, t) < 0) return t;
+  }
+  return std::nullopt;
+}
+
+// N (cubic) and D (quadratic) of BART robots' triangles 1019 (A) and 1018 (B) along the ray of
+// pixel (24, 11) of a 48 x 36 image, --keyrate 1, local time s = t - 1 (kinray render
+// Robot.aff --keyrate 1 --size 48x36 --time 1.499:1.4998 --threads 1 --audit aborted there).
+// The two triangles share an edge; near s = 0.4997 the ray runs almost along it, both are
+// nearly edge-on, and N and D of both nearly vanish together.
+const Polynomial kNa{7.5092647661106771, -41.678002715610731, 59.218084935101487,
+                     -11.788073752905746};
+const Polynomial kDa{0.26633390533858137, -1.4499838607628384, 1.8348578032666982};
+const Polynomial kNb{5.7479376780428169, -30.649320078652551, 42.645490854716485,
+                     -8.6580305521143881};
+const Polynomial kDb{0.21528983094295612, -1.1041950300208816, 1.3476548630816487};
+
+double depth(const Polynomial& n, const Polynomial& d, double s) {
+  return n(s) / d(s);
+}
+
+TEST(ExactCertificate, RobotsClusterFailsWhereTheDepthsCross) {
+  // "B before A" while (N_A D_B - N_B D_A) sign(D_A D_B) > 0; D_A D_B < 0 from s = 0.4995635
+  // (D_B's root, where B stops covering the pixel until N_B's root 2.4e-8 later).
+  const int sigma = -1;
+  const Polynomial rounded = -(kNa * kDb - kNb * kDa);
+  const double s_now = 0.49957, s_end = 1;
+  ASSERT_LT(depth(kNb, kDb, s_now), depth(kNa, kDa, s_now));  // B in front at s_now
+
+  // The certificate formed in double fails 7e-8 early, where A is already 1e-7 (relative) behind
+  // B, 100 times the audit's tolerance: the products cancel below its rounding.
+  const std::optional<double> early = first_failure(rounded, s_now, s_end);
+  ASSERT_TRUE(early);
+  EXPECT_GT(depth(kNa, kDa, *early) - depth(kNb, kDb, *early), 1e-8 * depth(kNa, kDa, *early));
+  EXPECT_FALSE(
+      decided_despite(rounded, product_difference_error(kNa, kDb, kNb, kDa), s_now, s_end));
+
+  // The exact certificate fails where the exact polynomial does, and there the depths agree far
+  // below the audit's 1e-9.
+  const auto exact = exact_product_difference(kNa, kDb, kNb, kDa, sigma);
+  const RationalPolynomial ref = reference(kNa, kDb, kNb, kDa, sigma);
+  const std::optional<double> r = exact_first_failure(*exact, s_now, s_end);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r, reference_failure(ref, s_now, s_end));
+  EXPECT_GT(*r - *early, 5e-8);
+  EXPECT_LT(reference_sign_after(ref, *r), 0);
+  EXPECT_GT(reference_sign_after(ref, std::nextafter(*r, -kInf)), 0);
+  const double za = depth(kNa, kDa, *r), zb = depth(kNb, kDb, *r);
+  EXPECT_NEAR(za, zb, 1e-11 * za);
+  // The swapped pair's certificate holds just after the swap and fails nowhere before s_end.
+  const auto swapped = exact_negated(*exact);
+  EXPECT_GT(exact_sign_after(*swapped, *r), 0);
+  EXPECT_EQ(exact_first_failure(*swapped, *r, s_end),
+            reference_failure(RationalPolynomial{} - ref, *r, s_end));
+}
+
+// A pair of the grid test TrianglesFlatForAWholeKeyIntervalCoverNothingThen (pixel (31, 19)):
+// the certificate crosses at s = 0.884 and again, touching back to +, exactly at the segment's
+// end s = 1, where one triangle flattens. Isolation divides out the root at 1, and the sign
+// "between the crossing and the next root" was then read at 1 itself: zero, so the crossing was
+// skipped and the swap came at the segment's end, too late.
+TEST(ExactCertificate, ARootAtTheSegmentEndDoesNotHideACrossingBeforeIt) {
+  const Polynomial p1{0x1.185383fbc0bdep+2, -0x1.e4f977b8699e3p+2, 0x1.86d16cf86a015p+1,
+                      0x1.27a7a80e7bf1cp-3};
+  const Polynomial q1{-0x1.4af5b7e445fabp+0, 0x1.3332076c03acep+1, -0x1.1b6e56f3c15f1p+0};
+  const Polynomial p2{-0x1.550828782cecfp+1, 0x1.941465d7135d5p+1, 0x1.7cf1af92daab6p+0,
+                      -0x1.fb0a2a50a78bap+0};
+  const Polynomial q2{0x1.01a85b92e3954p+1, -0x1.c4eeac7823c7p+1, 0x1.868ca1ca80638p+0};
+  const double s_now = 0x1.6cc8cddba0ccdp-4, s_end = 1;
+  const RationalPolynomial ref = reference(p1, q1, p2, q2, 1);
+  ASSERT_EQ(sgn(ref(mpq_class(s_end))), 0);  // the root at the end
+  ASSERT_GT(reference_sign_after(ref, s_now), 0);
+  const std::optional<double> expected = reference_failure(ref, s_now, s_end);
+  ASSERT_TRUE(expected);
+  EXPECT_NEAR(*expected, 0.884, 1e-3);
+  const auto exact = exact_product_difference(p1, q1, p2, q2, 1);
+  EXPECT_EQ(exact_first_failure(*exact, s_now, s_end), expected);
+}
+
+TEST(ExactCertificate, SignsAgreeWithRationals) {
+  // Doubles around the robots' cluster, where the double form is noise, and exact zeros.
+  const auto exact = exact_product_difference(kNa, kDb, kNb, kDa, 1);
+  const RationalPolynomial ref = reference(kNa, kDb, kNb, kDa, 1);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> near(0.4995, 0.5);
+  for (int i = 0; i < 2000; ++i) {
+    const double s = near(rng);
+    ASSERT_EQ(exact_sign_after(*exact, s), reference_sign_after(ref, s)) << s;
+  }
+  // (s - 1/2)(s - 1/4) - (s - 1/2)(s - 1/4): the zero polynomial; and an exact root at 1/2.
+  const Polynomial a{-0.5, 1}, b{-0.25, 1}, c{-0.75, 1};
+  const auto zero = exact_product_difference(a, b, a, b, 1);
+  EXPECT_EQ(exact_sign_after(*zero, 0.5), 0);
+  EXPECT_EQ(exact_first_failure(*zero, 0, 1), std::nullopt);
+  const auto touch = exact_product_difference(a, a, a, Polynomial{0.0}, 1);  // (s - 1/2)^2
+  EXPECT_GT(exact_sign_after(*touch, 0.5), 0);
+  EXPECT_EQ(exact_first_failure(*touch, 0, 1), std::nullopt);  // a touch is no failure
+  const auto cross = exact_product_difference(a, c, a, b, 1);  // (s - 1/2)(-1/2)
+  EXPECT_EQ(exact_first_failure(*cross, 0, 1), 0.5);
+}
+
+TEST(ExactCertificate, FailuresMatchExactIsolationOnNearlyCancellingProducts) {
+  // p2 q2 = p1 q1 up to a perturbation of a few ulps, plus a small cubic with roots in the window:
+  // the double-formed difference is mostly rounding noise, the exact one is not.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coef(-2, 2), root(0, 1);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  int failures = 0, undecided = 0;
+  for (int i = 0; i < 300; ++i) {
+    Polynomial p1{coef(rng), coef(rng), coef(rng), coef(rng)}, q1{coef(rng), coef(rng), coef(rng)};
+    Polynomial p2 = p1, q2 = q1;
+    for (int k = 0; k <= 3; ++k)
+      p2.c[size_t(k)] += ulps(rng) * std::ldexp(std::abs(p2.c[size_t(k)]), -52);
+    if (i % 2 == 0) {  // plus a cubic with roots in [0, 1], scaled to a few hundred ulps
+      const double r0 = root(rng), r1 = root(rng), r2 = root(rng), scale = 1e-13;
+      const Polynomial extra =
+          Polynomial{-r0 * scale, scale} * Polynomial{-r1, 1} * Polynomial{-r2, 1};
+      q2 = q1;
+      p2 = p1 - extra;  // p2 q2 - p1 q1 = -extra q1: rounding of p1 - extra keeps it inexact
+    }
+    const double s_now = root(rng) * 0.25, s_end = 0.75 + root(rng) * 0.25;
+    for (int sign : {1, -1}) {
+      const auto exact = exact_product_difference(p1, q1, p2, q2, sign);
+      const RationalPolynomial ref = reference(p1, q1, p2, q2, sign);
+      if (ref.is_zero()) continue;
+      const Polynomial rounded = sign * (p1 * q1 - p2 * q2);
+      const bool decided =
+          decided_despite(rounded, product_difference_error(p1, q1, p2, q2), s_now, s_end);
+      undecided += !decided;
+      if (decided) {  // then the double answers are the exact ones, for f and for -f
+        EXPECT_EQ(first_failure(rounded, s_now, s_end), reference_failure(ref, s_now, s_end));
+        EXPECT_EQ(first_failure(-rounded, s_now, s_end),
+                  reference_failure(RationalPolynomial{} - ref, s_now, s_end));
+      }
+      const std::optional<double> r = exact_first_failure(*exact, s_now, s_end);
+      ASSERT_EQ(r, reference_failure(ref, s_now, s_end)) << i << " sign " << sign;
+      failures += r.has_value();
+    }
+  }
+  EXPECT_GT(failures, 100);  // both kinds of answers were exercised
+  EXPECT_GT(undecided, 100);
+}
+
+}  // namespace
+}  // namespace kinray

@@ -1,0 +1,200 @@
+#include "verification/motion_blur_bench.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "util/input_error.h"
+#include "verification/bench_support.h"
+#include "verification/chart.h"
+#include "verification/image_diff.h"
+
+namespace kinray {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+/// The backend's --stats "shutter" seconds (zeros when it has none).
+struct ShutterSeconds {
+  double events = 0, integrate = 0, readout = 0;
+};
+ShutterSeconds shutter_seconds(const Backend& backend) {
+  nlohmann::json stats = nlohmann::json::object();
+  backend.write_stats(stats);
+  if (!stats.contains("shutter")) return {};
+  const nlohmann::json& s = stats["shutter"];
+  return {s.value("events_s", 0.0), s.value("integrate_s", 0.0), s.value("readout_s", 0.0)};
+}
+
+/// Renders every frame of `job` with `backend`, timing each, and measures it against `reference`.
+/// `split`, when given, gets the backend's ShutterSeconds of the frames after the first.
+MotionBlurPoint measure(RenderJob& job, Backend& backend, const std::vector<Frame>& reference,
+                        int samples, double* first_ms, ShutterSeconds* split = nullptr) {
+  MotionBlurPoint point;
+  point.samples = samples;
+  Frame frame;
+  double squared = 0;
+  std::vector<double> later_ms;
+  for (size_t index = 0; index < job.frame_times().size(); ++index) {
+    const double start = now_ms();
+    job.render_frame(backend, index, frame);
+    const double ms = now_ms() - start;
+    if (index == 0 && first_ms) *first_ms = ms;
+    if (index == 0 && split) *split = shutter_seconds(backend);
+    if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
+    const ColorError error = compare_colors(frame, reference[index]);
+    squared += error.mse;
+    point.max_error = std::max(point.max_error, error.max_error);
+  }
+  // The median, not the mean: the machine is shared, and one frame slowed by another process
+  // should not move the ratio.
+  point.ms_per_frame = median(later_ms);
+  if (split && job.frame_times().size() > 1) {
+    const ShutterSeconds all = shutter_seconds(backend);
+    const double timed = double(job.frame_times().size() - 1);
+    *split = {(all.events - split->events) / timed, (all.integrate - split->integrate) / timed,
+              (all.readout - split->readout) / timed};
+  }
+  point.rmse = std::sqrt(squared / double(job.frame_times().size()));
+  return point;
+}
+
+}  // namespace
+
+nlohmann::json MotionBlurResult::to_json() const {
+  nlohmann::json embree_points = nlohmann::json::array();
+  for (const MotionBlurPoint& p : embree)
+    embree_points.push_back({{"samples", p.samples},
+                             {"ms_per_frame", p.ms_per_frame},
+                             {"rmse", p.rmse},
+                             {"max_error", p.max_error}});
+  return {{"scene", scene},
+          {"size", {{"width", width}, {"height", height}}},
+          {"triangles", triangles},
+          {"frames", frames},
+          {"shutter", shutter},
+          {"reference_samples", reference_samples},
+          {"kinetic",
+           {{"ms_per_frame", kinetic.ms_per_frame},
+            {"rmse", kinetic.rmse},
+            {"max_error", kinetic.max_error},
+            {"init_ms", kinetic_init_ms},
+            {"events_ms", kinetic_events_ms},
+            {"integrate_ms", kinetic_integrate_ms},
+            {"readout_ms", kinetic_readout_ms},
+            {"order", order}}},
+          {"embree", embree_points},
+          {"meets_targets", meets_targets()}};
+}
+
+bool MotionBlurResult::meets_targets() const {
+  bool ok = true;
+  for (const MotionBlurPoint& p : embree) {
+    if (p.samples == 256) ok = ok && kinetic.rmse <= p.rmse;
+    if (p.samples == 64) ok = ok && kinetic.ms_per_frame * 10 <= p.ms_per_frame;
+  }
+  return ok;
+}
+
+MotionBlurResult run_motion_blur_bench(const RenderParams& params,
+                                       const MotionBlurBenchParams& bench,
+                                       const std::function<void(const std::string&)>& log) {
+  if (!params.shutter.enabled())
+    throw InputError("--shutter", "the motion blur benchmark needs S > 0");
+  if (bench.reference_samples < 1 || bench.reference_samples > kMaxShutterSamples)
+    throw InputError("--reference-samples", "must lie in 1.." + std::to_string(kMaxShutterSamples));
+  for (int n : bench.samples)
+    if (n < 1 || n > kMaxShutterSamples)
+      throw InputError("--blur-samples",
+                       "each must lie in 1.." + std::to_string(kMaxShutterSamples));
+  RenderJob job(params);
+  MotionBlurResult result;
+  result.scene = params.scene;
+  result.width = params.width;
+  result.height = params.height;
+  result.shutter = params.shutter.shutter;
+  result.reference_samples = bench.reference_samples;
+  result.frames = job.frame_times().size();
+  result.triangles = job.scene().triangle_count();
+  char line[512];
+
+  // The reference frames first, kept for every method.
+  std::vector<Frame> reference(job.frame_times().size());
+  {
+    BackendConfig config = backend_config(params);
+    config.shutter.samples = bench.reference_samples;
+    const double start = now_ms();
+    std::unique_ptr<Backend> embree = make_backend("embree", job.camera_space(), config);
+    for (size_t index = 0; index < reference.size(); ++index)
+      job.render_frame(*embree, index, reference[index]);
+    std::snprintf(line, sizeof line, "%s: reference, %d samples per pixel, %zu frames: %.1f s",
+                  params.scene.c_str(), bench.reference_samples, reference.size(),
+                  (now_ms() - start) / 1000);
+    log(line);
+  }
+  {
+    std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
+    double first_ms = 0;
+    ShutterSeconds split;
+    result.kinetic = measure(job, *kinetic, reference, 0, &first_ms, &split);
+    result.kinetic_events_ms = split.events * 1000;
+    result.kinetic_integrate_ms = split.integrate * 1000;
+    result.kinetic_readout_ms = split.readout * 1000;
+    result.kinetic_init_ms = std::max(0.0, first_ms - result.kinetic.ms_per_frame);
+    result.order = params.shutter.order > 0 ? params.shutter.order : kDefaultShutterOrder;
+    std::snprintf(line, sizeof line,
+                  "%s: kinetic: %.2f ms per frame (init %.0f ms; mean events %.0f ms, integration "
+                  "%.0f ms, read-out %.0f ms), rmse %.3g, max %.3g",
+                  params.scene.c_str(), result.kinetic.ms_per_frame, result.kinetic_init_ms,
+                  result.kinetic_events_ms, result.kinetic_integrate_ms, result.kinetic_readout_ms,
+                  result.kinetic.rmse, result.kinetic.max_error);
+    log(line);
+  }
+  for (int n : bench.samples) {
+    BackendConfig config = backend_config(params);
+    config.shutter.samples = n;
+    std::unique_ptr<Backend> embree = make_backend("embree", job.camera_space(), config);
+    result.embree.push_back(measure(job, *embree, reference, n, nullptr));
+    const MotionBlurPoint& p = result.embree.back();
+    std::snprintf(line, sizeof line,
+                  "%s: embree %4d samples: %.2f ms per frame, rmse %.3g, max %.3g",
+                  params.scene.c_str(), n, p.ms_per_frame, p.rmse, p.max_error);
+    log(line);
+  }
+  return result;
+}
+
+void write_motion_blur_chart(const std::vector<MotionBlurResult>& results,
+                             const std::string& path) {
+  const Color palette[] = {Color(0.1f, 0.3f, 0.8f), Color(0.8f, 0.3f, 0.1f),
+                           Color(0.1f, 0.6f, 0.2f), Color(0.6f, 0.1f, 0.6f),
+                           Color(0.4f, 0.4f, 0.4f)};
+  Chart chart;
+  chart.title = "Motion blur: error against time per frame";
+  chart.x_label = "ms per frame";
+  chart.y_label = "RMSE against the reference";
+  chart.log_x = chart.log_y = true;
+  for (size_t s = 0; s < results.size(); ++s) {
+    const MotionBlurResult& r = results[s];
+    ChartSeries embree{r.scene + " embree 4..256 spp", {}, {}, palette[s % 5], true};
+    for (const MotionBlurPoint& p : r.embree) {
+      embree.x.push_back(p.ms_per_frame);
+      embree.y.push_back(p.rmse);
+    }
+    chart.series.push_back(embree);
+    // A point drawn as a short segment, so the chart's lines show it.
+    ChartSeries kinetic{r.scene + " kinetic",
+                        {r.kinetic.ms_per_frame * 0.95, r.kinetic.ms_per_frame * 1.05},
+                        {r.kinetic.rmse, r.kinetic.rmse},
+                        palette[s % 5],
+                        false};
+    chart.series.push_back(kinetic);
+  }
+  write_chart_png(chart, path);
+}
+
+}  // namespace kinray
