@@ -272,18 +272,9 @@ void KineticSeparationList::count(Outcome outcome, Reason reason) {
 }
 
 void KineticSeparationList::schedule(uint32_t id, double time) {
-  EventHandle& h = m_records[id].event;
-  if (!std::isfinite(time)) {
-    if (h != kNoEvent) m_sim.queue().erase(h);
-    h = kNoEvent;
-    return;
-  }
+  if (!std::isfinite(time)) time = std::numeric_limits<double>::infinity();
   KINRAY_CHECK_MSG(time >= m_sim.now(), "kinetic separation list: certificate already broken");
-  const EventKey key{time, 0, id, 0};
-  if (h == kNoEvent)
-    h = m_sim.queue().push(key, id);
-  else
-    m_sim.queue().update(h, key);
+  m_sim.queue().schedule(m_records[id].event, EventKey{time, 0, id, 0}, id);
 }
 
 // ---- time ------------------------------------------------------------------------------------

@@ -55,6 +55,24 @@ class EventQueue {
   EventHandle push(const EventKey& key, uint64_t payload);  ///< O(log n)
   void update(EventHandle h, const EventKey& key);          ///< O(log n), either direction
   void erase(EventHandle h);                                ///< O(log n)
+  /// The one way every kinetic structure (re)schedules a certificate's event: `handle` is the
+  /// structure's own slot for it (kNoEvent when none is pending). A finite key.time pushes the
+  /// event or moves the pending one there with the new payload; +inf (never) cancels it.
+  void schedule(EventHandle& handle, const EventKey& key, uint64_t payload) {
+    if (key.time == std::numeric_limits<double>::infinity()) {
+      cancel(handle);
+    } else if (handle == kNoEvent) {
+      handle = push(key, payload);
+    } else {
+      update(handle, key);
+      set_payload(handle, payload);
+    }
+  }
+  /// Erases the pending event of `handle`, if any, and clears the slot.
+  void cancel(EventHandle& handle) {
+    if (handle != kNoEvent) erase(handle);
+    handle = kNoEvent;
+  }
   void set_payload(EventHandle h, uint64_t payload) {       ///< O(1)
     KINRAY_DCHECK(contains(h));
     m_slots[h].payload = payload;

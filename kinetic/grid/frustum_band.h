@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "kinetic/core/event_queue.h"
+#include "kinetic/core/simulator.h"
 #include "kinetic/grid/band_motion.h"
 #include "kinetic/grid/coverage_rule.h"
 #include "kinetic/grid/front_change_log.h"
@@ -175,7 +176,6 @@ class FrustumBand {
 
   // Scheduling.
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;
-  void set_event(EventHandle& handle, double time, const EventKey& key, uint64_t payload);
   void schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* edge = nullptr);
   void schedule_vertex(uint32_t v);
   void schedule_orientation(uint32_t tri, const TriangleNow& tn);
@@ -254,7 +254,7 @@ class FrustumBand {
     const bool changed = tri != m_fronts[k];
     m_fronts[k] = tri;
     if (changed && m_front_log) [[unlikely]]
-      m_front_log->record(uint32_t(size_t(m_row_begin) * size_t(m_width) + k), m_now, tri);
+      m_front_log->record(uint32_t(size_t(m_row_begin) * size_t(m_width) + k), m_sim.now(), tri);
     return changed;
   }
   void pixel_insert(uint32_t tri, int column, int row);
@@ -289,8 +289,7 @@ class FrustumBand {
   Config m_config;
   int m_row_begin, m_row_end, m_width;
   SlotCircle m_columns, m_rows;
-  EventQueue m_queue;
-  double m_now = 0;
+  Simulator m_sim;  ///< the band's clock and event queue
   BandMotion m_motion;  ///< the current segment of every mesh and its vertex motions
   std::vector<MeshState> m_meshes;
   std::vector<TriangleState> m_triangles;

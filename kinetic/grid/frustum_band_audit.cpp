@@ -47,7 +47,7 @@ class FrustumBand<Sort>::Audit {
 
   /// Every event at or before t has been processed.
   void queue_drained() {
-    const EventQueue& q = m_band.m_queue;
+    const EventQueue& q = m_band.m_sim.queue();
     if (!q.empty() && q.top_key().time <= m_t)
       report("queue", "", "an event at or before the audit time is still pending");
   }

@@ -54,8 +54,7 @@ void FrustumBand<Sort>::release_boundary(uint32_t rec, int k) {
     b.records[0] = b.records[1];
   b.records[1] = kNoRecord;
   if (!b.unused()) return;
-  if (b.tracker.event != kNoEvent) m_queue.erase(b.tracker.event);
-  b.tracker.event = kNoEvent;
+  m_sim.queue().cancel(b.tracker.event);
   if (m_edge_heads[b.edge] == id) {
     m_edge_heads[b.edge] = b.next;
   } else {

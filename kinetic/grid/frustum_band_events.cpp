@@ -33,7 +33,7 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
   m_pixels.reserve(pixels);
   for (int j = row_begin; j < row_end; ++j)
     for (int i = 0; i < m_width; ++i)
-      m_pixels.emplace_back(&m_motion, i, j, m_queue,
+      m_pixels.emplace_back(&m_motion, i, j, m_sim.queue(),
                             uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
   m_fronts.assign(pixels, kNoFront);
   for (const PixelCell& p : m_pixels) m_pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
@@ -41,14 +41,14 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
 
 template <class Sort>
 void FrustumBand<Sort>::start(double t0) {
-  m_now = t0;
+  m_sim.start_at(t0);
   for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
     const FlightplanMesh& mesh = m_scene.mesh(m);
     m_motion.set_segment(m, m_scene.segment_at(m, t0));
     if (mesh.present(t0)) {
       insert_mesh(m, m_config.init_progress);
     } else if (mesh.appear > t0 && mesh.disappear > mesh.appear) {
-      set_event(m_meshes[m].insert, mesh.appear, EventKey{0, kGridInsert, m, 0}, m);
+      m_sim.queue().schedule(m_meshes[m].insert, EventKey{mesh.appear, kGridInsert, m, 0}, m);
     }
   }
   m_stats.certificates_live_max =
@@ -59,41 +59,41 @@ void FrustumBand<Sort>::start(double t0) {
 
 template <class Sort>
 void FrustumBand<Sort>::advance_to(double t) {
-  KINRAY_CHECK_MSG(t >= m_now, "the kinetic grid cannot go back in time");
-  while (!m_queue.empty() && m_queue.top_key().time <= t) {
-    const EventKey key = m_queue.top_key();
-    const uint64_t payload = m_queue.top_payload();
-    KINRAY_CHECK_MSG(key.time >= m_now, "event scheduled in the past");
-    if (key.kind == kGridBoundary) {
-      // Its boundary was prefetched with the previous event: fetch the edge's end points, its
-      // records and the two pixels it watches (one of them changes), while the queue is popped.
-      const EdgeBoundary& b = m_boundaries[payload];
-      const auto& ends = m_scene.edge_vertices(b.edge);
-      __builtin_prefetch(&m_motion.vertex(ends[0]));
-      __builtin_prefetch(&m_motion.vertex(ends[1]));
+  // Most events are boundary events, whose payload names their boundary: while the queue pops,
+  // fetch the popped boundary's edge end points, records and the two pixels it watches (one of
+  // them changes), and the next event's boundary (a wrong guess costs one prefetch).
+  struct Prefetch {
+    const FrustumBand& band;
+    void before_pop(const EventKey& key, uint64_t payload) const {
+      if (key.kind != kGridBoundary) return;
+      const EdgeBoundary& b = band.m_boundaries[payload];
+      const auto& ends = band.m_scene.edge_vertices(b.edge);
+      __builtin_prefetch(&band.m_motion.vertex(ends[0]));
+      __builtin_prefetch(&band.m_motion.vertex(ends[1]));
       for (uint32_t rec : b.records)
-        if (rec != kNoRecord) __builtin_prefetch(&m_records[rec]);
+        if (rec != kNoRecord) __builtin_prefetch(&band.m_records[rec]);
       const int slot = b.tracker.slot;
       if (slot > 0) {
-        __builtin_prefetch(&cell(slot - 1, b.row).order);
-        __builtin_prefetch(&cell(slot, b.row).order);
+        __builtin_prefetch(&band.cell(slot - 1, b.row).order);
+        __builtin_prefetch(&band.cell(slot, b.row).order);
       }
     }
-    m_queue.pop();
-    if (!m_queue.empty()) {
-      // Most events are boundary events, whose payload names their boundary: fetch the next
-      // event's slot and boundary while this one is processed (a wrong guess costs one prefetch).
-      m_queue.prefetch(m_queue.top());
-      const uint32_t id = m_queue.top_payload_hint();
-      if (id < m_boundaries.size()) __builtin_prefetch(&m_boundaries[id]);
+    void after_pop(const EventQueue& queue) const {
+      const uint32_t id = queue.top_payload_hint();
+      if (id < band.m_boundaries.size()) __builtin_prefetch(&band.m_boundaries[id]);
     }
-    m_now = key.time;
-    m_front_changed = false;
-    handle(key, payload);
-    const uint64_t live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
-                          m_sort_stats.certificates_live;
-    m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, live);
-  }
+  };
+  KINRAY_CHECK_MSG(t >= m_sim.now(), "the kinetic grid cannot go back in time");
+  m_sim.advance_to(
+      t,
+      [this](const EventKey& key, uint64_t payload) {
+        m_front_changed = false;
+        handle(key, payload);
+        const uint64_t live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
+                              m_sort_stats.certificates_live;
+        m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, live);
+      },
+      Prefetch{*this});
 }
 
 template <class Sort>
@@ -136,7 +136,7 @@ void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   PixelCell& p = cell(column, row);
   const uint64_t events_before = m_sort_stats.events();
   const size_t bytes = p.order.memory_bytes();
-  p.order.handle_event(payload, m_now);
+  p.order.handle_event(payload, m_sim.now());
   m_pixel_bytes = m_pixel_bytes - bytes + p.order.memory_bytes();
   const bool front_changed = refresh_front(column, row);
   if (m_sort_stats.events() == events_before) {
@@ -145,7 +145,7 @@ void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   }
   ++m_stats.events.swap;
   ++(front_changed ? m_stats.events_external : m_stats.events_internal);
-  if (m_config.audit) audit_pixel(column, row, m_now);
+  if (m_config.audit) audit_pixel(column, row, m_sim.now());
 }
 
 #define KINRAY_INSTANTIATE(Sort) \

@@ -12,7 +12,7 @@ typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t
   const uint32_t m = m_scene.mesh_of_triangle(tri);
   tn.segment = m_motion.segment(m);
   tn.motion = m_motion.triangle(tri);
-  tn.s = m_now - tn.segment.origin;
+  tn.s = m_sim.now() - tn.segment.origin;
   tn.moving = !m_scene.mesh(m).is_static;
   return tn;
 }
@@ -25,7 +25,7 @@ typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) c
   en.segment = m_motion.segment(m);
   en.p = m_motion.vertex(ends[0]);
   en.q = m_motion.vertex(ends[1]);
-  en.s = m_now - en.segment.origin;
+  en.s = m_sim.now() - en.segment.origin;
   en.moving = !m_scene.mesh(m).is_static;
   en.edge = edge;
   return en;
@@ -33,7 +33,7 @@ typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) c
 
 template <class Sort>
 PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const {
-  s = m_now - m_motion.segment(m_scene.mesh_of_vertex(v)).origin;
+  s = m_sim.now() - m_motion.segment(m_scene.mesh_of_vertex(v)).origin;
   return m_motion.vertex(v);
 }
 

@@ -19,7 +19,7 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m, WorkProgress* progress) {
   MeshState& ms = m_meshes[m];
   if (ms.present) return;
   ms.present = true;
-  m_motion.set_segment(m, m_scene.segment_at(m, m_now));
+  m_motion.set_segment(m, m_scene.segment_at(m, m_sim.now()));
   const uint32_t vb = m_scene.vertex_begin(m), ve = m_scene.vertex_end(m);
   std::vector<RowPattern> patterns(ve - vb);
   for (uint32_t v = vb; v < ve; ++v) {
@@ -56,8 +56,8 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m, WorkProgress* progress) {
   if (progress != nullptr) progress->add(unreported);
   schedule_flightplan(m);
   double remove_at = kInf;
-  if (mesh.disappear < kInf && mesh.disappear > m_now) remove_at = mesh.disappear;
-  set_event(ms.remove, remove_at, EventKey{0, kGridRemove, m, 0}, m);
+  if (mesh.disappear < kInf && mesh.disappear > m_sim.now()) remove_at = mesh.disappear;
+  m_sim.queue().schedule(ms.remove, EventKey{remove_at, kGridRemove, m, 0}, m);
 }
 
 template <class Sort>
@@ -76,15 +76,12 @@ void FrustumBand<Sort>::remove_mesh(uint32_t m) {
     for (uint32_t v = m_scene.vertex_begin(m); v < m_scene.vertex_end(m); ++v) {
       SlotTracker& st = m_vertices[v];
       if (m_scene.triangles_of_vertex(v).empty()) continue;
-      if (st.event != kNoEvent) m_queue.erase(st.event);
+      m_sim.queue().cancel(st.event);
       st = SlotTracker{};
       --m_live_vertices;
     }
   for (EventHandle* h : {&ms.flightplan, &ms.remove})
-    if (*h != kNoEvent) {
-      m_queue.erase(*h);
-      *h = kNoEvent;
-    }
+    m_sim.queue().cancel(*h);
   ms.present = false;
 }
 
@@ -93,14 +90,14 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
   // Every mesh reaching a key at this instant switches segment first, then their certificates
   // are recomputed together (one camera key moves every mesh at once).
   std::vector<uint32_t> meshes = {first_mesh};
-  while (!m_queue.empty() && m_queue.top_key().time == m_now &&
-         m_queue.top_key().kind == kGridFlightplan) {
-    meshes.push_back(uint32_t(m_queue.top_payload()));
-    m_queue.pop();
+  while (!m_sim.queue().empty() && m_sim.queue().top_key().time == m_sim.now() &&
+         m_sim.queue().top_key().kind == kGridFlightplan) {
+    meshes.push_back(uint32_t(m_sim.queue().top_payload()));
+    m_sim.queue().pop();
   }
   for (uint32_t m : meshes) {
     m_meshes[m].flightplan = kNoEvent;
-    m_motion.set_segment(m, m_scene.segment_at(m, m_now));
+    m_motion.set_segment(m, m_scene.segment_at(m, m_sim.now()));
     schedule_flightplan(m);
     if (m_config.counts_meshes) ++m_stats.events.flightplan;
   }
@@ -124,7 +121,7 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
       for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
         const RowRecord& r = m_records[rec];
         for (int c = r.lo; c <= r.hi; ++c) {
-          cell(c, r.row).order.replace_motion(tri, m_now);
+          cell(c, r.row).order.replace_motion(tri, m_sim.now());
           refresh_front(c, r.row);
         }
       }

@@ -22,8 +22,7 @@ template <class Sort>
 void FrustumBand<Sort>::unwatch(uint32_t tri) {
   TriangleState& ts = m_triangles[tri];
   while (ts.head != kNoRecord) kill_record(ts.head);
-  if (ts.event != kNoEvent) m_queue.erase(ts.event);
-  ts.event = kNoEvent;
+  m_sim.queue().cancel(ts.event);
   ts.orientation = 0;
   ts.watched = false;
   if (!m_scene.mesh(m_scene.mesh_of_triangle(tri)).is_static) --m_live_orientations;

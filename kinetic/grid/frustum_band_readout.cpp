@@ -20,7 +20,7 @@ GridStats FrustumBand<Sort>::stats() const {
   const size_t pixel_bytes = m_pixel_bytes;
   s.pixel_entries = m_pixel_entries;
   s.pixel_memory_bytes = pixel_bytes;
-  s.memory_bytes = pixel_bytes + m_queue.memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
+  s.memory_bytes = pixel_bytes + m_sim.queue().memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
                    m_free_records.capacity() * sizeof(uint32_t) +
                    m_boundaries.capacity() * sizeof(EdgeBoundary) +
                    (m_free_boundaries.capacity() + m_edge_heads.capacity()) * sizeof(uint32_t) +

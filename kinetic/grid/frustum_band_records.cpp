@@ -52,24 +52,24 @@ template <class Sort>
 void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
   const size_t bytes = p.order.memory_bytes();
-  p.order.insert(tri, m_now);
+  p.order.insert(tri, m_sim.now());
   m_pixel_bytes += p.order.memory_bytes() - bytes;
   ++m_pixel_entries;
   ++m_stats.coverage_changes;
   if (refresh_front(column, row)) m_front_changed = true;
-  if (m_config.audit) audit_pixel(column, row, m_now);
+  if (m_config.audit) audit_pixel(column, row, m_sim.now());
 }
 
 template <class Sort>
 void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
   PixelCell& p = cell(column, row);
   const size_t bytes = p.order.memory_bytes();
-  p.order.erase(tri, m_now);
+  p.order.erase(tri, m_sim.now());
   m_pixel_bytes -= bytes - p.order.memory_bytes();
   --m_pixel_entries;
   ++m_stats.coverage_changes;
   if (refresh_front(column, row)) m_front_changed = true;
-  if (m_config.audit) audit_pixel(column, row, m_now);
+  if (m_config.audit) audit_pixel(column, row, m_sim.now());
 }
 
 template <class Sort>
@@ -146,8 +146,7 @@ void FrustumBand<Sort>::kill_record(uint32_t rec) {
     m_records[prev].next = r.next;
   }
   if (ts.head == kNoRecord && m_scene.cull_sign_of_triangle(tri) == 0) {
-    if (ts.event != kNoEvent) m_queue.erase(ts.event);
-    ts.event = kNoEvent;
+    m_sim.queue().cancel(ts.event);
     ts.orientation = 0;
     if (moving) --m_live_orientations;
   }

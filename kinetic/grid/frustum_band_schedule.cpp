@@ -17,37 +17,19 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 template <class Sort>
 double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const {
-  if (sign == 0) return f.is_zero() ? kInf : m_now;
+  if (sign == 0) return f.is_zero() ? kInf : m_sim.now();
   // The zero polynomial reads as positive (sign_plus). An edge function that vanishes identically
   // is watched through its perturbed sign (EdgeNormal::perturbed), which can still change within
   // the segment: n_x changes sign where n is normal to d and to x, i.e. to the row plane (the edge
   // lies in it, or its line passes through the eye), and n_y, when n_x vanishes too, where n = 0.
   // Those are scheduled like any other crossing, so the slots never hold a stale perturbed sign.
-  if (f.is_zero()) return sign > 0 ? kInf : m_now;
+  if (f.is_zero()) return sign > 0 ? kInf : m_sim.now();
   // A vertex's row side: most vertices lie outside a band's rows all segment long, and each band
   // watches every vertex at every key, so first_failure's quick answer is taken without the call.
   if (f.degree == 1 && linear_holds_through(sign > 0 ? f.c[0] : -f.c[0], sign > 0 ? f.c[1] : -f.c[1],
-                                            m_now - seg.origin, seg.end - seg.origin))
+                                            m_sim.now() - seg.origin, seg.end - seg.origin))
     return kInf;
-  return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_now, seg.end);
-}
-
-template <class Sort>
-void FrustumBand<Sort>::set_event(EventHandle& handle, double time, const EventKey& key,
-                                  uint64_t payload) {
-  if (time == kInf) {
-    if (handle != kNoEvent) m_queue.erase(handle);
-    handle = kNoEvent;
-    return;
-  }
-  EventKey k = key;
-  k.time = time;
-  if (handle == kNoEvent) {
-    handle = m_queue.push(k, payload);
-  } else {
-    m_queue.update(handle, k);
-    m_queue.set_payload(handle, payload);
-  }
+  return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_sim.now(), seg.end);
 }
 
 template <class Sort>
@@ -68,7 +50,7 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const 
     if (st.slot == 0) t = std::min(t, failure_time(1, boundary_front(en, b.row), en.segment));
   }
   m_stats.certificates_computed += 2;
-  set_event(st.event, t, EventKey{0, kGridBoundary, uint32_t(b.row), b.edge}, id);
+  m_sim.queue().schedule(st.event, EventKey{t, kGridBoundary, uint32_t(b.row), b.edge}, id);
 }
 
 template <class Sort>
@@ -81,7 +63,7 @@ void FrustumBand<Sort>::schedule_vertex(uint32_t v) {
   double t = failure_time(st.sign_lo, row_side(p, m_scene.row_y(m_row_begin + lo)), seg);
   if (hi != lo) t = std::min(t, failure_time(st.sign_hi, row_side(p, m_scene.row_y(m_row_begin + hi)), seg));
   m_stats.certificates_computed += 2;
-  set_event(st.event, t, EventKey{0, kGridVertexRow, v, 0}, v);
+  m_sim.queue().schedule(st.event, EventKey{t, kGridVertexRow, v, 0}, v);
 }
 
 template <class Sort>
@@ -92,10 +74,10 @@ void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn
   // whose vertices are collinear over this key interval but not the last): its sign is then 0,
   // not the + that failure_time reads the zero polynomial as, so a kept sign changes now.
   const Polynomial o = tn.motion.orientation();
-  const double t = o.is_zero() ? (ts.orientation == 0 ? kInf : m_now)
+  const double t = o.is_zero() ? (ts.orientation == 0 ? kInf : m_sim.now())
                                : failure_time(ts.orientation, o, tn.segment);
   ++m_stats.certificates_computed;
-  set_event(ts.event, t, EventKey{0, kGridOrientation, tri, 0}, tri);
+  m_sim.queue().schedule(ts.event, EventKey{t, kGridOrientation, tri, 0}, tri);
 }
 
 template <class Sort>
@@ -105,18 +87,17 @@ void FrustumBand<Sort>::schedule_flightplan(uint32_t m) {
   double t = kInf;
   uint32_t key = 0;
   if (!mesh.is_static) {
-    const MeshSegment seg = m_scene.segment_at(m, m_now);
+    const MeshSegment seg = m_scene.segment_at(m, m_sim.now());
     if (seg.index < mesh.key_count()) {
       key = seg.index;
       t = mesh.key_times[key];
     }
   }
-  set_event(ms.flightplan, t, EventKey{0, kGridFlightplan, m, key}, m);
+  m_sim.queue().schedule(ms.flightplan, EventKey{t, kGridFlightplan, m, key}, m);
 }
 
 #define KINRAY_INSTANTIATE(Sort) \
   template double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const; \
-  template void FrustumBand<Sort>::set_event(EventHandle& handle, double time, const EventKey& key, uint64_t payload); \
   template void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known); \
   template void FrustumBand<Sort>::schedule_vertex(uint32_t v); \
   template void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn); \

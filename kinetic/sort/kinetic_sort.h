@@ -224,24 +224,9 @@ class SortCore {
       m_tolerate_until = std::max(m_tolerate_until, s.broken_until);
     }
     ++m_stats->certificates_created;
-    if (s.time < std::numeric_limits<double>::infinity()) {
-      const EventKey key{s.time, m_kind, m_owner, pair_code(a, b)};
-      if (handle != kNoEvent) {
-        m_queue->update(handle, key);
-        m_queue->set_payload(handle, payload);
-      } else {
-        handle = m_queue->push(key, payload);
-      }
-    } else {
-      cancel(handle);
-    }
+    m_queue->schedule(handle, EventKey{s.time, m_kind, m_owner, pair_code(a, b)}, payload);
   }
-  void cancel(EventHandle& handle) {
-    if (handle != kNoEvent) {
-      m_queue->erase(handle);
-      handle = kNoEvent;
-    }
-  }
+  void cancel(EventHandle& handle) { m_queue->cancel(handle); }
 
   /// Audit of one certificate of (a, b) whose event is `handle`, at time t: the problem, naming
   /// the pair, the key values and the certificate, or nothing if it holds. Never aborts or throws,

@@ -137,27 +137,17 @@ bool KineticBvh::update_side(uint32_t node, int s) {
 }
 
 void KineticBvh::schedule(uint32_t node, int s, double time) {
-  EventHandle& h = m_event[node][size_t(s)];
-  if (!std::isfinite(time)) {
-    if (h != kNoEvent) m_sim.queue().erase(h);
-    h = kNoEvent;
-    return;
-  }
+  if (!std::isfinite(time)) time = kInfinityTime;
   KINRAY_CHECK_MSG(time >= m_sim.now(), "kinetic tree: certificate already broken");
   const EventKey key{time, m_topology.nodes[node].leaf() ? kLeafKind : kTreeKind, node,
                      uint64_t(s)};
-  if (h == kNoEvent)
-    h = m_sim.queue().push(key, uint64_t(node) * 8 + uint64_t(s));
-  else
-    m_sim.queue().update(h, key);
+  m_sim.queue().schedule(m_event[node][size_t(s)], key, uint64_t(node) * 8 + uint64_t(s));
 }
 
 void KineticBvh::schedule_mesh(uint32_t m) {
   const double next = m_meshes.next_change(m, m_sim.now());
-  EventHandle& h = m_mesh_event[m];
-  if (h != kNoEvent) m_sim.queue().erase(h);
-  h = std::isfinite(next) ? m_sim.queue().push(EventKey{next, kMeshKind, m, 0}, kMeshEvent | m)
-                          : kNoEvent;
+  m_sim.queue().schedule(m_mesh_event[m], EventKey{std::isfinite(next) ? next : kInfinityTime, kMeshKind, m, 0},
+                         kMeshEvent | m);
 }
 
 void KineticBvh::advance_to(double t) {

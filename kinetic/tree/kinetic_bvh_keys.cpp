@@ -36,10 +36,7 @@ void KineticBvh::settle_sides(uint32_t node, uint8_t sides, const std::array<uin
     if (((sides >> s) & 1) == 0) continue;
     change += int64_t(live[size_t(s)]) - int64_t(counted[s]);
     counted[s] = live[size_t(s)];
-    if (events[size_t(s)] != kNoEvent) {
-      m_sim.queue().erase(events[size_t(s)]);
-      events[size_t(s)] = kNoEvent;
-    }
+    m_sim.queue().cancel(events[size_t(s)]);
   }
   m_live_total = uint64_t(int64_t(m_live_total) + change);
 }

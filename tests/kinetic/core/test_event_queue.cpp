@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -284,6 +285,63 @@ TEST(EventQueue, SimulatorAdvanceTo) {
   EXPECT_DEATH(sim.advance_to(3.0, [](const EventKey&, uint64_t) {}), "t >= m_now \\(3 vs 4\\)");
   sim.queue().push({3.9, 0, 0, 0}, 39);  // in the past
   EXPECT_DEATH(sim.advance_to(5.0, [](const EventKey&, uint64_t) {}), "past");
+}
+
+TEST(EventQueue, ScheduleIsPushMoveOrCancelThroughTheOwnersHandle) {
+  EventQueue q;
+  EventHandle h = kNoEvent;
+  q.schedule(h, {2.0, 1, 7, 0}, 70);  // nothing pending: a push
+  ASSERT_NE(h, kNoEvent);
+  EXPECT_EQ(q.size(), 1u);
+  EventHandle other = kNoEvent;
+  q.schedule(other, {1.0, 1, 8, 0}, 80);
+  EXPECT_EQ(q.top_payload(), 80u);
+  const EventHandle first = h;
+  q.schedule(h, {0.5, 1, 7, 1}, 71);  // pending: moved in place, with its new key and payload
+  EXPECT_EQ(h, first);
+  EXPECT_EQ(q.size(), 2u);
+  EXPECT_EQ(q.top_key().b, 1u);
+  EXPECT_EQ(q.top_payload(), 71u);
+  q.schedule(h, {std::numeric_limits<double>::infinity(), 1, 7, 0}, 72);  // never: cancelled
+  EXPECT_EQ(h, kNoEvent);
+  EXPECT_EQ(q.size(), 1u);
+  q.schedule(h, {std::numeric_limits<double>::infinity(), 1, 7, 0}, 72);  // nothing to cancel
+  EXPECT_EQ(h, kNoEvent);
+  q.cancel(other);
+  EXPECT_EQ(other, kNoEvent);
+  EXPECT_TRUE(q.empty());
+  q.cancel(other);  // a no-op on an empty slot
+  q.audit();
+}
+
+TEST(EventQueue, SimulatorPrefetchHookSeesEachEventBeforeItsPopAndTheNextAfter) {
+  Simulator sim;
+  sim.start_at(1.0);
+  EXPECT_EQ(sim.now(), 1.0);
+  for (uint64_t k = 2; k <= 5; ++k) sim.queue().push({double(k), 0, 0, 0}, k);
+  std::vector<std::string> trace;
+  struct Hook {
+    std::vector<std::string>* trace;
+    void before_pop(const EventKey& key, uint64_t payload) const {
+      trace->push_back("before " + std::to_string(payload) + " at " + std::to_string(int(key.time)));
+    }
+    void after_pop(const EventQueue& queue) const {
+      trace->push_back("next " + std::to_string(queue.top_payload_hint()));
+    }
+  };
+  sim.advance_to(
+      4.0, [&](const EventKey&, uint64_t payload) { trace.push_back("handle " + std::to_string(payload)); },
+      Hook{&trace});
+  const std::vector<std::string> expected{"before 2 at 2", "next 3", "handle 2",
+                                          "before 3 at 3", "next 4", "handle 3",
+                                          "before 4 at 4", "next 5", "handle 4"};
+  EXPECT_EQ(trace, expected);
+  trace.clear();
+  sim.advance_to(6.0, [&](const EventKey&, uint64_t payload) { trace.push_back("handle " + std::to_string(payload)); },
+                 Hook{&trace});
+  // The last event: nothing is left at the top after its pop.
+  EXPECT_EQ(trace, (std::vector<std::string>{"before 5 at 5", "handle 5"}));
+  EXPECT_DEATH(sim.start_at(0.0), "m_events == 0");
 }
 
 }  // namespace

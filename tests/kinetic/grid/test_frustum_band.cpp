@@ -18,7 +18,7 @@ struct FrustumBandTestAccess {
   /// Takes tri out of pixel (column, row)'s order without telling the band's records.
   template <class Sort>
   static void erase_from_pixel(FrustumBand<Sort>& band, uint32_t tri, int column, int row) {
-    band.cell(column, row).order.erase(tri, band.m_now);
+    band.cell(column, row).order.erase(tri, band.m_sim.now());
   }
 };
 
