@@ -77,6 +77,102 @@ bool range_clear(const double* c, double a, double b, double big_s) {
   return std::isfinite(margin) && lo > 2 * margin;
 }
 
+/// A quadratic c0 + c1 s + c2 s^2 with exactly the floating-point operations of Polynomial's
+/// Horner rule and of sign_after, written out: nearly every coverage certificate is one, and the
+/// general loops over a stored degree, the call to sign_after_root and its Taylor shift (taken at
+/// every exact 0, which the closed-form root often lands on) were a third of their search.
+struct Quadratic {
+  double c0, c1, c2;
+  /// The same quadratic as a Polynomial, for the general fallbacks.
+  [[nodiscard]] Polynomial polynomial() const { return Polynomial{c0, c1, c2}; }
+  [[nodiscard]] double operator()(double s) const { return (c2 * s + c1) * s + c0; }
+  /// sign_after(f, s): the value's sign; at an exact 0 that of shifted(f, s).c[1], computed as
+  /// shifted computes it, (c1 + s c2) + s c2, and then of c2.
+  [[nodiscard]] int sign_after(double s) const {
+    const double v = (*this)(s);
+    if (v > 0) return 1;
+    if (v < 0) return -1;
+    const double d = (c1 + s * c2) + s * c2;
+    return d != 0 ? (d > 0) - (d < 0) : (c2 > 0) - (c2 < 0);
+  }
+  /// holds_through for a stored degree 2 (clear_through<2>, operation for operation), for a
+  /// window already checked finite and ordered.
+  [[nodiscard]] bool holds_through(double a, double b, double big_s) const {
+    const double margin =
+        32 * kEps * ((std::fabs(c2) * big_s + std::fabs(c1)) * big_s + std::fabs(c0));
+    if (!(std::isfinite(margin) && (*this)(a) > margin && (*this)(b) > margin)) return false;
+    if (c2 < 0) return true;
+    // The slope c1 + 2 c2 s clears its own margin at both ends with one sign.
+    const double slope_margin = 16 * kEps * (std::fabs(2 * c2) * big_s + std::fabs(c1));
+    if (!std::isfinite(slope_margin)) return false;
+    const double at_a = 2 * c2 * a + c1, at_b = 2 * c2 * b + c1;
+    return (at_a > slope_margin && at_b > slope_margin) ||
+           (-at_a > slope_margin && -at_b > slope_margin);
+  }
+};
+
+/// first_failure_low_degree's closed-form path (c2 != 0) step for step, on Quadratic's
+/// operations.
+std::optional<double> first_failure_quadratic(const Quadratic& q, double s_now, double s_end) {
+  if (q.sign_after(s_now) < 0) return s_now;
+  if (!(s_end > s_now)) return std::nullopt;
+  auto negative = [&](double s) { return q.sign_after(s) < 0; };
+  const double c0 = q.c0, c1 = q.c1, c2 = q.c2;
+  const long double disc = (long double)c1 * c1 - 4.0L * (long double)c2 * c0;
+  if (disc <= 0) {
+    const double vertex = -c1 / (2 * c2);
+    if (vertex > s_now && vertex <= s_end && negative(vertex))
+      return first_failure(q.polynomial(), s_now, s_end);
+    return std::nullopt;
+  }
+  const double root = double(std::sqrt(disc));
+  const double h = -0.5 * (c1 + std::copysign(root, c1));
+  const double r1 = h / c2, r2 = c0 / h;
+  const double r = c2 > 0 ? std::min(r1, r2) : std::max(r1, r2);
+  if (!std::isfinite(r)) return first_failure(q.polynomial(), s_now, s_end);
+  const double slack = 64 * kEps * std::max({std::fabs(r), std::fabs(s_now), 1e-300});
+  if (r < s_now - slack) return std::nullopt;
+  if (r > s_end + slack) return std::nullopt;
+  const double g = std::clamp(r, next_up(s_now), s_end);
+  const std::optional<double> t = detail::first_negative_near(negative, g, s_now, s_end, slack, 24);
+  return t ? t : first_failure(q.polynomial(), s_now, s_end);
+}
+
+/// The absolute time of the first failure after `now`, from the local one r (first_failure's
+/// answer): the first double from origin + r on where `negative` holds, as the event handler
+/// will evaluate it (the subtraction t - origin in double); past 16 of them the general schedule
+/// of the certificate (`polynomial()`, built only then) decides.
+template <class Negative, class MakePolynomial>
+double absolute_failure_time(std::optional<double> r, Negative&& negative,
+                             MakePolynomial&& polynomial, double origin, double now, double end) {
+  if (!r) return kInf;
+  if (*r == now - origin) return now;
+  double t = std::max(now, origin + *r);
+  for (int k = 0; k < 16; ++k, t = next_up(t))
+    if (negative(t - origin)) return t;
+  // The dip is not representable near the root in absolute time: the general schedule decides.
+  OrderCertificate c;
+  c.f = polynomial();
+  c.origin = origin;
+  c.end = end;
+  const detail::Schedule s = detail::schedule_certificate(c, now, 0, 0);
+  return s.failure ? s.time : kInf;
+}
+
+/// certificate_failure_time of a stored quadratic that the filter did not decide, on Quadratic's
+/// written-out operations: the same arithmetic as the general path, so the same time (test
+/// CertificateTime.*). Out of line, so that the filter's common "holds" costs no stack frame.
+[[gnu::noinline]] double quadratic_failure_time(const Quadratic& q, double origin, double now,
+                                                double end) {
+  const double s_now = now - origin, s_end = end - origin;
+  const std::optional<double> r = q.c2 != 0
+                                      ? first_failure_quadratic(q, s_now, s_end)
+                                      : first_failure_low_degree(q.polynomial(), s_now, s_end);
+  return absolute_failure_time(
+      r, [&](double s) { return q.sign_after(s) < 0; }, [&] { return q.polynomial(); }, origin, now,
+      end);
+}
+
 }  // namespace
 
 bool holds_through(const Polynomial& f, double s_now, double s_end) {
@@ -128,21 +224,27 @@ std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now
 }
 
 double certificate_failure_time(const Polynomial& f, double origin, double now, double end) {
+  return certificate_failure_time(1, f, origin, now, end);
+}
+
+double certificate_failure_time(int sign, const Polynomial& f, double origin, double now,
+                                double end) {
+  if (f.degree == 2) {
+    // -f negates each coefficient exactly, so this is the quadratic -f holds.
+    const Quadratic q =
+        sign > 0 ? Quadratic{f.c[0], f.c[1], f.c[2]} : Quadratic{-f.c[0], -f.c[1], -f.c[2]};
+    const double s_now = now - origin, s_end = end - origin;
+    if (std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
+        q.holds_through(s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end))))
+      return kInf;
+    return quadratic_failure_time(q, origin, now, end);
+  }
+  const Polynomial g = sign > 0 ? f : -f;
   const double s_now = now - origin;
-  if (holds_through(f, s_now, end - origin)) return kInf;
-  const std::optional<double> r = first_failure_low_degree(f, s_now, end - origin);
-  if (!r) return kInf;
-  if (*r == s_now) return now;
-  double t = std::max(now, origin + *r);
-  for (int k = 0; k < 16; ++k, t = next_up(t))
-    if (sign_after(f, t - origin) < 0) return t;
-  // The dip is not representable near the root in absolute time: the general schedule decides.
-  OrderCertificate c;
-  c.f = f;
-  c.origin = origin;
-  c.end = end;
-  const detail::Schedule s = detail::schedule_certificate(c, now, 0, 0);
-  return s.failure ? s.time : kInf;
+  if (holds_through(g, s_now, end - origin)) return kInf;
+  return absolute_failure_time(
+      first_failure_low_degree(g, s_now, end - origin),
+      [&](double s) { return sign_after(g, s) < 0; }, [&] { return g; }, origin, now, end);
 }
 
 }  // namespace kinray

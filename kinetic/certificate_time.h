@@ -33,4 +33,9 @@ namespace kinray {
 /// subtraction in double, as the event handler will evaluate it, so the event sees the change.
 [[nodiscard]] double certificate_failure_time(const Polynomial& f, double origin, double now, double end);
 
+/// certificate_failure_time of sign f (sign +1 or -1) without building -f: the same time, as
+/// the negation of each coefficient is exact.
+[[nodiscard]] double certificate_failure_time(int sign, const Polynomial& f, double origin,
+                                              double now, double end);
+
 }  // namespace kinray

@@ -29,7 +29,7 @@ double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const Mesh
   if (f.degree == 1 && linear_holds_through(sign > 0 ? f.c[0] : -f.c[0], sign > 0 ? f.c[1] : -f.c[1],
                                             m_now - seg.origin, seg.end - seg.origin))
     return kInf;
-  return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_now, seg.end);
+  return certificate_failure_time(sign, f, seg.origin, m_now, seg.end);
 }
 
 template <class Sort>
