@@ -193,6 +193,37 @@ bool holds_through(const Polynomial& f, double s_now, double s_end) {
   }
 }
 
+bool holds_from_root(const Polynomial& f, double s_now, double s_end) {
+  // first_failure isolates on [s_now, s_end] (no tail beyond 2^100), on f scaled by a power of
+  // two, which must stay exact; 16 u |c_k| below must not underflow.
+  if (!(f.degree == 3 && f.c[3] != 0 && s_now >= 0 && s_end > s_now && s_end <= 0x1p100))
+    return false;
+  if (sign_after(f, s_now) <= 0 || sign_after(f, s_end) <= 0) return false;
+  const double largest = std::max({std::fabs(f.c[0]), std::fabs(f.c[1]), std::fabs(f.c[2]),
+                                   std::fabs(f.c[3])});
+  // d = f + 16 u |f| coefficient-wise, rounded: d_k <= c_k + 17.1 u |c_k|, so that for s >= 0,
+  // d(s) <= f(s) + 17.1 u M(s), M(s) = sum |c_k| s^k.
+  Polynomial d;
+  d.degree = 3;
+  for (int k = 0; k <= 3; ++k) {
+    const double c = f.c[size_t(k)], a = std::fabs(c);
+    if (a != 0 && (a < 0x1p-900 || a < largest * 0x1p-900)) return false;
+    d.c[size_t(k)] = c + 0x1p-49 * a;
+  }
+  // d(s_now) > 0: Horner's value clears its error (gamma_6 of the magnitudes, below 8 u).
+  const double mag = ((std::fabs(d.c[3]) * s_now + std::fabs(d.c[2])) * s_now + std::fabs(d.c[1])) *
+                         s_now +
+                     std::fabs(d.c[0]);
+  if (!(d(s_now) > 0x1p-50 * mag)) return false;
+  // and rises on [s_now, top] (top >= s_end (1 + u) covers the leaves' rounded ends), or rises
+  // on its first eighth and clears holds_through's margin on the rest.
+  const double top = next_up(next_up(s_end));
+  const Polynomial slope = d.derivative();
+  if (holds_through(slope, s_now, top)) return true;
+  const double mid = s_now + (top - s_now) / 8;
+  return holds_through(slope, s_now, mid) && holds_through(d, mid, top);
+}
+
 std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now, double s_end) {
   if (f.effective_degree() != 2) return first_failure(f, s_now, s_end);
   if (sign_after(f, s_now) < 0) return s_now;
@@ -241,7 +272,7 @@ double certificate_failure_time(int sign, const Polynomial& f, double origin, do
   }
   const Polynomial g = sign > 0 ? f : -f;
   const double s_now = now - origin;
-  if (holds_through(g, s_now, end - origin)) return kInf;
+  if (holds_through(g, s_now, end - origin) || holds_from_root(g, s_now, end - origin)) return kInf;
   return absolute_failure_time(
       first_failure_low_degree(g, s_now, end - origin),
       [&](double s) { return sign_after(g, s) < 0; }, [&] { return g; }, origin, now, end);

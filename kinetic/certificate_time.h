@@ -23,6 +23,18 @@ namespace kinray {
 /// 4 and 5 are the pixel orders' depth certificates and their envelopes (decided_despite).
 [[nodiscard]] bool holds_through(const Polynomial& f, double s_now, double s_end);
 
+/// The filter for a cubic that has just crossed zero: true only when first_failure(f, s_now,
+/// s_end) finds no failure, for f stored and of degree 3 that holds just after s_now >= 0 and at
+/// s_end. An orientation certificate rebuilt by its own event starts at a root, and there the
+/// Bernstein isolation splits the window's left end down to the noise level (tens of thousands
+/// of instructions) before it can say "no failure". Its failure needs a leaf whose first or last
+/// coefficient is certainly negative: f(s) < -20 u M(s) at some s of [s_now, s_end (1 + u)]
+/// (M(s) = sum |c_k| s^k; the leaves' bound is 40 u M, twice their rounding), or Horner's sign
+/// at s_end. This certifies f + 17.1 u M > 0 there: at s_now beyond Horner's rounding, and then
+/// rising (its slope passes holds_through), or rising on the first eighth and clearing
+/// holds_through on the rest. False means undecided.
+[[nodiscard]] bool holds_from_root(const Polynomial& f, double s_now, double s_end);
+
 /// first_failure(f, s_now, s_end) (root_finding.h), with a closed-form path for degree 2.
 [[nodiscard]] std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now,
                                                              double s_end);

@@ -424,5 +424,57 @@ TEST(CertificateTime, QuadraticPathIsTheGeneralArithmetic) {
   EXPECT_GT(at_now, 5000);
 }
 
+TEST(CertificateTime, HoldsFromRootDecidesOnlyWhatFirstFailureDecides) {
+  // Cubics that have just crossed zero upwards at s_now (the first double where sign_after is +,
+  // as an orientation certificate rebuilt by its event), with their other roots behind, beyond,
+  // inside the window, at its end, complex, or a double root at s_now. Whenever the filter says
+  // "holds", first_failure must find no failure; it must decide the plain cases.
+  std::mt19937_64 rng(1405);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int decided = 0, plain = 0, plain_decided = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double r0 = 0.05 * unit(rng), s_end0 = r0 + 0.05 * unit(rng);
+    const double lead = (unit(rng) + 0.01) * std::pow(10.0, -double(rng() % 8));
+    const int kind = trial % 6;
+    Polynomial f;
+    switch (kind) {
+      case 0: f = from_roots({r0, -1 - unit(rng), s_end0 + 0.01 + unit(rng)}, lead); break;
+      case 1: {  // a failure and a recovery inside the window: positive again at its end
+        const double r1 = r0 + (s_end0 - r0) * unit(rng);
+        f = from_roots({r0, r1, r1 + (s_end0 - r1) * unit(rng)}, lead);
+        break;
+      }
+      case 2: f = from_roots({r0, s_end0, s_end0 + unit(rng)}, lead); break;
+      case 3: f = from_roots({r0, r0, -unit(rng)}, lead); break;
+      case 4: f = from_roots({r0}, lead) * Polynomial{0.01 + unit(rng), -2 * unit(rng), 1}; break;
+      default: f = from_roots({r0, -unit(rng), -unit(rng)}, lead); break;
+    }
+    ASSERT_EQ(f.degree, 3);
+    if (f.derivative()(r0) < 0) f = -f;  // crossing upwards
+    double s_now = r0;
+    for (int k = 0; k < 100000 && sign_after(f, s_now) <= 0; ++k) s_now = detail::next_up(s_now);
+    if (sign_after(f, s_now) <= 0) continue;
+    const double s_end = std::max(s_end0, s_now);
+    const bool holds = holds_from_root(f, s_now, s_end);
+    if (holds) {
+      ++decided;
+      EXPECT_FALSE(first_failure(f, s_now, s_end).has_value())
+          << "trial " << trial << " kind " << kind << " s_now " << s_now << " s_end " << s_end;
+    }
+    if (kind == 0 || kind == 4 || kind == 5) {
+      ++plain;
+      plain_decided += holds;
+    }
+  }
+  EXPECT_GT(decided, 2000);
+  EXPECT_GT(plain_decided, plain / 2);  // the filter is not vacuous where it is meant to decide
+  RecordProperty("decided", decided);
+  // Outside its case it says nothing.
+  EXPECT_FALSE(holds_from_root(from_roots({-1, -2}), 0, 1));       // degree 2
+  EXPECT_FALSE(holds_from_root(from_roots({0.5, -1, -2}), 0, 1));  // a failure inside
+  EXPECT_FALSE(holds_from_root(-from_roots({-1, -2, -3}), 0, 1));  // broken now
+  EXPECT_FALSE(holds_from_root(from_roots({-1, -2, -3}), -1, 1));  // s_now < 0
+}
+
 }  // namespace
 }  // namespace kinray
