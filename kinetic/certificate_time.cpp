@@ -162,8 +162,8 @@ double absolute_failure_time(std::optional<double> r, Negative&& negative,
 /// certificate_failure_time of a stored quadratic that the filter did not decide, on Quadratic's
 /// written-out operations: the same arithmetic as the general path, so the same time (test
 /// CertificateTime.*). Out of line, so that the filter's common "holds" costs no stack frame.
-[[gnu::noinline]] double quadratic_failure_time(const Quadratic& q, double origin, double now,
-                                                double end) {
+[[gnu::noinline]] double undecided_quadratic_failure_time(const Quadratic& q, double origin,
+                                                          double now, double end) {
   const double s_now = now - origin, s_end = end - origin;
   const std::optional<double> r = q.c2 != 0
                                       ? first_failure_quadratic(q, s_now, s_end)
@@ -258,18 +258,20 @@ double certificate_failure_time(const Polynomial& f, double origin, double now, 
   return certificate_failure_time(1, f, origin, now, end);
 }
 
+double quadratic_failure_time(int sign, double c0, double c1, double c2, double origin, double now,
+                              double end) {
+  // -f negates each coefficient exactly, so this is the quadratic -f holds.
+  const Quadratic q = sign > 0 ? Quadratic{c0, c1, c2} : Quadratic{-c0, -c1, -c2};
+  const double s_now = now - origin, s_end = end - origin;
+  if (std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
+      q.holds_through(s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end))))
+    return kInf;
+  return undecided_quadratic_failure_time(q, origin, now, end);
+}
+
 double certificate_failure_time(int sign, const Polynomial& f, double origin, double now,
                                 double end) {
-  if (f.degree == 2) {
-    // -f negates each coefficient exactly, so this is the quadratic -f holds.
-    const Quadratic q =
-        sign > 0 ? Quadratic{f.c[0], f.c[1], f.c[2]} : Quadratic{-f.c[0], -f.c[1], -f.c[2]};
-    const double s_now = now - origin, s_end = end - origin;
-    if (std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
-        q.holds_through(s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end))))
-      return kInf;
-    return quadratic_failure_time(q, origin, now, end);
-  }
+  if (f.degree == 2) return quadratic_failure_time(sign, f.c[0], f.c[1], f.c[2], origin, now, end);
   const Polynomial g = sign > 0 ? f : -f;
   const double s_now = now - origin;
   if (holds_through(g, s_now, end - origin) || holds_from_root(g, s_now, end - origin)) return kInf;

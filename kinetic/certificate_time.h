@@ -45,6 +45,11 @@ namespace kinray {
 /// subtraction in double, as the event handler will evaluate it, so the event sees the change.
 [[nodiscard]] double certificate_failure_time(const Polynomial& f, double origin, double now, double end);
 
+/// certificate_failure_time of sign (c0 + c1 s + c2 s^2), a quadratic stored with degree 2
+/// (sign +1 or -1), without building the polynomial: the same time.
+[[nodiscard]] double quadratic_failure_time(int sign, double c0, double c1, double c2,
+                                            double origin, double now, double end);
+
 /// certificate_failure_time of sign f (sign +1 or -1) without building -f: the same time, as
 /// the negation of each coefficient is exact.
 [[nodiscard]] double certificate_failure_time(int sign, const Polynomial& f, double origin,
