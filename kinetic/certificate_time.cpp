@@ -77,39 +77,7 @@ bool range_clear(const double* c, double a, double b, double big_s) {
   return std::isfinite(margin) && lo > 2 * margin;
 }
 
-/// A quadratic c0 + c1 s + c2 s^2 with exactly the floating-point operations of Polynomial's
-/// Horner rule and of sign_after, written out: nearly every coverage certificate is one, and the
-/// general loops over a stored degree, the call to sign_after_root and its Taylor shift (taken at
-/// every exact 0, which the closed-form root often lands on) were a third of their search.
-struct Quadratic {
-  double c0, c1, c2;
-  /// The same quadratic as a Polynomial, for the general fallbacks.
-  [[nodiscard]] Polynomial polynomial() const { return Polynomial{c0, c1, c2}; }
-  [[nodiscard]] double operator()(double s) const { return (c2 * s + c1) * s + c0; }
-  /// sign_after(f, s): the value's sign; at an exact 0 that of shifted(f, s).c[1], computed as
-  /// shifted computes it, (c1 + s c2) + s c2, and then of c2.
-  [[nodiscard]] int sign_after(double s) const {
-    const double v = (*this)(s);
-    if (v > 0) return 1;
-    if (v < 0) return -1;
-    const double d = (c1 + s * c2) + s * c2;
-    return d != 0 ? (d > 0) - (d < 0) : (c2 > 0) - (c2 < 0);
-  }
-  /// holds_through for a stored degree 2 (clear_through<2>, operation for operation), for a
-  /// window already checked finite and ordered.
-  [[nodiscard]] bool holds_through(double a, double b, double big_s) const {
-    const double margin =
-        32 * kEps * ((std::fabs(c2) * big_s + std::fabs(c1)) * big_s + std::fabs(c0));
-    if (!(std::isfinite(margin) && (*this)(a) > margin && (*this)(b) > margin)) return false;
-    if (c2 < 0) return true;
-    // The slope c1 + 2 c2 s clears its own margin at both ends with one sign.
-    const double slope_margin = 16 * kEps * (std::fabs(2 * c2) * big_s + std::fabs(c1));
-    if (!std::isfinite(slope_margin)) return false;
-    const double at_a = 2 * c2 * a + c1, at_b = 2 * c2 * b + c1;
-    return (at_a > slope_margin && at_b > slope_margin) ||
-           (-at_a > slope_margin && -at_b > slope_margin);
-  }
-};
+using detail::Quadratic;
 
 /// first_failure_low_degree's closed-form path (c2 != 0) step for step, on Quadratic's
 /// operations.
@@ -159,11 +127,12 @@ double absolute_failure_time(std::optional<double> r, Negative&& negative,
   return s.failure ? s.time : kInf;
 }
 
-/// certificate_failure_time of a stored quadratic that the filter did not decide, on Quadratic's
-/// written-out operations: the same arithmetic as the general path, so the same time (test
-/// CertificateTime.*). Out of line, so that the filter's common "holds" costs no stack frame.
-[[gnu::noinline]] double undecided_quadratic_failure_time(const Quadratic& q, double origin,
-                                                          double now, double end) {
+}  // namespace
+
+// Out of line (quadratic_failure_time, inline, runs the filter): the same arithmetic as the
+// general path, so the same time (test CertificateTime.*).
+double detail::undecided_quadratic_failure_time(const Quadratic& q, double origin, double now,
+                                                double end) {
   const double s_now = now - origin, s_end = end - origin;
   const std::optional<double> r = q.c2 != 0
                                       ? first_failure_quadratic(q, s_now, s_end)
@@ -172,8 +141,6 @@ double absolute_failure_time(std::optional<double> r, Negative&& negative,
       r, [&](double s) { return q.sign_after(s) < 0; }, [&] { return q.polynomial(); }, origin, now,
       end);
 }
-
-}  // namespace
 
 bool holds_through(const Polynomial& f, double s_now, double s_end) {
   if (!(std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now)) return false;
@@ -199,8 +166,8 @@ bool holds_from_root(const Polynomial& f, double s_now, double s_end) {
   if (!(f.degree == 3 && f.c[3] != 0 && s_now >= 0 && s_end > s_now && s_end <= 0x1p100))
     return false;
   if (sign_after(f, s_now) <= 0 || sign_after(f, s_end) <= 0) return false;
-  const double largest = std::max({std::fabs(f.c[0]), std::fabs(f.c[1]), std::fabs(f.c[2]),
-                                   std::fabs(f.c[3])});
+  const double largest =
+      std::max({std::fabs(f.c[0]), std::fabs(f.c[1]), std::fabs(f.c[2]), std::fabs(f.c[3])});
   // d = f + 16 u |f| coefficient-wise, rounded: d_k <= c_k + 17.1 u |c_k|, so that for s >= 0,
   // d(s) <= f(s) + 17.1 u M(s), M(s) = sum |c_k| s^k.
   Polynomial d;
@@ -211,9 +178,9 @@ bool holds_from_root(const Polynomial& f, double s_now, double s_end) {
     d.c[size_t(k)] = c + 0x1p-49 * a;
   }
   // d(s_now) > 0: Horner's value clears its error (gamma_6 of the magnitudes, below 8 u).
-  const double mag = ((std::fabs(d.c[3]) * s_now + std::fabs(d.c[2])) * s_now + std::fabs(d.c[1])) *
-                         s_now +
-                     std::fabs(d.c[0]);
+  const double mag =
+      ((std::fabs(d.c[3]) * s_now + std::fabs(d.c[2])) * s_now + std::fabs(d.c[1])) * s_now +
+      std::fabs(d.c[0]);
   if (!(d(s_now) > 0x1p-50 * mag)) return false;
   // and rises on [s_now, top] (top >= s_end (1 + u) covers the leaves' rounded ends), or rises
   // on its first eighth and clears holds_through's margin on the rest.
@@ -256,17 +223,6 @@ std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now
 
 double certificate_failure_time(const Polynomial& f, double origin, double now, double end) {
   return certificate_failure_time(1, f, origin, now, end);
-}
-
-double quadratic_failure_time(int sign, double c0, double c1, double c2, double origin, double now,
-                              double end) {
-  // -f negates each coefficient exactly, so this is the quadratic -f holds.
-  const Quadratic q = sign > 0 ? Quadratic{c0, c1, c2} : Quadratic{-c0, -c1, -c2};
-  const double s_now = now - origin, s_end = end - origin;
-  if (std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
-      q.holds_through(s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end))))
-    return kInf;
-  return undecided_quadratic_failure_time(q, origin, now, end);
 }
 
 double certificate_failure_time(int sign, const Polynomial& f, double origin, double now,
