@@ -77,7 +77,70 @@ bool range_clear(const double* c, double a, double b, double big_s) {
   return std::isfinite(margin) && lo > 2 * margin;
 }
 
+using detail::Quadratic;
+
+/// first_failure_low_degree's closed-form path (c2 != 0) step for step, on Quadratic's
+/// operations.
+std::optional<double> first_failure_quadratic(const Quadratic& q, double s_now, double s_end) {
+  if (q.sign_after(s_now) < 0) return s_now;
+  if (!(s_end > s_now)) return std::nullopt;
+  auto negative = [&](double s) { return q.sign_after(s) < 0; };
+  const double c0 = q.c0, c1 = q.c1, c2 = q.c2;
+  const long double disc = (long double)c1 * c1 - 4.0L * (long double)c2 * c0;
+  if (disc <= 0) {
+    const double vertex = -c1 / (2 * c2);
+    if (vertex > s_now && vertex <= s_end && negative(vertex))
+      return first_failure(q.polynomial(), s_now, s_end);
+    return std::nullopt;
+  }
+  const double root = double(std::sqrt(disc));
+  const double h = -0.5 * (c1 + std::copysign(root, c1));
+  const double r1 = h / c2, r2 = c0 / h;
+  const double r = c2 > 0 ? std::min(r1, r2) : std::max(r1, r2);
+  if (!std::isfinite(r)) return first_failure(q.polynomial(), s_now, s_end);
+  const double slack = 64 * kEps * std::max({std::fabs(r), std::fabs(s_now), 1e-300});
+  if (r < s_now - slack) return std::nullopt;
+  if (r > s_end + slack) return std::nullopt;
+  const double g = std::clamp(r, next_up(s_now), s_end);
+  const std::optional<double> t = detail::first_negative_near(negative, g, s_now, s_end, slack, 24);
+  return t ? t : first_failure(q.polynomial(), s_now, s_end);
+}
+
+/// The absolute time of the first failure after `now`, from the local one r (first_failure's
+/// answer): the first double from origin + r on where `negative` holds, as the event handler
+/// will evaluate it (the subtraction t - origin in double); past 16 of them the general schedule
+/// of the certificate (`polynomial()`, built only then) decides.
+template <class Negative, class MakePolynomial>
+double absolute_failure_time(std::optional<double> r, Negative&& negative,
+                             MakePolynomial&& polynomial, double origin, double now, double end) {
+  if (!r) return kInf;
+  if (*r == now - origin) return now;
+  double t = std::max(now, origin + *r);
+  for (int k = 0; k < 16; ++k, t = next_up(t))
+    if (negative(t - origin)) return t;
+  // The dip is not representable near the root in absolute time: the general schedule decides.
+  OrderCertificate c;
+  c.f = polynomial();
+  c.origin = origin;
+  c.end = end;
+  const detail::Schedule s = detail::schedule_certificate(c, now, 0, 0);
+  return s.failure ? s.time : kInf;
+}
+
 }  // namespace
+
+// Out of line (quadratic_failure_time, inline, runs the filter): the same arithmetic as the
+// general path, so the same time (test CertificateTime.*).
+double detail::undecided_quadratic_failure_time(const Quadratic& q, double origin, double now,
+                                                double end) {
+  const double s_now = now - origin, s_end = end - origin;
+  const std::optional<double> r = q.c2 != 0
+                                      ? first_failure_quadratic(q, s_now, s_end)
+                                      : first_failure_low_degree(q.polynomial(), s_now, s_end);
+  return absolute_failure_time(
+      r, [&](double s) { return q.sign_after(s) < 0; }, [&] { return q.polynomial(); }, origin, now,
+      end);
+}
 
 bool holds_through(const Polynomial& f, double s_now, double s_end) {
   if (!(std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now)) return false;
@@ -95,6 +158,37 @@ bool holds_through(const Polynomial& f, double s_now, double s_end) {
              clear_through<5>(f.c.data(), s_now, s_end, big_s);
     default: return false;
   }
+}
+
+bool holds_from_root(const Polynomial& f, double s_now, double s_end) {
+  // first_failure isolates on [s_now, s_end] (no tail beyond 2^100), on f scaled by a power of
+  // two, which must stay exact; 16 u |c_k| below must not underflow.
+  if (!(f.degree == 3 && f.c[3] != 0 && s_now >= 0 && s_end > s_now && s_end <= 0x1p100))
+    return false;
+  if (sign_after(f, s_now) <= 0 || sign_after(f, s_end) <= 0) return false;
+  const double largest =
+      std::max({std::fabs(f.c[0]), std::fabs(f.c[1]), std::fabs(f.c[2]), std::fabs(f.c[3])});
+  // d = f + 16 u |f| coefficient-wise, rounded: d_k <= c_k + 17.1 u |c_k|, so that for s >= 0,
+  // d(s) <= f(s) + 17.1 u M(s), M(s) = sum |c_k| s^k.
+  Polynomial d;
+  d.degree = 3;
+  for (int k = 0; k <= 3; ++k) {
+    const double c = f.c[size_t(k)], a = std::fabs(c);
+    if (a != 0 && (a < 0x1p-900 || a < largest * 0x1p-900)) return false;
+    d.c[size_t(k)] = c + 0x1p-49 * a;
+  }
+  // d(s_now) > 0: Horner's value clears its error (gamma_6 of the magnitudes, below 8 u).
+  const double mag =
+      ((std::fabs(d.c[3]) * s_now + std::fabs(d.c[2])) * s_now + std::fabs(d.c[1])) * s_now +
+      std::fabs(d.c[0]);
+  if (!(d(s_now) > 0x1p-50 * mag)) return false;
+  // and rises on [s_now, top] (top >= s_end (1 + u) covers the leaves' rounded ends), or rises
+  // on its first eighth and clears holds_through's margin on the rest.
+  const double top = next_up(next_up(s_end));
+  const Polynomial slope = d.derivative();
+  if (holds_through(slope, s_now, top)) return true;
+  const double mid = s_now + (top - s_now) / 8;
+  return holds_through(slope, s_now, mid) && holds_through(d, mid, top);
 }
 
 std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now, double s_end) {
@@ -128,21 +222,18 @@ std::optional<double> first_failure_low_degree(const Polynomial& f, double s_now
 }
 
 double certificate_failure_time(const Polynomial& f, double origin, double now, double end) {
+  return certificate_failure_time(1, f, origin, now, end);
+}
+
+double certificate_failure_time(int sign, const Polynomial& f, double origin, double now,
+                                double end) {
+  if (f.degree == 2) return quadratic_failure_time(sign, f.c[0], f.c[1], f.c[2], origin, now, end);
+  const Polynomial g = sign > 0 ? f : -f;
   const double s_now = now - origin;
-  if (holds_through(f, s_now, end - origin)) return kInf;
-  const std::optional<double> r = first_failure_low_degree(f, s_now, end - origin);
-  if (!r) return kInf;
-  if (*r == s_now) return now;
-  double t = std::max(now, origin + *r);
-  for (int k = 0; k < 16; ++k, t = next_up(t))
-    if (sign_after(f, t - origin) < 0) return t;
-  // The dip is not representable near the root in absolute time: the general schedule decides.
-  OrderCertificate c;
-  c.f = f;
-  c.origin = origin;
-  c.end = end;
-  const detail::Schedule s = detail::schedule_certificate(c, now, 0, 0);
-  return s.failure ? s.time : kInf;
+  if (holds_through(g, s_now, end - origin) || holds_from_root(g, s_now, end - origin)) return kInf;
+  return absolute_failure_time(
+      first_failure_low_degree(g, s_now, end - origin),
+      [&](double s) { return sign_after(g, s) < 0; }, [&] { return g; }, origin, now, end);
 }
 
 }  // namespace kinray

@@ -40,6 +40,17 @@ namespace kinray {
   return sign_plus(n.perturbed(x, y), s);
 }
 
+/// edge_sign(n.reversed(), x, y, s) without building the reversed normal: its along(x, y) and
+/// Horner's value are the exact negations of n's, so only an exact 0 needs the reversed normal.
+[[nodiscard]] inline int reversed_edge_sign(const EdgeNormal& n, double x, double y, double s) {
+  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
+  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
+  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
+  const double v = (c2 * s + c1) * s + c0;
+  if (v != 0) return v > 0 ? -1 : 1;
+  return sign_plus(n.reversed().perturbed(x, y), s);
+}
+
 /// CoverageRule(m, s, orientation_sign).covers_in_row(x, y, a, b) for a single ray, building only
 /// the two edge normals it tests (`known`, when given, is edge `known_edge` already built): the
 /// same operations on the same values, so the same answer bit for bit.

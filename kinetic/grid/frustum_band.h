@@ -176,6 +176,10 @@ class FrustumBand {
 
   // Scheduling.
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;
+  /// failure_time(sign, n.perturbed(x, y), seg), building the polynomial only when along(x, y)
+  /// vanishes: the certificates of a boundary's watched columns.
+  [[nodiscard]] double edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
+                                         const MeshSegment& seg) const;
   void schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* edge = nullptr);
   void schedule_vertex(uint32_t v);
   void schedule_orientation(uint32_t tri, const TriangleNow& tn);

@@ -207,7 +207,7 @@ bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const {
   auto sign_of = [&](int e) {
     const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
     return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, s)
-                                             : edge_sign(n.reversed(), x, y, s);
+                                             : reversed_edge_sign(n, x, y, s);
   };
   return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
 }

@@ -29,7 +29,20 @@ double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const Mesh
   if (f.degree == 1 && linear_holds_through(sign > 0 ? f.c[0] : -f.c[0], sign > 0 ? f.c[1] : -f.c[1],
                                             m_sim.now() - seg.origin, seg.end - seg.origin))
     return kInf;
-  return certificate_failure_time(sign > 0 ? f : -f, seg.origin, m_sim.now(), seg.end);
+  return certificate_failure_time(sign, f, seg.origin, m_sim.now(), seg.end);
+}
+
+template <class Sort>
+double FrustumBand<Sort>::edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
+                                            const MeshSegment& seg) const {
+  // along(x, y)'s coefficients, with its operations; when one is not 0 that is the perturbed
+  // polynomial, stored with degree 2 and not zero, which failure_time hands on as it is.
+  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
+  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
+  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
+  if (c0 == 0 && c1 == 0 && c2 == 0) return failure_time(sign, n.perturbed(x, y), seg);
+  if (sign == 0) return m_sim.now();
+  return quadratic_failure_time(sign, c0, c1, c2, seg.origin, m_sim.now(), seg.end);
 }
 
 template <class Sort>
@@ -44,8 +57,9 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const 
     const EdgeNormal& edge = known ? *known : m_motion.edge_normal(en.edge);
     const double y = m_scene.row_y(b.row);
     const auto [lo, hi] = m_columns.watched(st.slot);
-    t = failure_time(st.sign_lo, edge.perturbed(m_scene.column_x(lo), y), en.segment);
-    if (hi != lo) t = std::min(t, failure_time(st.sign_hi, edge.perturbed(m_scene.column_x(hi), y), en.segment));
+    t = edge_failure_time(st.sign_lo, edge, m_scene.column_x(lo), y, en.segment);
+    if (hi != lo)
+      t = std::min(t, edge_failure_time(st.sign_hi, edge, m_scene.column_x(hi), y, en.segment));
     // Only from the off slot (at infinity) can the point pass behind the eye.
     if (st.slot == 0) t = std::min(t, failure_time(1, boundary_front(en, b.row), en.segment));
   }
@@ -98,6 +112,7 @@ void FrustumBand<Sort>::schedule_flightplan(uint32_t m) {
 
 #define KINRAY_INSTANTIATE(Sort) \
   template double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const; \
+  template double FrustumBand<Sort>::edge_failure_time(int sign, const EdgeNormal& n, double x, double y, const MeshSegment& seg) const; \
   template void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known); \
   template void FrustumBand<Sort>::schedule_vertex(uint32_t v); \
   template void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn); \

@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "kinetic/grid/coverage_rule.h"
 #include "kinetic/grid/edge_normal_cache.h"
 
 namespace kinray {
@@ -45,6 +46,41 @@ TEST(EdgeNormalCache, BuildsOncePerGenerationAndForgetsOnInvalidate) {
   cache.invalidate();
   expect_same(cache.get(1, p, r), edge_normal(p, r));
   expect_same(cache.get(2, r, q), edge_normal(r, q));
+}
+
+// covers_now takes the sign of a reversed normal from the normal itself (the negation of its
+// Horner value); it must be edge_sign of the reversed normal, exact zeros and the zero normal
+// (an edge through the eye, + both ways) included. Small integer motions at half-integer pixels
+// and dyadic times make exact zeros of the edge function common.
+TEST(EdgeNormalCache, ReversedEdgeSignIsTheSignOfTheReversedNormal) {
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> small(-2, 2);
+  auto integer_motion = [&] {
+    PointMotion p;
+    p.a = Eigen::Vector3d(small(rng), small(rng), small(rng));
+    p.b = Eigen::Vector3d(small(rng), small(rng), small(rng));
+    return p;
+  };
+  int zeros = 0, through_eye = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const bool integer = i % 2 == 0;
+    const PointMotion p = integer ? integer_motion() : random_motion(rng);
+    // Every fourth: q on the line through the eye and p (the normal vanishes identically).
+    PointMotion q = integer ? integer_motion() : random_motion(rng);
+    if (i % 4 == 1) {
+      q.a = 2 * p.a;
+      q.b = 2 * p.b;
+    }
+    const EdgeNormal n = edge_normal(p, q);
+    const double x = 0.5 * small(rng), y = 0.5 * small(rng), s = 0.25 * (small(rng) + 2);
+    const int expected = edge_sign(n.reversed(), x, y, s);
+    EXPECT_EQ(reversed_edge_sign(n, x, y, s), expected) << "i = " << i;
+    EXPECT_EQ(edge_sign(edge_normal(q, p), x, y, s), expected) << "i = " << i;
+    zeros += n.along(x, y)(s) == 0;
+    through_eye += n.along(x, y).is_zero() && n.perturbed(x, y).is_zero();
+  }
+  EXPECT_GT(zeros, 1000);
+  EXPECT_GT(through_eye, 100);
 }
 
 }  // namespace
