@@ -370,16 +370,15 @@ class EmbreeBackend final : public Backend {
   }
 
   /// Runs `band(b, context)` for every b in [0, bands) on all render threads, handing out bands
-  /// dynamically (the cost of a band depends on what it sees).
+  /// one at a time (the cost of a band depends on what it sees).
   template <class F>
   void for_each_band(int bands, F&& band) {
-    std::atomic<int> next{0};
-    parallel_chunks(size_t(m_threads), m_threads, [&](size_t, size_t) {
+    parallel_for_dynamic(size_t(std::max(bands, 0)), m_threads, [&](size_t b) {
       const FlushDenormals flush_denormals;
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // primary rays of neighbouring pixels
-      for (int b = next.fetch_add(1); b < bands; b = next.fetch_add(1)) band(b, context);
+      band(int(b), context);
     });
   }
 

@@ -24,7 +24,7 @@ cd "$root"
 
 packages=(
   cmake ninja-build g++ pkg-config ccache
-  libeigen3-dev libembree-dev libassimp-dev assimp-testmodels libosmesa6-dev
+  libeigen3-dev libtbb-dev libembree-dev libassimp-dev assimp-testmodels libosmesa6-dev
   libopencv-imgcodecs-dev libopencv-imgproc-dev libopencv-videoio-dev
   libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libgmp-dev
 )

@@ -1,13 +1,14 @@
 #include "kinetic/grid/frustum_grid.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <optional>
 #include <stdexcept>
+
+#include <oneapi/tbb/enumerable_thread_specific.h>
 
 #include "kinetic/core/root_finding.h"
 #include "kinetic/grid/frustum_band.h"
@@ -411,15 +412,15 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   const size_t block_rows =
       std::max<size_t>(kReadoutMinBlockRows, size_t(h) / size_t(kReadoutBlocksPerThread * m_threads));
   const size_t blocks = (size_t(h) + block_rows - 1) / block_rows;
-  std::atomic<size_t> next_block{0};
-  parallel_chunks(size_t(m_threads), m_threads, [&](size_t, size_t) {
-    RowReader reader(m_scene, *m_bands, blends);
-    for (size_t b = next_block.fetch_add(1, std::memory_order_relaxed); b < blocks;
-         b = next_block.fetch_add(1, std::memory_order_relaxed))
-      for (size_t j = b * block_rows; j < std::min(size_t(h), (b + 1) * block_rows); ++j) {
-        const size_t row = j * size_t(w);
-        reader.read(int(j), object.data() + row, prim.data() + row, depth.data() + row);
-      }
+  // One reader (its plane cache, its row buffers) per thread, made when the thread takes its first
+  // block.
+  tbb::enumerable_thread_specific<RowReader> readers([&] { return RowReader(m_scene, *m_bands, blends); });
+  parallel_for_dynamic(blocks, m_threads, [&](size_t b) {
+    RowReader& reader = readers.local();
+    for (size_t j = b * block_rows; j < std::min(size_t(h), (b + 1) * block_rows); ++j) {
+      const size_t row = j * size_t(w);
+      reader.read(int(j), object.data() + row, prim.data() + row, depth.data() + row);
+    }
   });
   m_timings.readout += seconds_since(started);
 }

@@ -318,9 +318,9 @@ TEST(ModelGuard, ChildCrashesAndHangsBecomeMessages) {
 }
 
 TEST(ModelGuard, TheChildIsForkedOnlyWhenNoThreadOfOursIsWorking) {
-  // A pool task holds a lock that the child's work needs. Forked while the task held it, the
-  // child would wait for it for ever (the task's thread does not exist in the child): it must
-  // be forked after the task.
+  // A loop's body (on a oneTBB thread or on the loop's caller) holds a lock that the child's work
+  // needs. Forked while the body held it, the child would wait for it for ever (the body's thread
+  // does not exist in the child): it must be forked after the body.
   std::mutex held_by_task;
   std::latch task_holds_it(1);
   std::thread loop([&] {
