@@ -322,6 +322,9 @@ class EmbreeBackend final : public Backend {
 
   void convert(std::span<const Vec3> positions, float* out) const {
     const auto convert_range = [&](size_t begin, size_t end) {
+      // The same rounding on every thread: the caller's and oneTBB's run in other floating-point
+      // environments (util/parallel.h), and a double converts to a denormal float or to 0.
+      const FlushDenormals flush;
       for (size_t v = begin; v < end; ++v) {
         out[3 * v + 0] = float(positions[v].x());
         out[3 * v + 1] = float(positions[v].y());

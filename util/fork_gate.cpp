@@ -56,9 +56,13 @@ void thread_enters_arena(bool worker) {
   enter();
 }
 
-void thread_leaves_arena() { leave(); }
+void thread_leaves_arena() {
+  leave();
+}
 
-int threads_at_work() { return g_at_work.load(); }
+int threads_at_work() {
+  return g_at_work.load();
+}
 
 NoThreadBusy::NoThreadBusy() {
   if (t_busy > 0) return;

@@ -33,7 +33,9 @@ class ArenaWatch : public tbb::task_scheduler_observer {
     if (is_worker) m_workers_entered.fetch_add(1, std::memory_order_relaxed);
   }
   void on_scheduler_exit(bool) override { thread_leaves_arena(); }
-  [[nodiscard]] int workers_entered() const { return m_workers_entered.load(std::memory_order_relaxed); }
+  [[nodiscard]] int workers_entered() const {
+    return m_workers_entered.load(std::memory_order_relaxed);
+  }
 
  private:
   std::atomic<int> m_workers_entered{0};
@@ -66,7 +68,8 @@ void warm_up(Arena& entry, int threads) {
     tbb::parallel_for(
         tbb::blocked_range<int>(0, threads, 1),
         [&](const tbb::blocked_range<int>&) {
-          while (entry.watch.workers_entered() < workers && std::chrono::steady_clock::now() < deadline)
+          while (entry.watch.workers_entered() < workers &&
+                 std::chrono::steady_clock::now() < deadline)
             std::this_thread::yield();
         },
         tbb::simple_partitioner());
@@ -79,7 +82,8 @@ tbb::task_arena& arena(int requested) {
   // No more threads than oneTBB can run at once (the cores, unless a global_control says
   // otherwise): a larger arena would get no more workers, and oneTBB warns on stderr.
   const int threads = std::min(
-      requested, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+      requested,
+      int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
   // Never destroyed: a loop may still run on another thread while the process exits.
   static std::mutex& mutex = *new std::mutex;
   static std::map<int, Arena*>& arenas = *new std::map<int, Arena*>;

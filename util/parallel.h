@@ -2,14 +2,15 @@
 // Parallel loops over [0, n) on oneTBB, the scheduler Embree runs on too: a thin wrapper over
 // blocked_range with a grain size (STYLE.md). `threads` (0: all cores) picks a task_arena of
 // that concurrency (at most what oneTBB runs at once: the cores), created once per distinct count
-// and kept, so the per-frame loops create none. Every body runs under ThreadBusy, and the arenas' threads are counted, for the fork of
-// model_guard.h (util/fork_gate.h). A loop nested in a body runs in the arena of the loop around
-// it, whatever its `threads` (its chunks stay as many as asked): a thread waiting in arena A for
-// a loop in arena B that needs A again would deadlock oneTBB (A's slots are all held by threads
-// waiting in B). And it waits in isolation: while its caller waits, it runs only the nested
-// loop's work, never another item of the loop around it (a body's state, say a thread's reader,
-// is not re-entered). oneTBB hands an exception thrown by a body to the caller, after the bodies
-// that had started have returned; the items not yet started are skipped. The bodies run in the default floating-point environment, whatever the caller's.
+// and kept, so the per-frame loops create none. Every body runs under ThreadBusy, and the arenas'
+// threads are counted, for the fork of model_guard.h (util/fork_gate.h). A loop nested in a body
+// runs in the arena of the loop around it, whatever its `threads` (its chunks stay as many as
+// asked): a thread waiting in arena A for a loop in arena B that needs A again would deadlock
+// oneTBB (A's slots are all held by threads waiting in B). And it waits in isolation: while its
+// caller waits, it runs only the nested loop's work, never another item of the loop around it (a
+// body's state, say a thread's reader, is not re-entered). oneTBB hands an exception thrown by a
+// body to the caller, after the bodies that had started have returned; the items not yet started
+// are skipped. The bodies run in the default floating-point environment, whatever the caller's.
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/partitioner.h>
@@ -79,7 +80,8 @@ void parallel_chunks(size_t n, int threads, F&& f) {
         tbb::blocked_range<size_t>(0, chunks, 1),
         [&](const tbb::blocked_range<size_t>& range) {
           const parallel_detail::Body body(arena);
-          for (size_t w = range.begin(); w < range.end(); ++w) f(n * w / chunks, n * (w + 1) / chunks);
+          for (size_t w = range.begin(); w < range.end(); ++w)
+            f(n * w / chunks, n * (w + 1) / chunks);
         },
         tbb::simple_partitioner());
   });
@@ -95,7 +97,8 @@ void parallel_for(size_t n, int threads, F&& f) {
     for (size_t i = 0; i < n; ++i) f(i);
     return;
   }
-  const size_t grain = std::max<size_t>(1, n / (parallel_detail::kRangesPerThread * size_t(resolved)));
+  const size_t grain =
+      std::max<size_t>(1, n / (parallel_detail::kRangesPerThread * size_t(resolved)));
   parallel_detail::run_in_arena(resolved, [&](tbb::task_arena& arena) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, grain),
                       [&](const tbb::blocked_range<size_t>& range) {

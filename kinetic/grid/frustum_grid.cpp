@@ -414,7 +414,8 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   const size_t blocks = (size_t(h) + block_rows - 1) / block_rows;
   // One reader (its plane cache, its row buffers) per thread, made when the thread takes its first
   // block.
-  tbb::enumerable_thread_specific<RowReader> readers([&] { return RowReader(m_scene, *m_bands, blends); });
+  tbb::enumerable_thread_specific<RowReader> readers(
+      [&] { return RowReader(m_scene, *m_bands, blends); });
   parallel_for_dynamic(blocks, m_threads, [&](size_t b) {
     RowReader& reader = readers.local();
     for (size_t j = b * block_rows; j < std::min(size_t(h), (b + 1) * block_rows); ++j) {

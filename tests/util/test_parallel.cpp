@@ -1,4 +1,4 @@
-#include "util/parallel.h"
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <atomic>
@@ -10,8 +10,7 @@
 #include <vector>
 
 #include "util/fork_gate.h"
-
-#include <gtest/gtest.h>
+#include "util/parallel.h"
 
 namespace kinray {
 namespace {
@@ -52,7 +51,8 @@ TEST(Parallel, ChunksAreExactAndCoverTheRangeOnce) {
       parallel_chunks(n, threads, [&](size_t begin, size_t end) {
         {
           const std::lock_guard lock(mutex);
-          EXPECT_TRUE(seen.emplace(begin, end).second) << "chunk [" << begin << ", " << end << ") twice";
+          EXPECT_TRUE(seen.emplace(begin, end).second)
+              << "chunk [" << begin << ", " << end << ") twice";
         }
         for (size_t i = begin; i < end; ++i) visits[i].fetch_add(1);
       });
@@ -92,24 +92,28 @@ TEST(Parallel, OneThreadRunsOnTheCaller) {
 // A throwing body reaches the caller with its own type, from every kind of loop and from a
 // nested loop (in the same arena and in another one), and the loops still work afterwards.
 TEST(Parallel, ExceptionsReachTheCaller) {
-  EXPECT_THROW(parallel_for(100, 3, [](size_t i) {
-                 if (i == 57) throw std::runtime_error("body");
-               }),
+  EXPECT_THROW(parallel_for(100, 3,
+                            [](size_t i) {
+                              if (i == 57) throw std::runtime_error("body");
+                            }),
                std::runtime_error);
-  EXPECT_THROW(parallel_for_dynamic(100, 2, [](size_t i) {
-                 if (i == 3) throw std::out_of_range("item");
-               }),
+  EXPECT_THROW(parallel_for_dynamic(100, 2,
+                                    [](size_t i) {
+                                      if (i == 3) throw std::out_of_range("item");
+                                    }),
                std::out_of_range);
-  EXPECT_THROW(parallel_chunks(10, 2, [](size_t begin, size_t) {
-                 if (begin != 0) throw std::length_error("chunk");
-               }),
+  EXPECT_THROW(parallel_chunks(10, 2,
+                               [](size_t begin, size_t) {
+                                 if (begin != 0) throw std::length_error("chunk");
+                               }),
                std::length_error);
   for (const int inner_threads : {2, 3})
-    EXPECT_THROW(parallel_for(4, 2, [&](size_t) {
-                   parallel_for(10, inner_threads, [](size_t k) {
-                     if (k == 9) throw std::invalid_argument("nested");
-                   });
-                 }),
+    EXPECT_THROW(parallel_for(4, 2,
+                              [&](size_t) {
+                                parallel_for(10, inner_threads, [](size_t k) {
+                                  if (k == 9) throw std::invalid_argument("nested");
+                                });
+                              }),
                  std::invalid_argument);
   std::atomic<size_t> sum{0};
   parallel_for(100, 3, [&](size_t i) { sum += i; });
