@@ -8,12 +8,19 @@
 
 namespace kinray {
 
+/// {"key": value, ...} for one section of a structure's counters: for_each(visit) calls
+/// visit("stats key", value) for each of them (a KslStats::for_each_list_counter, say).
+template <class ForEach>
+[[nodiscard]] nlohmann::json section_json(ForEach&& for_each) {
+  nlohmann::json out = nlohmann::json::object();
+  for_each([&](const char* key, uint64_t value) { out[key] = value; });
+  return out;
+}
+
 /// {"key": value, ...} for each counter of `counters` (a KINRAY_COUNTERS struct).
 template <class Counters>
 [[nodiscard]] nlohmann::json counters_json(const Counters& counters) {
-  nlohmann::json out = nlohmann::json::object();
-  counters.for_each_counter([&](const char* key, uint64_t value) { out[key] = value; });
-  return out;
+  return section_json([&](auto visit) { counters.for_each_counter(visit); });
 }
 
 /// counters_json of a KINRAY_EVENT_COUNTERS struct, with "total".

@@ -70,12 +70,8 @@ nlohmann::json ksl_json(const KslReport& k) {
           {"events_external", q.events_external},
           {"events_internal", q.events_internal},
           {"certificates",
-           {{"live", k.list.certificates_live},
-            {"live_max", k.list.certificates_live_max},
-            {"computed", k.list.certificates_computed}}},
-          {"list", {{"pairs", k.list.list_pairs}, {"pairs_max", k.list.list_pairs_max},
-                    {"leaf_pairs", k.list.leaf_pairs}, {"watched_pairs", k.list.watched_pairs},
-                    {"leaf_tests", k.list.leaf_tests}}},
+           section_json([&](auto visit) { k.list.for_each_certificate_counter(visit); })},
+          {"list", section_json([&](auto visit) { k.list.for_each_list_counter(visit); })},
           {"quality", quality_json(q)},
           {"trees", {{"leaf_events", k.trees.events.leaf}, {"tree_events", k.trees.events.tree},
                      {"flightplan_events", k.trees.events.flightplan},
@@ -84,19 +80,11 @@ nlohmann::json ksl_json(const KslReport& k) {
 }
 
 nlohmann::json stats_json(const SceneContacts& r) {
-  const PrimitiveCcdCounters& p = r.counters.primitives;
   nlohmann::json stats = {{"segments", r.segments},
                           {"object_segments", r.counters.segments},
                           {"node_visits", r.counters.node_visits},
-                          {"triangle_pairs", r.counters.triangle_pairs},
-                          {"primitive_tests", p.tests},
-                          {"box_rejections", p.box_rejections},
-                          {"cubic_rejections", p.cubic_rejections},
-                          {"interval_rejections", p.interval_rejections},
-                          {"interval_contacts", p.interval_contacts},
-                          {"exact_signs", p.exact_signs},
-                          {"exact_decisions", p.exact_decisions},
-                          {"primitive_pairs_in_contact", p.contacts}};
+                          {"triangle_pairs", r.counters.triangle_pairs}};
+  stats.update(counters_json(r.counters.primitives));
   if (r.ksl) stats["ksl"] = ksl_json(*r.ksl);
   return stats;
 }

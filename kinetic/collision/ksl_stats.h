@@ -23,30 +23,40 @@ struct KslEventCounts {
   [[nodiscard]] uint64_t external() const { return overlap + separation; }
 };
 
+// X(member, "stats key") of KslStats, by the section of --stats they are written in
+// (kinetic/core/counters.h).
+#define KINRAY_KSL_CERTIFICATE_COUNTERS(X)                                                    \
+  X(certificates_computed, "computed") /* every linear certificate (re)computation */       \
+  X(certificates_live, "live")         /* now: 1 per separated pair, 6 per watched pair */  \
+  X(certificates_live_max, "live_max") /* the most live at once */
+#define KINRAY_KSL_LIST_COUNTERS(X)                                                           \
+  X(list_pairs, "pairs")             /* the front now: separated and overlapping leaf pairs */ \
+  X(list_pairs_max, "pairs_max")                                                             \
+  X(leaf_pairs, "leaf_pairs")        /* overlapping triangle pairs listed now */             \
+  X(watched_pairs, "watched_pairs")  /* overlapping inner pairs (watched for separation) */  \
+  X(leaf_tests, "leaf_tests")        /* (triangle pair, segment) primitive test runs */
+#define KINRAY_KSL_COUNTERS(X)         \
+  KINRAY_KSL_CERTIFICATE_COUNTERS(X)   \
+  KINRAY_KSL_LIST_COUNTERS(X)          \
+  X(triangles, "triangles") /* of the trees (the structure's objects) */
+
 struct KslStats {
   KslEventCounts events;
-  uint64_t certificates_computed = 0;  ///< every linear certificate (re)computation
-  uint64_t certificates_live = 0;      ///< now: 1 per separated pair, 6 per watched pair
-  uint64_t certificates_live_max = 0;  ///< the most live at once
-  uint64_t list_pairs = 0;             ///< the front now: separated and overlapping leaf pairs
-  uint64_t list_pairs_max = 0;
-  uint64_t leaf_pairs = 0;       ///< overlapping triangle pairs listed now
-  uint64_t watched_pairs = 0;    ///< overlapping inner pairs (watched for separation) now
-  uint64_t leaf_tests = 0;       ///< (triangle pair, segment) primitive test runs
-  uint64_t triangles = 0;        ///< of the trees (the structure's objects)
+  KINRAY_KSL_COUNTERS(KINRAY_COUNTER_FIELD)
 
-  KslStats& operator+=(const KslStats& o) {
-    events += o.events;
-    certificates_computed += o.certificates_computed;
-    certificates_live += o.certificates_live;
-    certificates_live_max += o.certificates_live_max;
-    list_pairs += o.list_pairs;
-    list_pairs_max += o.list_pairs_max;
-    leaf_pairs += o.leaf_pairs;
-    watched_pairs += o.watched_pairs;
-    leaf_tests += o.leaf_tests;
-    triangles += o.triangles;
+  KslStats& operator+=(const KslStats& other) {
+    events += other.events;
+    KINRAY_KSL_COUNTERS(KINRAY_COUNTER_ADD)
     return *this;
+  }
+  /// visit("stats key", value) for the counters of the "certificates" section, then of "list".
+  template <class Visit>
+  void for_each_certificate_counter(Visit&& visit) const {
+    KINRAY_KSL_CERTIFICATE_COUNTERS(KINRAY_COUNTER_VISIT)
+  }
+  template <class Visit>
+  void for_each_list_counter(Visit&& visit) const {
+    KINRAY_KSL_LIST_COUNTERS(KINRAY_COUNTER_VISIT)
   }
 };
 

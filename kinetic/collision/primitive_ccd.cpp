@@ -100,18 +100,6 @@ bool coplanarity_certainly_nonzero(const PrimitiveMotion& m) {
 
 }  // namespace
 
-PrimitiveCcdCounters& PrimitiveCcdCounters::operator+=(const PrimitiveCcdCounters& o) {
-  tests += o.tests;
-  box_rejections += o.box_rejections;
-  cubic_rejections += o.cubic_rejections;
-  interval_rejections += o.interval_rejections;
-  interval_contacts += o.interval_contacts;
-  exact_signs += o.exact_signs;
-  exact_decisions += o.exact_decisions;
-  contacts += o.contacts;
-  return *this;
-}
-
 std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motion,
                                   PrimitiveCcdCounters* counters, LocalWindow window) {
   PrimitiveCcdCounters local;

@@ -7,21 +7,24 @@
 #include <vector>
 
 #include "kinetic/collision/contact_pair.h"
+#include "kinetic/core/counters.h"
 
 namespace kinray {
 
+// X(member, "stats key") of PrimitiveCcdCounters (kinetic/core/counters.h).
+#define KINRAY_PRIMITIVE_CCD_COUNTERS(X)                                                       \
+  X(tests, "primitive_tests")                 /* primitive pairs tested */                     \
+  X(box_rejections, "box_rejections")         /* separated swept boxes */                      \
+  X(cubic_rejections, "cubic_rejections")     /* coplanarity cubic of one sign on [0, 1] */    \
+  X(interval_rejections, "interval_rejections") /* no contact, certified by intervals */       \
+  X(interval_contacts, "interval_contacts")   /* contacts and times certified by intervals */  \
+  X(exact_signs, "exact_signs")     /* grid points of interval contacts signed in rationals */ \
+  X(exact_decisions, "exact_decisions")       /* decided in rational arithmetic */             \
+  X(contacts, "primitive_pairs_in_contact")   /* pairs with at least one time of contact */
+
 /// How the primitive tests were decided (for --stats).
 struct PrimitiveCcdCounters {
-  std::uint64_t tests = 0;             ///< primitive pairs tested
-  std::uint64_t box_rejections = 0;    ///< separated swept boxes
-  std::uint64_t cubic_rejections = 0;  ///< coplanarity cubic of one certified sign on [0, 1]
-  std::uint64_t interval_rejections = 0;  ///< no contact, certified by interval arithmetic
-  std::uint64_t interval_contacts = 0;    ///< contacts and times certified by intervals
-  std::uint64_t exact_signs = 0;       ///< grid points of interval contacts signed in rationals
-  std::uint64_t exact_decisions = 0;   ///< decided in rational arithmetic
-  std::uint64_t contacts = 0;          ///< pairs with at least one time of contact
-
-  PrimitiveCcdCounters& operator+=(const PrimitiveCcdCounters& o);
+  KINRAY_COUNTERS(PrimitiveCcdCounters, KINRAY_PRIMITIVE_CCD_COUNTERS)
 };
 
 /// Every time of contact of the pair in local time [0, 1] (in `window`), sorted; each time t
