@@ -22,18 +22,44 @@ struct TreeEventCounts {
   [[nodiscard]] uint64_t failures() const { return leaf + tree; }
 };
 
+// X(member, "stats key") of TreeStats, by the section of --stats they are written in
+// (kinetic/core/counters.h): the top level, "certificates", and "tree" (the tree's shape).
+#define KINRAY_TREE_COUNTERS(X)                                                                \
+  X(events_external, "events_external")   /* events that changed some node's realizing vertex */ \
+  X(events_internal, "events_internal")   /* the others (key updates, rounding-level failures) */ \
+  X(realizer_changes, "realizer_changes") /* node sides whose realizer changed (propagation too) */
+#define KINRAY_TREE_CERTIFICATE_COUNTERS(X)                                                    \
+  X(certificates_live, "live")            /* now (leaf sides count two, inner sides one) */     \
+  X(certificates_live_max, "live_max")    /* the largest certificates_live seen at a frame */  \
+  X(certificates_computed, "computed")    /* every certificate (re)computation */              \
+  X(certificates_by_keys, "decided_at_keys") /* of which decided at a key from two positions */ \
+  X(scheduled_events, "scheduled")        /* certificates with a failure in their segment */
+#define KINRAY_TREE_SHAPE_COUNTERS(X)                                                          \
+  X(nodes, "nodes")                                                                            \
+  X(height, "height")                                                                          \
+  X(node_sides, "node_sides")             /* node sides tracked */                             \
+  X(triangles, "triangles")                                                                    \
+  X(triangles_present, "triangles_present")
+
 struct TreeStats {
   TreeEventCounts events;
-  uint64_t events_external = 0;        ///< events that changed some node's realizing vertex
-  uint64_t events_internal = 0;        ///< the others (key updates, rounding-level failures)
-  uint64_t realizer_changes = 0;       ///< node sides whose realizer changed (incl. propagation)
-  uint64_t certificates_computed = 0;  ///< every certificate (re)computation
-  uint64_t certificates_by_keys = 0;   ///< of which decided at a key from the two key positions
-  uint64_t certificates_live = 0;      ///< now (leaf sides count two, inner sides one)
-  uint64_t certificates_live_max = 0;  ///< the largest certificates_live seen at a frame
-  uint64_t scheduled_events = 0;       ///< certificates with a failure in their segment, now
-  uint64_t nodes = 0, height = 0, node_sides = 0;  ///< the tree; node sides tracked
-  uint64_t triangles = 0, triangles_present = 0;
+  KINRAY_TREE_COUNTERS(KINRAY_COUNTER_FIELD)
+  KINRAY_TREE_CERTIFICATE_COUNTERS(KINRAY_COUNTER_FIELD)
+  KINRAY_TREE_SHAPE_COUNTERS(KINRAY_COUNTER_FIELD)
+
+  /// visit("stats key", value) for the counters of the top level, of "certificates", of "tree".
+  template <class Visit>
+  void for_each_counter(Visit&& visit) const {
+    KINRAY_TREE_COUNTERS(KINRAY_COUNTER_VISIT)
+  }
+  template <class Visit>
+  void for_each_certificate_counter(Visit&& visit) const {
+    KINRAY_TREE_CERTIFICATE_COUNTERS(KINRAY_COUNTER_VISIT)
+  }
+  template <class Visit>
+  void for_each_shape_counter(Visit&& visit) const {
+    KINRAY_TREE_SHAPE_COUNTERS(KINRAY_COUNTER_VISIT)
+  }
 };
 
 }  // namespace kinray
