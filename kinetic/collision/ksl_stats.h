@@ -49,15 +49,9 @@ struct KslStats {
     KINRAY_KSL_COUNTERS(KINRAY_COUNTER_ADD)
     return *this;
   }
-  /// visit("stats key", value) for the counters of the "certificates" section, then of "list".
-  template <class Visit>
-  void for_each_certificate_counter(Visit&& visit) const {
-    KINRAY_KSL_CERTIFICATE_COUNTERS(KINRAY_COUNTER_VISIT)
-  }
-  template <class Visit>
-  void for_each_list_counter(Visit&& visit) const {
-    KINRAY_KSL_LIST_COUNTERS(KINRAY_COUNTER_VISIT)
-  }
+  /// visit("stats key", value) for the counters of the "certificates" section, of "list".
+  KINRAY_COUNTER_SECTION(for_each_certificate_counter, KINRAY_KSL_CERTIFICATE_COUNTERS)
+  KINRAY_COUNTER_SECTION(for_each_list_counter, KINRAY_KSL_LIST_COUNTERS)
 };
 
 }  // namespace kinray

@@ -25,6 +25,14 @@
     LIST(KINRAY_COUNTER_VISIT)                       \
   }
 
+/// A member `function(visit)` that visits only the counters of LIST: a section of a struct whose
+/// --stats JSON groups its counters (renderer/stats_json.h, section_json).
+#define KINRAY_COUNTER_SECTION(function, LIST) \
+  template <class Visit>                       \
+  void function(Visit&& visit) const {         \
+    LIST(KINRAY_COUNTER_VISIT)                 \
+  }
+
 /// KINRAY_COUNTERS for counts of events by kind, with `total()`, the sum over the kinds.
 #define KINRAY_EVENT_COUNTERS(Type, LIST)                                      \
   KINRAY_COUNTERS(Type, LIST)                                                  \

@@ -48,18 +48,9 @@ struct TreeStats {
   KINRAY_TREE_SHAPE_COUNTERS(KINRAY_COUNTER_FIELD)
 
   /// visit("stats key", value) for the counters of the top level, of "certificates", of "tree".
-  template <class Visit>
-  void for_each_counter(Visit&& visit) const {
-    KINRAY_TREE_COUNTERS(KINRAY_COUNTER_VISIT)
-  }
-  template <class Visit>
-  void for_each_certificate_counter(Visit&& visit) const {
-    KINRAY_TREE_CERTIFICATE_COUNTERS(KINRAY_COUNTER_VISIT)
-  }
-  template <class Visit>
-  void for_each_shape_counter(Visit&& visit) const {
-    KINRAY_TREE_SHAPE_COUNTERS(KINRAY_COUNTER_VISIT)
-  }
+  KINRAY_COUNTER_SECTION(for_each_counter, KINRAY_TREE_COUNTERS)
+  KINRAY_COUNTER_SECTION(for_each_certificate_counter, KINRAY_TREE_CERTIFICATE_COUNTERS)
+  KINRAY_COUNTER_SECTION(for_each_shape_counter, KINRAY_TREE_SHAPE_COUNTERS)
 };
 
 }  // namespace kinray
