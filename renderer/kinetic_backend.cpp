@@ -86,13 +86,11 @@ class KineticBackend final : public Backend {
     if (!m_grid) return;
     if (m_shutter) {
       const KineticShutterStats& s = m_shutter->stats();
-      stats["shutter"] = {{"order", m_shutter->order()},
-                          {"front_changes", s.front_changes},
-                          {"pixels_split", s.pixels_split},
-                          {"shading_nodes", s.shading_nodes},
-                          {"events_s", s.events_s},
-                          {"integrate_s", s.integrate_s},
-                          {"readout_s", s.readout_s}};
+      nlohmann::json& shutter = stats["shutter"] = counters_json(s);
+      shutter["order"] = m_shutter->order();
+      shutter["events_s"] = s.events_s;
+      shutter["integrate_s"] = s.integrate_s;
+      shutter["readout_s"] = s.readout_s;
     }
     const GridStats s = m_grid->stats();
     const GridTimings& timings = m_grid->timings();

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "kinetic/core/counters.h"
 #include "kinetic/grid/frustum_grid.h"
 #include "renderer/frame.h"
 #include "renderer/shading.h"
@@ -19,11 +20,16 @@
 
 namespace kinray {
 
-/// Counters of the blurred frames, for --stats.
+// X(member, "stats key") of KineticShutterStats (kinetic/core/counters.h).
+#define KINRAY_SHUTTER_COUNTERS(X)                                                   \
+  X(front_changes, "front_changes") /* logged changes inside the windows */         \
+  X(pixels_split, "pixels_split")   /* pixels whose window has several intervals */ \
+  X(shading_nodes, "shading_nodes") /* shade_hit calls */
+
+/// Counters and timings of the blurred frames, for --stats ("shutter").
 struct KineticShutterStats {
-  uint64_t front_changes = 0;  ///< logged changes inside the windows
-  uint64_t pixels_split = 0;   ///< pixels whose window has more than one interval, summed
-  uint64_t shading_nodes = 0;  ///< shade_hit calls
+  KINRAY_SHUTTER_COUNTERS(KINRAY_COUNTER_FIELD)
+  KINRAY_COUNTER_SECTION(for_each_counter, KINRAY_SHUTTER_COUNTERS)
   double events_s = 0;         ///< seconds advancing the grid through the windows (and gaps)
   double integrate_s = 0;      ///< seconds walking the logs and integrating the shading
   double readout_s = 0;        ///< seconds reading the ids and depths at the frame times

@@ -41,14 +41,7 @@ struct KslEventCounts {
   X(triangles, "triangles") /* of the trees (the structure's objects) */
 
 struct KslStats {
-  KslEventCounts events;
-  KINRAY_KSL_COUNTERS(KINRAY_COUNTER_FIELD)
-
-  KslStats& operator+=(const KslStats& other) {
-    events += other.events;
-    KINRAY_KSL_COUNTERS(KINRAY_COUNTER_ADD)
-    return *this;
-  }
+  KINRAY_COUNTERS_WITH_EVENTS(KslStats, KslEventCounts, KINRAY_KSL_COUNTERS)
   /// visit("stats key", value) for the counters of the "certificates" section, of "list".
   KINRAY_COUNTER_SECTION(for_each_certificate_counter, KINRAY_KSL_CERTIFICATE_COUNTERS)
   KINRAY_COUNTER_SECTION(for_each_list_counter, KINRAY_KSL_LIST_COUNTERS)

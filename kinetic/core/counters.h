@@ -14,9 +14,19 @@
 
 /// The members of a counter struct `Type` whose counters are LIST: the fields, `operator+=`, and
 /// `for_each_counter(visit)`, which calls visit("stats key", value) for each counter in order.
-#define KINRAY_COUNTERS(Type, LIST)                  \
+#define KINRAY_COUNTERS(Type, LIST) KINRAY_COUNTERS_ADDING(Type, LIST, )
+
+/// KINRAY_COUNTERS with a member `events` of type Events (a KINRAY_EVENT_COUNTERS struct) first,
+/// summed by `operator+=` too; for_each_counter visits LIST only (the JSON writes the events as
+/// their own section).
+#define KINRAY_COUNTERS_WITH_EVENTS(Type, Events, LIST) \
+  Events events;                                        \
+  KINRAY_COUNTERS_ADDING(Type, LIST, events += other.events;)
+
+#define KINRAY_COUNTERS_ADDING(Type, LIST, ALSO_ADD) \
   LIST(KINRAY_COUNTER_FIELD)                         \
   Type& operator+=(const Type& other) {              \
+    ALSO_ADD                                         \
     LIST(KINRAY_COUNTER_ADD)                         \
     return *this;                                    \
   }                                                  \

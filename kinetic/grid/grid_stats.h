@@ -47,18 +47,7 @@ struct GridEventCounts {
   X(pixel_memory_bytes, "pixel_memory_bytes") /* of which: the per-pixel orders */
 
 struct GridStats {
-  GridEventCounts events;
-  KINRAY_GRID_COUNTERS(KINRAY_COUNTER_FIELD)
-
-  GridStats& operator+=(const GridStats& other) {
-    events += other.events;
-    KINRAY_GRID_COUNTERS(KINRAY_COUNTER_ADD)
-    return *this;
-  }
-  template <class Visit>
-  void for_each_counter(Visit&& visit) const {
-    KINRAY_GRID_COUNTERS(KINRAY_COUNTER_VISIT)
-  }
+  KINRAY_COUNTERS_WITH_EVENTS(GridStats, GridEventCounts, KINRAY_GRID_COUNTERS)
 };
 
 }  // namespace kinray
