@@ -19,6 +19,7 @@
 // _vertex_rows, _orientation (orientation and the culling watch), _meshes (insert, remove,
 // flightplan switch), _audit and _readout.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,8 +31,9 @@
 #include "kinetic/grid/front_change_log.h"
 #include "kinetic/grid/grid_scene.h"
 #include "kinetic/grid/grid_stats.h"
-#include "kinetic/grid/pixel_depth_order.h"
+#include "kinetic/grid/pixel_orders.h"
 #include "kinetic/grid/row_record.h"
+#include "kinetic/sort/depth_sort_kind.h"
 #include "kinetic/sort/kinetic_sort.h"
 #include "util/work_progress.h"
 
@@ -42,9 +44,6 @@ struct FrustumBandTestAccess;
 /// EventKey::kind of the grid's events; at equal times they are processed in this order, so a
 /// flightplan update (which recomputes certificates) precedes the failures computed on the old
 /// segment that end there.
-/// FrustumBand::front_row's value for a pixel no triangle covers.
-inline constexpr uint32_t kNoFront = ~0u;
-
 enum GridEventKind : uint32_t {
   kGridFlightplan = 0,
   kGridRemove = 1,
@@ -55,11 +54,10 @@ enum GridEventKind : uint32_t {
   kGridSwap = 6,
 };
 
-/// Sort is KineticSortedList, KineticTournament or KineticHeap over PixelDepthKeys.
-template <class Sort>
 class FrustumBand {
  public:
   struct Config {
+    DepthSortKind sort = DepthSortKind::kList;  ///< the pixel orders' kinetic sort
     bool audit = false;          ///< audit each touched pixel order after every change
     bool counts_meshes = false;  ///< counts the per-mesh events (exactly one band does)
     WorkProgress* init_progress = nullptr;  ///< start() counts the triangles it scans here
@@ -86,15 +84,15 @@ class FrustumBand {
   [[nodiscard]] const uint32_t* front_row(int row) const {
     return m_fronts.data() + pixel_index(0, row);
   }
-  /// f(global id) for every triangle in pixel (column, row)'s depth order: front to back for the
-  /// sorted list, the front first but otherwise unsorted for the tournament and the heap.
-  template <class F>
-  void for_each_member(int column, int row, F&& f) const {
-    cell(column, row).order.for_each(f);
+  /// Every triangle (global id) of pixel (column, row)'s depth order into `out` (cleared
+  /// first): front to back for the sorted list, the front first but otherwise unsorted for the
+  /// tournament and the heap.
+  void members(int column, int row, std::vector<uint32_t>& out) const {
+    m_orders->members(pixel_index(column, row), out);
   }
   /// The number of triangles in pixel (column, row)'s depth order.
   [[nodiscard]] size_t depth_complexity(int column, int row) const {
-    return cell(column, row).order.size();
+    return m_orders->size(pixel_index(column, row));
   }
   /// Brute-force check of every invariant just after t (t >= the last event, before the next):
   /// records and their ties, slots and covered intervals against the sign rule, the rows each
@@ -107,13 +105,6 @@ class FrustumBand {
   void set_front_log(FrontChangeLog* log) { m_front_log = log; }
 
  private:
-  struct PixelCell {
-    PixelCell(const BandMotion* source, int column, int row, EventQueue& queue, uint32_t owner,
-              const KineticSortConfig& config)
-        : keys(source, column, row), order(keys, queue, owner, config) {}
-    PixelDepthKeys keys;
-    Sort order;
-  };
   struct TriangleState {
     uint32_t head = kNoRecord;  ///< first record of the triangle in this band
     /// Sign of O just after the last update; kept while the triangle has records, and while
@@ -246,15 +237,9 @@ class FrustumBand {
   [[nodiscard]] size_t pixel_index(int column, int row) const {
     return size_t(row - m_row_begin) * size_t(m_width) + size_t(column);
   }
-  [[nodiscard]] PixelCell& cell(int column, int row) { return m_pixels[pixel_index(column, row)]; }
-  [[nodiscard]] const PixelCell& cell(int column, int row) const {
-    return m_pixels[pixel_index(column, row)];
-  }
-  /// Copies pixel (column, row)'s front into m_fronts after a change of its order; true if the
-  /// front changed.
-  bool refresh_front(int column, int row) {
-    const size_t k = pixel_index(column, row);
-    const uint32_t tri = m_pixels[k].order.front().value_or(kNoFront);
+  /// Copies pixel k's front `tri` into m_fronts after a change of its order; true if the front
+  /// changed.
+  bool refresh_front(size_t k, uint32_t tri) {
     const bool changed = tri != m_fronts[k];
     m_fronts[k] = tri;
     if (changed && m_front_log) [[unlikely]]
@@ -303,8 +288,8 @@ class FrustumBand {
   std::vector<EdgeBoundary> m_boundaries;
   std::vector<uint32_t> m_free_boundaries;
   std::vector<uint32_t> m_edge_heads;  ///< per global edge: its first boundary in the band
-  KineticSortStats m_sort_stats;
-  std::vector<PixelCell> m_pixels;  ///< reserved once: the orders point at their keys
+  KineticSortStats m_sort_stats;       ///< the pixel orders' counters, summed
+  std::unique_ptr<PixelOrders> m_orders;  ///< one depth order per pixel, by pixel_index
   std::vector<uint32_t> m_fronts;   ///< per pixel: its order's front, or kNoFront
   FrontChangeLog* m_front_log = nullptr;  ///< motion blur: where front changes go, if anywhere
 
@@ -312,8 +297,6 @@ class FrustumBand {
   bool m_front_changed = false;  ///< set by pixel changes during one event
   std::vector<uint32_t> m_watch_changed;  ///< handle_vertex: triangles (un)watched by this event
   uint64_t m_live_boundaries = 0, m_live_vertices = 0, m_live_orientations = 0;
-  size_t m_pixel_bytes = 0;     ///< sum of the pixel orders' memory_bytes() and their keys
-  uint64_t m_pixel_entries = 0;  ///< sum of the pixel orders' sizes
 };
 
 }  // namespace kinray

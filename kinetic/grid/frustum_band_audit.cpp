@@ -10,16 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "kinetic/grid/frustum_band_sorts.h"
 #include "kinetic/grid/row_crossings.h"
 
 namespace kinray {
 
-template <class Sort>
-class FrustumBand<Sort>::Audit {
+class FrustumBand::Audit {
  public:
   Audit(const FrustumBand& band, double t, size_t limit)
-      : m_band(band), m_t(t), m_limit(limit), m_expected(band.m_pixels.size(), 0) {}
+      : m_band(band), m_t(t), m_limit(limit), m_expected(band.m_fronts.size(), 0) {}
 
   std::vector<std::string> run() && {
     queue_drained();
@@ -166,7 +164,7 @@ class FrustumBand<Sort>::Audit {
         report("record coverage", column, truth ? "covered but not held" : "held but not covered");
       if (!r.covers(c)) continue;
       ++m_expected[band.pixel_index(c, r.row)];
-      if (!band.cell(c, r.row).order.contains(tri))
+      if (!band.m_orders->contains(band.pixel_index(c, r.row), tri))
         report("record in pixel order", column, "missing from the pixel order");
     }
   }
@@ -225,11 +223,8 @@ class FrustumBand<Sort>::Audit {
   void running_counts() {
     uint64_t entries = 0;
     size_t pixel_bytes = 0;
-    for (const PixelCell& p : m_band.m_pixels) {
-      entries += p.order.size();
-      pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
-    }
-    if (entries != m_band.m_pixel_entries || pixel_bytes != m_band.m_pixel_bytes)
+    m_band.m_orders->recount(entries, pixel_bytes);
+    if (entries != m_band.m_orders->entries() || pixel_bytes != m_band.m_orders->memory_bytes())
       report("running counts", "", "the running count of pixel entries or pixel bytes is wrong");
   }
 
@@ -239,12 +234,12 @@ class FrustumBand<Sort>::Audit {
     const FrustumBand& band = m_band;
     for (int j = band.m_row_begin; j < band.m_row_end; ++j)
       for (int i = 0; i < band.m_width; ++i) {
-        const PixelCell& p = band.cell(i, j);
-        if (p.order.size() != m_expected[band.pixel_index(i, j)])
+        const size_t k = band.pixel_index(i, j);
+        if (band.m_orders->size(k) != m_expected[k])
           report("pixel set", pixel(i, j), "holds triangles that do not cover it");
-        if (std::optional<std::string> problem = p.order.audit_problem(m_t))
+        if (std::optional<std::string> problem = band.m_orders->audit_problem(k, m_t))
           report("pixel order", pixel(i, j), *problem);
-        if (band.m_fronts[band.pixel_index(i, j)] != p.order.front().value_or(kNoFront))
+        if (band.m_fronts[k] != band.m_orders->front(k))
           report("front array", pixel(i, j), "stale front in the band's front array");
       }
   }
@@ -256,25 +251,17 @@ class FrustumBand<Sort>::Audit {
   std::vector<uint32_t> m_expected;  ///< per pixel: how many records cover it
 };
 
-template <class Sort>
-std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const {
+std::vector<std::string> FrustumBand::audit(double t, size_t limit) const {
   return Audit(*this, t, limit).run();
 }
 
-template <class Sort>
-void FrustumBand<Sort>::audit_pixel(int column, int row, double t) const {
-  std::optional<std::string> problem = cell(column, row).order.audit_problem(t);
+void FrustumBand::audit_pixel(int column, int row, double t) const {
+  std::optional<std::string> problem = m_orders->audit_problem(pixel_index(column, row), t);
   if (!problem) return;
   char head[160];
   std::snprintf(head, sizeof head, "kinetic audit: band rows [%d, %d) pixel (%d, %d) at t = %.17g: ",
                 m_row_begin, m_row_end, column, row, t);
   throw KineticAuditFailure(head + *problem);
 }
-
-#define KINRAY_INSTANTIATE(Sort)                                                            \
-  template std::vector<std::string> FrustumBand<Sort>::audit(double t, size_t limit) const; \
-  template void FrustumBand<Sort>::audit_pixel(int column, int row, double t) const;
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

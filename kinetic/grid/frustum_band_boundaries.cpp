@@ -2,13 +2,11 @@
 // slots among the columns, and the boundary events that move them across a column centre.
 #include "kinetic/grid/frustum_band.h"
 
-#include "kinetic/grid/frustum_band_sorts.h"
 #include "util/check.h"
 
 namespace kinray {
 
-template <class Sort>
-bool FrustumBand<Sort>::bind_boundary(uint32_t rec, int k, const SlotTracker* hint) {
+bool FrustumBand::bind_boundary(uint32_t rec, int k, const SlotTracker* hint) {
   const uint32_t edge = m_scene.edge_of_triangle(m_records[rec].triangle, m_records[rec].edge[size_t(k)]);
   const int row = m_records[rec].row;
   uint32_t id = m_edge_heads[edge];
@@ -45,8 +43,7 @@ bool FrustumBand<Sort>::bind_boundary(uint32_t rec, int k, const SlotTracker* hi
   return agrees;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::release_boundary(uint32_t rec, int k) {
+void FrustumBand::release_boundary(uint32_t rec, int k) {
   const uint32_t id = m_records[rec].boundary[size_t(k)];
   m_records[rec].boundary[size_t(k)] = kNoBoundary;
   EdgeBoundary& b = m_boundaries[id];
@@ -68,8 +65,7 @@ void FrustumBand<Sort>::release_boundary(uint32_t rec, int k) {
   m_free_boundaries.push_back(id);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::relocate_boundary(uint32_t id, uint32_t rec) {
+void FrustumBand::relocate_boundary(uint32_t id, uint32_t rec) {
   const EdgeNow en = edge_now(m_boundaries[id].edge);
   const SlotTracker before = m_boundaries[id].tracker;
   locate_boundary(m_boundaries[id], en);
@@ -84,8 +80,7 @@ void FrustumBand<Sort>::relocate_boundary(uint32_t id, uint32_t rec) {
       rescan_record(other, triangle_now(m_records[other].triangle), true);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::rebuild_boundary(uint32_t id) {
+void FrustumBand::rebuild_boundary(uint32_t id) {
   ++m_stats.degenerate_rebuilds;
   const EdgeNow en = edge_now(m_boundaries[id].edge);
   locate_boundary(m_boundaries[id], en);
@@ -95,8 +90,7 @@ void FrustumBand<Sort>::rebuild_boundary(uint32_t id) {
     if (rec != kNoRecord) rescan_record(rec, triangle_now(m_records[rec].triangle), true);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::handle_boundary(uint32_t id) {
+void FrustumBand::handle_boundary(uint32_t id) {
   EdgeBoundary& b = m_boundaries[id];
   SlotTracker& st = b.tracker;
   st.event = kNoEvent;
@@ -156,9 +150,8 @@ void FrustumBand<Sort>::handle_boundary(uint32_t id) {
   pass_column(id, column, en.s);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::handle_boundary_behind_eye(uint32_t id, const EdgeNow& en,
-                                                   const EdgeNormal& edge) {
+void FrustumBand::handle_boundary_behind_eye(uint32_t id, const EdgeNow& en,
+                                             const EdgeNormal& edge) {
   SlotTracker& st = m_boundaries[id].tracker;
   const int row = m_boundaries[id].row;
   // Back in front through the eye plane, at infinity: the off slot. Nothing visible changes.
@@ -182,8 +175,7 @@ void FrustumBand<Sort>::handle_boundary_behind_eye(uint32_t id, const EdgeNow& e
   schedule_boundary(id, en, &edge);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::pass_column(uint32_t id, int column, double s) {
+void FrustumBand::pass_column(uint32_t id, int column, double s) {
   // The column passes from one triangle of the edge to the other: the one that loses it goes
   // first, so the pixel's order never holds both (no depth certificate between them).
   // Both triangles are on the edge's mesh segment, at its local time s.
@@ -195,16 +187,5 @@ void FrustumBand<Sort>::pass_column(uint32_t id, int column, double s) {
     for (size_t k = 0; k < 2; ++k)
       if (records[k] != kNoRecord && covered[k] == gains) set_pixel(records[k], column, gains);
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template bool FrustumBand<Sort>::bind_boundary(uint32_t rec, int k, const SlotTracker* hint); \
-  template void FrustumBand<Sort>::release_boundary(uint32_t rec, int k); \
-  template void FrustumBand<Sort>::relocate_boundary(uint32_t id, uint32_t rec); \
-  template void FrustumBand<Sort>::rebuild_boundary(uint32_t id); \
-  template void FrustumBand<Sort>::handle_boundary(uint32_t id); \
-  template void FrustumBand<Sort>::handle_boundary_behind_eye(uint32_t id, const EdgeNow& en, const EdgeNormal& edge); \
-  template void FrustumBand<Sort>::pass_column(uint32_t id, int column, double s);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

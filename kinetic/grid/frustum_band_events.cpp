@@ -5,13 +5,9 @@
 
 #include <algorithm>
 
-#include "kinetic/grid/frustum_band_sorts.h"
-
 namespace kinray {
 
-template <class Sort>
-FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_end,
-                               const Config& config)
+FrustumBand::FrustumBand(const GridScene& scene, int row_begin, int row_end, const Config& config)
     : m_scene(scene),
       m_config(config),
       m_row_begin(row_begin),
@@ -25,22 +21,12 @@ FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_en
   m_triangles.resize(scene.triangle_count());
   m_vertices.resize(scene.vertex_count());
   m_edge_heads.assign(scene.edge_count(), kNoBoundary);
-  KineticSortConfig sort_config;
-  sort_config.event_kind = kGridSwap;
-  sort_config.audit = false;  // the band audits at consistent points (not mid flightplan batch)
-  sort_config.shared_stats = &m_sort_stats;
-  const size_t pixels = size_t(row_end - row_begin) * size_t(m_width);
-  m_pixels.reserve(pixels);
-  for (int j = row_begin; j < row_end; ++j)
-    for (int i = 0; i < m_width; ++i)
-      m_pixels.emplace_back(&m_motion, i, j, m_sim.queue(),
-                            uint32_t(size_t(j) * size_t(m_width) + size_t(i)), sort_config);
-  m_fronts.assign(pixels, kNoFront);
-  for (const PixelCell& p : m_pixels) m_pixel_bytes += p.order.memory_bytes() + sizeof(PixelDepthKeys);
+  m_orders = PixelOrders::make(config.sort, m_motion, m_width, row_begin, row_end, m_sim.queue(),
+                               kGridSwap, m_sort_stats);
+  m_fronts.assign(size_t(row_end - row_begin) * size_t(m_width), kNoFront);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::start(double t0) {
+void FrustumBand::start(double t0) {
   m_sim.start_at(t0);
   for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) {
     const FlightplanMesh& mesh = m_scene.mesh(m);
@@ -57,8 +43,7 @@ void FrustumBand<Sort>::start(double t0) {
                    m_sort_stats.certificates_live);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::advance_to(double t) {
+void FrustumBand::advance_to(double t) {
   // Most events are boundary events, whose payload names their boundary: while the queue pops,
   // fetch the popped boundary's edge end points, records and the two pixels it watches (one of
   // them changes), and the next event's boundary (a wrong guess costs one prefetch).
@@ -74,8 +59,8 @@ void FrustumBand<Sort>::advance_to(double t) {
         if (rec != kNoRecord) __builtin_prefetch(&band.m_records[rec]);
       const int slot = b.tracker.slot;
       if (slot > 0) {
-        __builtin_prefetch(&band.cell(slot - 1, b.row).order);
-        __builtin_prefetch(&band.cell(slot, b.row).order);
+        band.m_orders->prefetch(band.pixel_index(slot - 1, b.row));
+        band.m_orders->prefetch(band.pixel_index(slot, b.row));
       }
     }
     void after_pop(const EventQueue& queue) const {
@@ -96,8 +81,7 @@ void FrustumBand<Sort>::advance_to(double t) {
       Prefetch{*this});
 }
 
-template <class Sort>
-void FrustumBand<Sort>::handle(const EventKey& key, uint64_t payload) {
+void FrustumBand::handle(const EventKey& key, uint64_t payload) {
   switch (key.kind) {
     case kGridFlightplan:
       handle_flightplans(uint32_t(payload));
@@ -130,15 +114,11 @@ void FrustumBand<Sort>::handle(const EventKey& key, uint64_t payload) {
   ++(m_front_changed ? m_stats.events_external : m_stats.events_internal);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
+void FrustumBand::handle_swap(const EventKey& key, uint64_t payload) {
   const int row = int(key.a / uint32_t(m_width)), column = int(key.a % uint32_t(m_width));
-  PixelCell& p = cell(column, row);
+  const size_t k = pixel_index(column, row);
   const uint64_t events_before = m_sort_stats.events();
-  const size_t bytes = p.order.memory_bytes();
-  p.order.handle_event(payload, m_sim.now());
-  m_pixel_bytes = m_pixel_bytes - bytes + p.order.memory_bytes();
-  const bool front_changed = refresh_front(column, row);
+  const bool front_changed = refresh_front(k, m_orders->handle_event(k, payload, m_sim.now()));
   if (m_sort_stats.events() == events_before) {
     ++m_stats.renewals;
     return;
@@ -147,14 +127,5 @@ void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload) {
   ++(front_changed ? m_stats.events_external : m_stats.events_internal);
   if (m_config.audit) audit_pixel(column, row, m_sim.now());
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template FrustumBand<Sort>::FrustumBand(const GridScene& scene, int row_begin, int row_end, const Config& config); \
-  template void FrustumBand<Sort>::start(double t0); \
-  template void FrustumBand<Sort>::advance_to(double t); \
-  template void FrustumBand<Sort>::handle(const EventKey& key, uint64_t payload); \
-  template void FrustumBand<Sort>::handle_swap(const EventKey& key, uint64_t payload);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

@@ -2,12 +2,9 @@
 // segment, and where vertices and boundaries sit among the band's row planes and columns.
 #include "kinetic/grid/frustum_band.h"
 
-#include "kinetic/grid/frustum_band_sorts.h"
-
 namespace kinray {
 
-template <class Sort>
-typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t tri) const {
+FrustumBand::TriangleNow FrustumBand::triangle_now(uint32_t tri) const {
   TriangleNow tn;
   const uint32_t m = m_scene.mesh_of_triangle(tri);
   tn.segment = m_motion.segment(m);
@@ -17,8 +14,7 @@ typename FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t
   return tn;
 }
 
-template <class Sort>
-typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) const {
+FrustumBand::EdgeNow FrustumBand::edge_now(uint32_t edge) const {
   EdgeNow en;
   const auto& ends = m_scene.edge_vertices(edge);
   const uint32_t m = m_scene.mesh_of_vertex(ends[0]);
@@ -31,15 +27,12 @@ typename FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) c
   return en;
 }
 
-template <class Sort>
-PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const {
+PointMotion FrustumBand::vertex_now(uint32_t v, double& s) const {
   s = m_sim.now() - m_motion.segment(m_scene.mesh_of_vertex(v)).origin;
   return m_motion.vertex(v);
 }
 
-template <class Sort>
-typename FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const PointMotion& p,
-                                                                        double s) const {
+FrustumBand::RowPattern FrustumBand::locate_vertex(const PointMotion& p, double s) const {
   auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
   RowPattern pattern;
   pattern.slot = m_rows.locate(sign_at);
@@ -51,15 +44,13 @@ typename FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const Po
   return pattern;
 }
 
-template <class Sort>
-Polynomial FrustumBand<Sort>::boundary_front(const EdgeNow& en, int row) const {
+Polynomial FrustumBand::boundary_front(const EdgeNow& en, int row) const {
   const double y = m_scene.row_y(row);
   const Polynomial z = boundary_depth(en.p, en.q, y);
   return sign_plus(row_side(en.q, y), en.s) > 0 ? z : -z;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const {
+void FrustumBand::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const {
   SlotTracker& t = b.tracker;
   if (sign_plus(boundary_front(en, b.row), en.s) < 0) {
     t.slot = kBehindEye;
@@ -79,9 +70,8 @@ void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) cons
     t.sign_hi = int8_t(t.slot == 0 ? t.sign_lo : -t.sign_lo);
 }
 
-template <class Sort>
-bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en,
-                                       const SlotTracker& hint) const {
+bool FrustumBand::place_boundary(EdgeBoundary& b, const EdgeNow& en,
+                                 const SlotTracker& hint) const {
   // The new edge's point is the same point: on the same side of the eye, in the same slot.
   SlotTracker& t = b.tracker;
   const bool front = sign_plus(boundary_front(en, b.row), en.s) > 0;
@@ -104,23 +94,10 @@ bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en,
   return true;
 }
 
-template <class Sort>
-std::array<int, 3> FrustumBand<Sort>::row_sides(const TriangleNow& tn, int row) const {
+std::array<int, 3> FrustumBand::row_sides(const TriangleNow& tn, int row) const {
   const double y = m_scene.row_y(row);
   return {sign_plus(row_side(tn.motion.v[0], y), tn.s), sign_plus(row_side(tn.motion.v[1], y), tn.s),
           sign_plus(row_side(tn.motion.v[2], y), tn.s)};
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template FrustumBand<Sort>::TriangleNow FrustumBand<Sort>::triangle_now(uint32_t tri) const; \
-  template FrustumBand<Sort>::EdgeNow FrustumBand<Sort>::edge_now(uint32_t edge) const; \
-  template PointMotion FrustumBand<Sort>::vertex_now(uint32_t v, double& s) const; \
-  template FrustumBand<Sort>::RowPattern FrustumBand<Sort>::locate_vertex(const PointMotion& p, double s) const; \
-  template Polynomial FrustumBand<Sort>::boundary_front(const EdgeNow& en, int row) const; \
-  template void FrustumBand<Sort>::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const; \
-  template bool FrustumBand<Sort>::place_boundary(EdgeBoundary& b, const EdgeNow& en, const SlotTracker& hint) const; \
-  template std::array<int, 3> FrustumBand<Sort>::row_sides(const TriangleNow& tn, int row) const;
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

@@ -5,16 +5,13 @@
 #include <limits>
 #include <vector>
 
-#include "kinetic/grid/frustum_band_sorts.h"
-
 namespace kinray {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
-template <class Sort>
-void FrustumBand<Sort>::insert_mesh(uint32_t m, WorkProgress* progress) {
+void FrustumBand::insert_mesh(uint32_t m, WorkProgress* progress) {
   const FlightplanMesh& mesh = m_scene.mesh(m);
   MeshState& ms = m_meshes[m];
   if (ms.present) return;
@@ -60,8 +57,7 @@ void FrustumBand<Sort>::insert_mesh(uint32_t m, WorkProgress* progress) {
   m_sim.queue().schedule(ms.remove, EventKey{remove_at, kGridRemove, m, 0}, m);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::remove_mesh(uint32_t m) {
+void FrustumBand::remove_mesh(uint32_t m) {
   const FlightplanMesh& mesh = m_scene.mesh(m);
   MeshState& ms = m_meshes[m];
   if (!ms.present) return;
@@ -85,8 +81,7 @@ void FrustumBand<Sort>::remove_mesh(uint32_t m) {
   ms.present = false;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
+void FrustumBand::handle_flightplans(uint32_t first_mesh) {
   // Every mesh reaching a key at this instant switches segment first, then their certificates
   // are recomputed together (one camera key moves every mesh at once).
   std::vector<uint32_t> meshes = {first_mesh};
@@ -121,19 +116,12 @@ void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh) {
       for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next) {
         const RowRecord& r = m_records[rec];
         for (int c = r.lo; c <= r.hi; ++c) {
-          cell(c, r.row).order.replace_motion(tri, m_sim.now());
-          refresh_front(c, r.row);
+          const size_t k = pixel_index(c, r.row);
+          refresh_front(k, m_orders->replace_motion(k, tri, m_sim.now()));
         }
       }
     }
   }
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template void FrustumBand<Sort>::insert_mesh(uint32_t m, WorkProgress* progress); \
-  template void FrustumBand<Sort>::remove_mesh(uint32_t m); \
-  template void FrustumBand<Sort>::handle_flightplans(uint32_t first_mesh);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

@@ -3,12 +3,9 @@
 // orientation events that rebuild its records or turn them on and off.
 #include "kinetic/grid/frustum_band.h"
 
-#include "kinetic/grid/frustum_band_sorts.h"
-
 namespace kinray {
 
-template <class Sort>
-void FrustumBand<Sort>::watch(uint32_t tri, const std::array<RowPattern, 3>& p) {
+void FrustumBand::watch(uint32_t tri, const std::array<RowPattern, 3>& p) {
   const TriangleNow tn = triangle_now(tri);
   TriangleState& ts = m_triangles[tri];
   ts.watched = true;
@@ -18,8 +15,7 @@ void FrustumBand<Sort>::watch(uint32_t tri, const std::array<RowPattern, 3>& p) 
   if (ts.orientation == m_scene.cull_sign_of_triangle(tri)) scan_rows(tri, p);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::unwatch(uint32_t tri) {
+void FrustumBand::unwatch(uint32_t tri) {
   TriangleState& ts = m_triangles[tri];
   while (ts.head != kNoRecord) kill_record(ts.head);
   m_sim.queue().cancel(ts.event);
@@ -28,8 +24,7 @@ void FrustumBand<Sort>::unwatch(uint32_t tri) {
   if (!m_scene.mesh(m_scene.mesh_of_triangle(tri)).is_static) --m_live_orientations;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::handle_orientation(uint32_t tri) {
+void FrustumBand::handle_orientation(uint32_t tri) {
   TriangleState& ts = m_triangles[tri];
   ts.event = kNoEvent;
   const TriangleNow tn = triangle_now(tri);
@@ -64,12 +59,5 @@ void FrustumBand<Sort>::handle_orientation(uint32_t tri) {
   }
   schedule_orientation(tri, tn);
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template void FrustumBand<Sort>::watch(uint32_t tri, const std::array<RowPattern, 3>& p); \
-  template void FrustumBand<Sort>::unwatch(uint32_t tri); \
-  template void FrustumBand<Sort>::handle_orientation(uint32_t tri);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

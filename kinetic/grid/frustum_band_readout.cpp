@@ -2,12 +2,9 @@
 // frustum_band.h).
 #include "kinetic/grid/frustum_band.h"
 
-#include "kinetic/grid/frustum_band_sorts.h"
-
 namespace kinray {
 
-template <class Sort>
-GridStats FrustumBand<Sort>::stats() const {
+GridStats FrustumBand::stats() const {
   GridStats s = m_stats;
   if (m_config.counts_meshes)
     for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
@@ -17,8 +14,8 @@ GridStats FrustumBand<Sort>::stats() const {
                         m_sort_stats.certificates_live;
   s.records = m_records.size() - m_free_records.size();
   // Kept up to date by every change of a pixel order: stats() runs after every frame.
-  const size_t pixel_bytes = m_pixel_bytes;
-  s.pixel_entries = m_pixel_entries;
+  const size_t pixel_bytes = m_orders->memory_bytes();
+  s.pixel_entries = m_orders->entries();
   s.pixel_memory_bytes = pixel_bytes;
   s.memory_bytes = pixel_bytes + m_sim.queue().memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
                    m_free_records.capacity() * sizeof(uint32_t) +
@@ -29,10 +26,5 @@ GridStats FrustumBand<Sort>::stats() const {
                    m_motion.memory_bytes();
   return s;
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template GridStats FrustumBand<Sort>::stats() const;
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 
-#include "kinetic/grid/frustum_band_sorts.h"
 #include "kinetic/grid/row_crossings.h"
 
 namespace kinray {
@@ -12,9 +11,8 @@ namespace kinray {
 using detail::crossing_edges;
 using detail::sort_cuts;
 
-template <class Sort>
-std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const CoverageRule& rule,
-                                                     bool full) {
+std::pair<int, int> FrustumBand::scan_coverage(const RowRecord& r, const CoverageRule& rule,
+                                               bool full) {
   if (rule.orientation_sign() == 0) return {0, -1};
   const double y = m_scene.row_y(r.row);
   int lo = m_width, hi = -1, count = 0;
@@ -48,39 +46,27 @@ std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const C
   return {lo, hi};
 }
 
-template <class Sort>
-void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row) {
-  PixelCell& p = cell(column, row);
-  const size_t bytes = p.order.memory_bytes();
-  p.order.insert(tri, m_sim.now());
-  m_pixel_bytes += p.order.memory_bytes() - bytes;
-  ++m_pixel_entries;
+void FrustumBand::pixel_insert(uint32_t tri, int column, int row) {
+  const size_t k = pixel_index(column, row);
   ++m_stats.coverage_changes;
-  if (refresh_front(column, row)) m_front_changed = true;
+  if (refresh_front(k, m_orders->insert(k, tri, m_sim.now()))) m_front_changed = true;
   if (m_config.audit) audit_pixel(column, row, m_sim.now());
 }
 
-template <class Sort>
-void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row) {
-  PixelCell& p = cell(column, row);
-  const size_t bytes = p.order.memory_bytes();
-  p.order.erase(tri, m_sim.now());
-  m_pixel_bytes -= bytes - p.order.memory_bytes();
-  --m_pixel_entries;
+void FrustumBand::pixel_erase(uint32_t tri, int column, int row) {
+  const size_t k = pixel_index(column, row);
   ++m_stats.coverage_changes;
-  if (refresh_front(column, row)) m_front_changed = true;
+  if (refresh_front(k, m_orders->erase(k, tri, m_sim.now()))) m_front_changed = true;
   if (m_config.audit) audit_pixel(column, row, m_sim.now());
 }
 
-template <class Sort>
-uint32_t FrustumBand<Sort>::find_record(uint32_t tri, int row) const {
+uint32_t FrustumBand::find_record(uint32_t tri, int row) const {
   for (uint32_t rec = m_triangles[tri].head; rec != kNoRecord; rec = m_records[rec].next)
     if (m_records[rec].row == row) return rec;
   return kNoRecord;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::set_coverage(uint32_t rec, int lo, int hi) {
+void FrustumBand::set_coverage(uint32_t rec, int lo, int hi) {
   // Apply the difference between the old and the new interval to the pixel orders.
   const RowRecord old = m_records[rec];
   const bool empty = lo > hi;
@@ -93,9 +79,8 @@ void FrustumBand<Sort>::set_coverage(uint32_t rec, int lo, int hi) {
   r.hi = empty ? -1 : hi;
 }
 
-template <class Sort>
-uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int edge_b,
-                                          const TriangleNow& tn) {
+uint32_t FrustumBand::create_record(uint32_t tri, int row, int edge_a, int edge_b,
+                                    const TriangleNow& tn) {
   uint32_t rec;
   if (!m_free_records.empty()) {
     rec = m_free_records.back();
@@ -129,8 +114,7 @@ uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int
   return rec;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::kill_record(uint32_t rec) {
+void FrustumBand::kill_record(uint32_t rec) {
   set_coverage(rec, 0, -1);
   RowRecord& r = m_records[rec];
   const uint32_t tri = r.triangle;
@@ -156,8 +140,7 @@ void FrustumBand<Sort>::kill_record(uint32_t rec) {
   ++m_stats.records_died;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full) {
+void FrustumBand::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full) {
   ++m_stats.row_rebuilds;
   int crossing[2];
   if (crossing_edges(row_sides(tn, m_records[rec].row), crossing) == 2) {
@@ -188,15 +171,13 @@ void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool
   rescan_record(rec, tn, full);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) {
+void FrustumBand::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) {
   const CoverageRule rule(tn.motion, tn.s);
   const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
   set_coverage(rec, lo, hi);
 }
 
-template <class Sort>
-bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const {
+bool FrustumBand::covers_now(uint32_t rec, int column, double s) const {
   const RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
   // this very instant is still pending and rebuilds the record when processed). The edge
@@ -212,8 +193,7 @@ bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const {
   return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered) {
+void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
   const RowRecord& r = m_records[rec];
   if (covered == r.covers(column)) return;
   int lo = r.lo, hi = r.hi;
@@ -245,8 +225,7 @@ void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered) {
   set_coverage(rec, lo, hi);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
+void FrustumBand::update_triangle_row(uint32_t tri, int row) {
   if (culled(tri)) return;  // no records while it faces away
   const TriangleNow tn = triangle_now(tri);
   int crossing[2];
@@ -292,21 +271,5 @@ void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row) {
   update_pixel(rec, lo, tn);
   if (hi != lo) update_pixel(rec, hi, tn);
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template std::pair<int, int> FrustumBand<Sort>::scan_coverage(const RowRecord& r, const CoverageRule& rule, bool full); \
-  template void FrustumBand<Sort>::pixel_insert(uint32_t tri, int column, int row); \
-  template void FrustumBand<Sort>::pixel_erase(uint32_t tri, int column, int row); \
-  template uint32_t FrustumBand<Sort>::find_record(uint32_t tri, int row) const; \
-  template void FrustumBand<Sort>::set_coverage(uint32_t rec, int lo, int hi); \
-  template uint32_t FrustumBand<Sort>::create_record(uint32_t tri, int row, int edge_a, int edge_b, const TriangleNow& tn); \
-  template void FrustumBand<Sort>::kill_record(uint32_t rec); \
-  template void FrustumBand<Sort>::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full); \
-  template void FrustumBand<Sort>::rescan_record(uint32_t rec, const TriangleNow& tn, bool full); \
-  template bool FrustumBand<Sort>::covers_now(uint32_t rec, int column, double s) const; \
-  template void FrustumBand<Sort>::set_pixel(uint32_t rec, int column, bool covered); \
-  template void FrustumBand<Sort>::update_triangle_row(uint32_t tri, int row);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

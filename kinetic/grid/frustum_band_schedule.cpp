@@ -7,7 +7,6 @@
 
 #include "kinetic/core/certificate_time.h"
 #include "kinetic/core/root_finding.h"
-#include "kinetic/grid/frustum_band_sorts.h"
 
 namespace kinray {
 
@@ -15,8 +14,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
-template <class Sort>
-double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const {
+double FrustumBand::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const {
   if (sign == 0) return f.is_zero() ? kInf : m_sim.now();
   // The zero polynomial reads as positive (sign_plus). An edge function that vanishes identically
   // is watched through its perturbed sign (EdgeNormal::perturbed), which can still change within
@@ -32,9 +30,8 @@ double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const Mesh
   return certificate_failure_time(sign, f, seg.origin, m_sim.now(), seg.end);
 }
 
-template <class Sort>
-double FrustumBand<Sort>::edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
-                                            const MeshSegment& seg) const {
+double FrustumBand::edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
+                                      const MeshSegment& seg) const {
   // along(x, y)'s coefficients, with its operations; when one is not 0 that is the perturbed
   // polynomial, stored with degree 2 and not zero, which failure_time hands on as it is.
   const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
@@ -45,8 +42,7 @@ double FrustumBand<Sort>::edge_failure_time(int sign, const EdgeNormal& n, doubl
   return quadratic_failure_time(sign, c0, c1, c2, seg.origin, m_sim.now(), seg.end);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known) {
+void FrustumBand::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known) {
   if (!en.moving) return;
   EdgeBoundary& b = m_boundaries[id];
   SlotTracker& st = b.tracker;
@@ -67,8 +63,7 @@ void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const 
   m_sim.queue().schedule(st.event, EventKey{t, kGridBoundary, uint32_t(b.row), b.edge}, id);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::schedule_vertex(uint32_t v) {
+void FrustumBand::schedule_vertex(uint32_t v) {
   SlotTracker& st = m_vertices[v];
   double s = 0;
   const PointMotion p = vertex_now(v, s);
@@ -80,8 +75,7 @@ void FrustumBand<Sort>::schedule_vertex(uint32_t v) {
   m_sim.queue().schedule(st.event, EventKey{t, kGridVertexRow, v, 0}, v);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn) {
+void FrustumBand::schedule_orientation(uint32_t tri, const TriangleNow& tn) {
   if (!tn.moving) return;
   TriangleState& ts = m_triangles[tri];
   // O is the zero polynomial on a segment where the triangle is degenerate throughout (a sliver
@@ -94,8 +88,7 @@ void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn
   m_sim.queue().schedule(ts.event, EventKey{t, kGridOrientation, tri, 0}, tri);
 }
 
-template <class Sort>
-void FrustumBand<Sort>::schedule_flightplan(uint32_t m) {
+void FrustumBand::schedule_flightplan(uint32_t m) {
   const FlightplanMesh& mesh = m_scene.mesh(m);
   MeshState& ms = m_meshes[m];
   double t = kInf;
@@ -109,15 +102,5 @@ void FrustumBand<Sort>::schedule_flightplan(uint32_t m) {
   }
   m_sim.queue().schedule(ms.flightplan, EventKey{t, kGridFlightplan, m, key}, m);
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template double FrustumBand<Sort>::failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const; \
-  template double FrustumBand<Sort>::edge_failure_time(int sign, const EdgeNormal& n, double x, double y, const MeshSegment& seg) const; \
-  template void FrustumBand<Sort>::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known); \
-  template void FrustumBand<Sort>::schedule_vertex(uint32_t v); \
-  template void FrustumBand<Sort>::schedule_orientation(uint32_t tri, const TriangleNow& tn); \
-  template void FrustumBand<Sort>::schedule_flightplan(uint32_t m);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <optional>
 
-#include "kinetic/grid/frustum_band_sorts.h"
 #include "kinetic/grid/row_crossings.h"
 
 namespace kinray {
@@ -13,8 +12,7 @@ namespace kinray {
 using detail::crossing_edges;
 using detail::sort_cuts;
 
-template <class Sort>
-void FrustumBand<Sort>::handle_vertex(uint32_t v) {
+void FrustumBand::handle_vertex(uint32_t v) {
   SlotTracker& st = m_vertices[v];
   st.event = kNoEvent;
   double s = 0;
@@ -79,23 +77,20 @@ void FrustumBand<Sort>::handle_vertex(uint32_t v) {
   m_watch_changed.clear();
 }
 
-template <class Sort>
-void FrustumBand<Sort>::scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns) {
+void FrustumBand::scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns) {
   const auto vs = m_scene.triangle_vertices(tri);
   if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return;  // never covers anything
   scan_rows(tri, mesh_patterns(tri, patterns));
 }
 
-template <class Sort>
-std::array<typename FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::mesh_patterns(
+std::array<FrustumBand::RowPattern, 3> FrustumBand::mesh_patterns(
     uint32_t tri, const std::vector<RowPattern>& patterns) const {
   const auto& vs = m_scene.triangle_vertices(tri);
   const uint32_t base = m_scene.vertex_begin(m_scene.mesh_of_triangle(tri));
   return {patterns[vs[0] - base], patterns[vs[1] - base], patterns[vs[2] - base]};
 }
 
-template <class Sort>
-bool FrustumBand<Sort>::meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const {
+bool FrustumBand::meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const {
   const auto& vs = m_scene.triangle_vertices(tri);
   if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return false;
   // The signs are constant between consecutive slots: one row of each run decides.
@@ -110,9 +105,7 @@ bool FrustumBand<Sort>::meets_rows(uint32_t tri, const std::array<RowPattern, 3>
   return false;
 }
 
-template <class Sort>
-std::array<typename FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::tracked_patterns(
-    uint32_t tri) const {
+std::array<FrustumBand::RowPattern, 3> FrustumBand::tracked_patterns(uint32_t tri) const {
   const auto& vs = m_scene.triangle_vertices(tri);
   std::array<RowPattern, 3> p;
   for (int k = 0; k < 3; ++k) {
@@ -122,8 +115,7 @@ std::array<typename FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::tracked
   return p;
 }
 
-template <class Sort>
-void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p) {
+void FrustumBand::scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p) {
   int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
   sort_cuts(cuts);
   std::optional<TriangleNow> tn;
@@ -137,15 +129,5 @@ void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>&
     for (int q = a; q < b; ++q) create_record(tri, m_row_begin + q, crossing[0], crossing[1], *tn);
   }
 }
-
-#define KINRAY_INSTANTIATE(Sort) \
-  template void FrustumBand<Sort>::handle_vertex(uint32_t v); \
-  template void FrustumBand<Sort>::scan_triangle(uint32_t tri, const std::vector<RowPattern>& patterns); \
-  template std::array<FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::mesh_patterns( uint32_t tri, const std::vector<RowPattern>& patterns) const; \
-  template bool FrustumBand<Sort>::meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const; \
-  template std::array<FrustumBand<Sort>::RowPattern, 3> FrustumBand<Sort>::tracked_patterns( uint32_t tri) const; \
-  template void FrustumBand<Sort>::scan_rows(uint32_t tri, const std::array<RowPattern, 3>& p);
-KINRAY_FOR_EACH_BAND_SORT(KINRAY_INSTANTIATE)
-#undef KINRAY_INSTANTIATE
 
 }  // namespace kinray

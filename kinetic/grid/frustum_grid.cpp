@@ -13,9 +13,6 @@
 #include "kinetic/core/root_finding.h"
 #include "kinetic/grid/frustum_band.h"
 #include "kinetic/grid/plane_pairs.h"
-#include "kinetic/sort/kinetic_heap.h"
-#include "kinetic/sort/kinetic_sorted_list.h"
-#include "kinetic/sort/kinetic_tournament.h"
 #include "util/parallel.h"
 
 namespace kinray {
@@ -33,90 +30,68 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-// The virtual calls are per advance or per read-out, never per event.
+/// The bands of rows, each simulated on its own: the grid's work is handed out by band.
 class FrustumGrid::Bands {
  public:
-  virtual ~Bands() = default;
-  virtual void start(double t0, int threads) = 0;
-  virtual void advance_to(double t, int threads) = 0;
-  /// The front triangles (global ids, kNoGridHit for none) of the width pixels of row j.
-  virtual const uint32_t* front_row(int j) const = 0;
-  virtual size_t depth_complexity(int i, int j) const = 0;
-  virtual uint32_t front(int i, int j) const = 0;
-  /// Every triangle of pixel (i, j)'s order into `out` (cleared first): front to back for the
-  /// sorted list, the front first for the tournament and the heap.
-  virtual void members(int i, int j, std::vector<uint32_t>& out) const = 0;
-  virtual std::vector<std::string> audit(double t, int threads) const = 0;
-  virtual GridStats stats() const = 0;
-  virtual int count() const = 0;
-  /// Band b logs its front changes into logs[b] (logs == nullptr: no band logs).
-  virtual void set_front_logs(FrontChangeLog* logs) = 0;
-};
-
-namespace {
-
-template <class Sort>
-class BandsOf final : public FrustumGrid::Bands {
- public:
-  BandsOf(const GridScene& scene, int bands, bool audit, WorkProgress* init_progress) {
+  Bands(const GridScene& scene, int bands, DepthSortKind sort, bool audit, WorkProgress* init_progress) {
     const int h = scene.height();
     for (int b = 0; b < bands; ++b) {
       const int r0 = int(int64_t(h) * b / bands), r1 = int(int64_t(h) * (b + 1) / bands);
-      typename FrustumBand<Sort>::Config config;
+      FrustumBand::Config config;
+      config.sort = sort;
       config.audit = audit;
       config.counts_meshes = b == 0;
       config.init_progress = init_progress;
-      m_bands.push_back(std::make_unique<FrustumBand<Sort>>(scene, r0, r1, config));
+      m_bands.push_back(std::make_unique<FrustumBand>(scene, r0, r1, config));
       m_row_begin.push_back(r0);
     }
     m_row_begin.push_back(h);
   }
-  void start(double t0, int threads) override {
+  void start(double t0, int threads) {
     parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->start(t0); });
   }
-  void advance_to(double t, int threads) override {
+  void advance_to(double t, int threads) {
     parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { m_bands[b]->advance_to(t); });
   }
-  const uint32_t* front_row(int j) const override {
+  /// The front triangles (global ids, kNoGridHit for none) of the width pixels of row j.
+  [[nodiscard]] const uint32_t* front_row(int j) const {
     static_assert(kNoFront == kNoGridHit);
     return m_bands[band_of(j)]->front_row(j);
   }
-  uint32_t front(int i, int j) const override {
+  [[nodiscard]] uint32_t front(int i, int j) const {
     return m_bands[band_of(j)]->front(i, j).value_or(kNoGridHit);
   }
-  void members(int i, int j, std::vector<uint32_t>& out) const override {
-    out.clear();
-    m_bands[band_of(j)]->for_each_member(i, j, [&](uint32_t tri) { out.push_back(tri); });
-  }
-  size_t depth_complexity(int i, int j) const override {
+  /// Every triangle of pixel (i, j)'s order into `out` (cleared first): front to back for the
+  /// sorted list, the front first for the tournament and the heap.
+  void members(int i, int j, std::vector<uint32_t>& out) const { m_bands[band_of(j)]->members(i, j, out); }
+  [[nodiscard]] size_t depth_complexity(int i, int j) const {
     return m_bands[band_of(j)]->depth_complexity(i, j);
   }
-  std::vector<std::string> audit(double t, int threads) const override {
+  [[nodiscard]] std::vector<std::string> audit(double t, int threads) const {
     std::vector<std::vector<std::string>> found(m_bands.size());
     parallel_for_dynamic(m_bands.size(), threads, [&](size_t b) { found[b] = m_bands[b]->audit(t); });
     std::vector<std::string> all;
     for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
     return all;
   }
-  GridStats stats() const override {
+  [[nodiscard]] GridStats stats() const {
     GridStats s;
     for (const auto& band : m_bands) s += band->stats();
     return s;
   }
-  int count() const override { return int(m_bands.size()); }
-  void set_front_logs(FrontChangeLog* logs) override {
+  [[nodiscard]] int count() const { return int(m_bands.size()); }
+  /// Band b logs its front changes into logs[b] (logs == nullptr: no band logs).
+  void set_front_logs(FrontChangeLog* logs) {
     for (size_t b = 0; b < m_bands.size(); ++b) m_bands[b]->set_front_log(logs ? &logs[b] : nullptr);
   }
 
  private:
-  size_t band_of(int row) const {
+  [[nodiscard]] size_t band_of(int row) const {
     return size_t(std::upper_bound(m_row_begin.begin(), m_row_begin.end(), row) - m_row_begin.begin()) - 1;
   }
-  std::vector<std::unique_ptr<FrustumBand<Sort>>> m_bands;
+  std::vector<std::unique_ptr<FrustumBand>> m_bands;
   std::vector<int> m_row_begin;
 };
-
-}  // namespace
 
 FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridConfig& config)
     : m_created(std::chrono::steady_clock::now()), m_scene(std::move(input), config.threads, config.init_progress), m_config(config),
@@ -127,20 +102,7 @@ FrustumGrid::FrustumGrid(GridInput input, double start_time, const FrustumGridCo
   // costs a little (its vertex and orientation certificates), an idle thread much more.
   const int automatic = m_threads == 1 ? 1 : kBandsPerThread * m_threads;
   const int bands = std::clamp(config.bands > 0 ? config.bands : automatic, 1, m_scene.height());
-  switch (config.sort) {
-    case DepthSortKind::kList:
-      m_bands = std::make_unique<BandsOf<KineticSortedList<PixelDepthKeys>>>(m_scene, bands, config.audit,
-                                                                          config.init_progress);
-      break;
-    case DepthSortKind::kTournament:
-      m_bands = std::make_unique<BandsOf<KineticTournament<PixelDepthKeys>>>(m_scene, bands, config.audit,
-                                                                          config.init_progress);
-      break;
-    case DepthSortKind::kHeap:
-      m_bands = std::make_unique<BandsOf<KineticHeap<PixelDepthKeys>>>(m_scene, bands, config.audit,
-                                                                          config.init_progress);
-      break;
-  }
+  m_bands = std::make_unique<Bands>(m_scene, bands, config.sort, config.audit, config.init_progress);
   if (config.init_progress != nullptr) {
     uint64_t present = 0;
     for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)

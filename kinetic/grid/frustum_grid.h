@@ -99,7 +99,7 @@ class FrustumGrid {
   [[nodiscard]] const GridScene& scene() const { return m_scene; }
   [[nodiscard]] const FrustumGridConfig& config() const { return m_config; }
 
-  class Bands;  ///< the bands, over the chosen depth sort
+  class Bands;  ///< the bands of rows (frustum_grid.cpp)
 
  private:
   std::chrono::steady_clock::time_point m_created;  ///< initialisation timing starts here

@@ -8,7 +8,6 @@
 
 #include "kinetic/grid/frustum_band.h"
 #include "kinetic/grid/grid_scene.h"
-#include "kinetic/sort/kinetic_sorted_list.h"
 #include "tests/kinetic/grid/grid_test_scenes.h"
 
 namespace kinray {
@@ -16,9 +15,8 @@ namespace kinray {
 /// The test hook FrustumBand names as its friend: changes a band behind its back.
 struct FrustumBandTestAccess {
   /// Takes tri out of pixel (column, row)'s order without telling the band's records.
-  template <class Sort>
-  static void erase_from_pixel(FrustumBand<Sort>& band, uint32_t tri, int column, int row) {
-    band.cell(column, row).order.erase(tri, band.m_sim.now());
+  static void erase_from_pixel(FrustumBand& band, uint32_t tri, int column, int row) {
+    band.m_orders->erase(band.pixel_index(column, row), tri, band.m_sim.now());
   }
 };
 
@@ -27,7 +25,6 @@ namespace {
 using test::at_depth;
 using test::TestScene;
 using test::Vec;
-using Band = FrustumBand<KineticSortedList<PixelDepthKeys>>;
 
 // Triangle A stands at depth 2; B moves from depth 3 to 1 over [0, 1] and passes A at t = 0.5,
 // so every pixel B covers holds both, and swaps them at 0.5.
@@ -51,7 +48,7 @@ bool contains(const std::string& text, const std::string& part) {
 TEST(FrustumBandAudit, CorruptedPixelIsReportedWithBandTimeInvariantAndPixel) {
   const TestScene scene = two_triangles_that_swap();
   const GridScene gs(scene.input());
-  Band band(gs, 0, scene.height, {});
+  FrustumBand band(gs, 0, scene.height, {});
   band.start(0.0);
   band.advance_to(0.25);
   ASSERT_TRUE(band.audit(0.25).empty()) << band.audit(0.25).front();
@@ -79,7 +76,7 @@ TEST(FrustumBandAudit, CorruptedPixelIsReportedWithBandTimeInvariantAndPixel) {
 TEST(FrustumBandAudit, PixelOrderFaultIsReportedWithItsPixel) {
   const TestScene scene = two_triangles_that_swap();
   const GridScene gs(scene.input());
-  Band band(gs, 0, scene.height, {});
+  FrustumBand band(gs, 0, scene.height, {});
   band.start(0.0);
   band.advance_to(0.25);
   std::vector<std::string> problems;

@@ -1,0 +1,116 @@
+// The pixel orders of a band for each sort: one array of (keys, order) cells, the orders pointing
+// at their keys (so the array is built once and never moves).
+#include "kinetic/grid/pixel_orders.h"
+
+#include "kinetic/grid/pixel_depth_order.h"
+#include "kinetic/sort/kinetic_heap.h"
+#include "kinetic/sort/kinetic_sorted_list.h"
+#include "kinetic/sort/kinetic_tournament.h"
+
+namespace kinray {
+
+namespace {
+
+template <class Sort>
+class PixelOrdersOf final : public PixelOrders {
+ public:
+  PixelOrdersOf(const BandMotion& motion, int width, int row_begin, int row_end, EventQueue& queue,
+                const KineticSortConfig& config) {
+    m_cells_of.reserve(size_t(row_end - row_begin) * size_t(width));
+    for (int j = row_begin; j < row_end; ++j)
+      for (int i = 0; i < width; ++i)
+        m_cells_of.emplace_back(&motion, i, j, queue, uint32_t(size_t(j) * size_t(width) + size_t(i)),
+                                config);
+    m_cells = reinterpret_cast<const std::byte*>(&m_cells_of.front().order);
+    m_cell_bytes = sizeof(Cell);
+    recount(m_entries, m_bytes);
+  }
+
+  uint32_t insert(size_t pixel, uint32_t tri, double now) override {
+    Sort& order = m_cells_of[pixel].order;
+    const size_t bytes = order.memory_bytes();
+    order.insert(tri, now);
+    m_bytes += order.memory_bytes() - bytes;
+    ++m_entries;
+    return order.front().value_or(kNoFront);
+  }
+  uint32_t erase(size_t pixel, uint32_t tri, double now) override {
+    Sort& order = m_cells_of[pixel].order;
+    const size_t bytes = order.memory_bytes();
+    order.erase(tri, now);
+    m_bytes -= bytes - order.memory_bytes();
+    --m_entries;
+    return order.front().value_or(kNoFront);
+  }
+  uint32_t replace_motion(size_t pixel, uint32_t tri, double now) override {
+    Sort& order = m_cells_of[pixel].order;
+    order.replace_motion(tri, now);
+    return order.front().value_or(kNoFront);
+  }
+  uint32_t handle_event(size_t pixel, uint64_t payload, double now) override {
+    Sort& order = m_cells_of[pixel].order;
+    const size_t bytes = order.memory_bytes();
+    order.handle_event(payload, now);
+    m_bytes = m_bytes - bytes + order.memory_bytes();
+    return order.front().value_or(kNoFront);
+  }
+
+  uint32_t front(size_t pixel) const override {
+    return m_cells_of[pixel].order.front().value_or(kNoFront);
+  }
+  size_t size(size_t pixel) const override { return m_cells_of[pixel].order.size(); }
+  bool contains(size_t pixel, uint32_t tri) const override {
+    return m_cells_of[pixel].order.contains(tri);
+  }
+  void members(size_t pixel, std::vector<uint32_t>& out) const override {
+    out.clear();
+    m_cells_of[pixel].order.for_each([&](uint32_t tri) { out.push_back(tri); });
+  }
+  std::optional<std::string> audit_problem(size_t pixel, double t) const override {
+    return m_cells_of[pixel].order.audit_problem(t);
+  }
+  void recount(uint64_t& entries, size_t& bytes) const override {
+    entries = 0;
+    bytes = 0;
+    for (const Cell& cell : m_cells_of) {
+      entries += cell.order.size();
+      bytes += cell.order.memory_bytes() + sizeof(PixelDepthKeys);
+    }
+  }
+
+ private:
+  struct Cell {
+    Cell(const BandMotion* motion, int column, int row, EventQueue& queue, uint32_t owner,
+         const KineticSortConfig& config)
+        : keys(motion, column, row), order(keys, queue, owner, config) {}
+    PixelDepthKeys keys;
+    Sort order;
+  };
+  std::vector<Cell> m_cells_of;  ///< reserved once: the orders point at their keys
+};
+
+}  // namespace
+
+std::unique_ptr<PixelOrders> PixelOrders::make(DepthSortKind sort, const BandMotion& motion, int width,
+                                               int row_begin, int row_end, EventQueue& queue,
+                                               uint32_t event_kind, KineticSortStats& stats) {
+  KineticSortConfig config;
+  config.event_kind = event_kind;
+  config.audit = false;  // the band audits at consistent points (not mid flightplan batch)
+  config.shared_stats = &stats;
+  switch (sort) {
+    case DepthSortKind::kList:
+      return std::make_unique<PixelOrdersOf<KineticSortedList<PixelDepthKeys>>>(motion, width, row_begin,
+                                                                                row_end, queue, config);
+    case DepthSortKind::kTournament:
+      return std::make_unique<PixelOrdersOf<KineticTournament<PixelDepthKeys>>>(motion, width, row_begin,
+                                                                                row_end, queue, config);
+    case DepthSortKind::kHeap:
+      return std::make_unique<PixelOrdersOf<KineticHeap<PixelDepthKeys>>>(motion, width, row_begin,
+                                                                          row_end, queue, config);
+  }
+  KINRAY_CHECK_MSG(false, "unknown depth sort");
+  return nullptr;
+}
+
+}  // namespace kinray
