@@ -203,71 +203,53 @@ void choose_camera(const aiScene& model, const NodeGraph& graph, std::span<const
   frame_automatically(scene, reason);
 }
 
-}  // namespace
+/// Morph weight tracks by (node or -1 for any, mesh).
+using MorphTracks = std::map<std::pair<int, unsigned>, MorphWeightTrack>;
 
-unsigned model_import_flags() {
-  return aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
-}
-
-bool is_model_file(const std::string& path) {
-  const std::string extension = std::filesystem::path(path).extension().string();
-  if (extension.size() < 2) return false;
-  Assimp::Importer importer;
-  return importer.IsExtensionSupported(extension);
-}
-
-Scene convert_model(const aiScene& model, const std::string& source, const ModelOptions& options) {
-  if (!std::isfinite(options.keyrate) || options.keyrate < 0)
-    throw InputError(source, "the key rate must be a finite number >= 0, got " +
-                                 std::to_string(options.keyrate));
-  const AnimationClip clip = select_animation(model, options.animation, source);
-  const NodeGraph graph = build_node_graph(model, clip.animation, source);
-  const std::string animation_where = source + ": animation '" + clip.name + "'";
-
-  // Morph weight channels name a node (glTF: all its meshes) or else a mesh.
-  std::map<std::pair<int, unsigned>, MorphWeightTrack>
-      morphs;  // (node or -1 for any, mesh) -> weights
-  if (clip.animation != nullptr) {
-    const aiAnimation& animation = *clip.animation;
-    if (animation.mNumMeshChannels > 0)
-      warn_repair(animation_where,
-                  "has vertex-animation (aiMeshAnim) channels, which are not supported; ignored");
-    for (unsigned c = 0;
-         c < animation.mNumMorphMeshChannels && animation.mMorphMeshChannels != nullptr; ++c) {
-      const aiMeshMorphAnim* channel = animation.mMorphMeshChannels[c];
-      if (channel == nullptr) continue;
-      const std::string name = channel->mName.C_Str();
-      const std::string where = animation_where + " morph channel '" + name + "'";
-      std::vector<std::pair<int, unsigned>> targets;
-      if (const int node = graph.find(name); node >= 0) {
-        const aiNode* n = graph.nodes[size_t(node)];
-        for (unsigned i = 0; i < n->mNumMeshes; ++i) targets.emplace_back(node, n->mMeshes[i]);
-      } else {
-        for (unsigned m = 0; m < model.mNumMeshes; ++m)
-          if (name == model.mMeshes[m]->mName.C_Str()) targets.emplace_back(-1, m);
-      }
-      bool used = false;
-      for (const auto& target : targets) {
-        if (target.second >= model.mNumMeshes || model.mMeshes[target.second]->mNumAnimMeshes == 0)
-          continue;
-        if (morphs.count(target)) {
-          warn_repair(where, "weighs a mesh that an earlier channel already weighs; ignored");
-          continue;
-        }
-        morphs.emplace(target, read_morph_track(
-                                   *channel, model.mMeshes[target.second]->mNumAnimMeshes, where));
-        used = true;
-      }
-      if (!used) warn_repair(where, "names no mesh with morph targets; ignored");
+/// The clip's morph weight tracks: a channel names a node (glTF: all its meshes) or else a mesh.
+MorphTracks read_morph_tracks(const aiScene& model, const NodeGraph& graph,
+                              const AnimationClip& clip, const std::string& animation_where) {
+  MorphTracks morphs;
+  if (clip.animation == nullptr) return morphs;
+  const aiAnimation& animation = *clip.animation;
+  if (animation.mNumMeshChannels > 0)
+    warn_repair(animation_where,
+                "has vertex-animation (aiMeshAnim) channels, which are not supported; ignored");
+  for (unsigned c = 0;
+       c < animation.mNumMorphMeshChannels && animation.mMorphMeshChannels != nullptr; ++c) {
+    const aiMeshMorphAnim* channel = animation.mMorphMeshChannels[c];
+    if (channel == nullptr) continue;
+    const std::string name = channel->mName.C_Str();
+    const std::string where = animation_where + " morph channel '" + name + "'";
+    std::vector<std::pair<int, unsigned>> targets;
+    if (const int node = graph.find(name); node >= 0) {
+      const aiNode* n = graph.nodes[size_t(node)];
+      for (unsigned i = 0; i < n->mNumMeshes; ++i) targets.emplace_back(node, n->mMeshes[i]);
+    } else {
+      for (unsigned m = 0; m < model.mNumMeshes; ++m)
+        if (name == model.mMeshes[m]->mName.C_Str()) targets.emplace_back(-1, m);
     }
+    bool used = false;
+    for (const auto& target : targets) {
+      if (target.second >= model.mNumMeshes || model.mMeshes[target.second]->mNumAnimMeshes == 0)
+        continue;
+      if (morphs.count(target)) {
+        warn_repair(where, "weighs a mesh that an earlier channel already weighs; ignored");
+        continue;
+      }
+      morphs.emplace(
+          target, read_morph_track(*channel, model.mMeshes[target.second]->mNumAnimMeshes, where));
+      used = true;
+    }
+    if (!used) warn_repair(where, "names no mesh with morph targets; ignored");
   }
+  return morphs;
+}
 
-  const std::vector<double> ticks = key_grid(graph, morphs, clip, options.keyrate, source);
-  std::vector<double> seconds(ticks.size());
-  for (size_t k = 0; k < ticks.size(); ++k) seconds[k] = ticks[k] / clip.ticks_per_second;
-
-  Scene scene;
-  scene.name = std::filesystem::path(source).stem().string();
+/// Reads the model's materials into `scene` (one default material when it has none); returns
+/// each material's texture coordinate channel.
+std::vector<unsigned> read_materials(const aiScene& model, const std::string& source,
+                                     Scene& scene) {
   MaterialReader materials{model, std::filesystem::path(source).parent_path(), source, {}, {}};
   std::vector<unsigned> uv_channels;
   scene.materials.clear();
@@ -281,9 +263,104 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
     uv_channels.push_back(0);
   }
   scene.textures = std::move(materials.textures);
+  return uv_channels;
+}
 
-  // Every mesh of every node becomes one object: an instance of that mesh in world space.
+/// The object of `mesh` as `node` instances it, with the mesh's triangles (vertex indices into
+/// the mesh) and, in `referenced`, which mesh vertices they use; points and lines are skipped.
+Object read_triangles(const aiNode& node, const aiMesh& mesh, const std::string& where,
+                      std::vector<char>& referenced) {
+  const std::string mesh_name = mesh.mName.C_Str();
+  Object object;
+  object.name = std::string(node.mName.C_Str()) + (mesh_name.empty() ? "" : "/" + mesh_name);
+  const size_t nv = mesh.mNumVertices;
+  if (nv > 0 && mesh.mVertices == nullptr) throw InputError(where, "has no vertex positions");
+  size_t skipped = 0;
+  referenced.assign(nv, 0);
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices != 3 || face.mIndices == nullptr) {
+      ++skipped;
+      continue;
+    }
+    Triangle triangle;
+    for (int c = 0; c < 3; ++c) {
+      if (face.mIndices[c] >= nv)
+        throw InputError(where, "face " + std::to_string(f) + " has vertex index " +
+                                    std::to_string(face.mIndices[c]) + " out of range (" +
+                                    std::to_string(nv) + " vertices)");
+      triangle[size_t(c)] = face.mIndices[c];
+      referenced[face.mIndices[c]] = 1;
+    }
+    object.triangles.push_back(triangle);
+  }
+  if (skipped > 0)
+    warn_repair(where,
+                std::to_string(skipped) + " point or line primitive(s) are not rendered; skipped");
+  return object;
+}
+
+/// The instance of mesh `index` under node `n`: renumbers the object's triangles to the used
+/// vertices and reads the mesh's positions, morph targets, morph weights and skin.
+MeshInstance make_instance(const aiMesh& mesh, size_t n, unsigned index,
+                           const std::vector<char>& referenced, const NodeGraph& graph,
+                           const MorphTracks& morphs, const std::string& where, Object& object) {
+  const size_t nv = mesh.mNumVertices;
+  MeshInstance instance;
+  instance.mesh = &mesh;
+  instance.node = int(n);
+  std::vector<uint32_t> remap(nv, 0);
+  for (uint32_t v = 0; v < nv; ++v)
+    if (referenced[v]) {
+      remap[v] = uint32_t(instance.used.size());
+      instance.used.push_back(v);
+    }
+  for (Triangle& triangle : object.triangles)
+    for (uint32_t& v : triangle) v = remap[v];
+  instance.base.resize(nv);
+  for (size_t v = 0; v < nv; ++v) instance.base[v] = to_eigen(mesh.mVertices[v]);
+  for (uint32_t v : instance.used)
+    if (!instance.base[v].allFinite()) throw InputError(where, non_finite_vertex(v));
+  instance.morph = read_morph_targets(mesh, where);
+  for (const auto& key :
+       {std::pair<int, unsigned>(int(n), index), std::pair<int, unsigned>(-1, index)})
+    if (!instance.weights && morphs.count(key)) instance.weights = &morphs.at(key);
+  instance.skin = read_skin(mesh, graph, where);
+  return instance;
+}
+
+/// Gives the object its mesh's material (material 0 when the mesh names none that exists) and,
+/// when that material has a texture, the texture coordinates of the used vertices.
+void assign_material(const aiMesh& mesh, const Scene& scene,
+                     const std::vector<unsigned>& uv_channels, const MeshInstance& instance,
+                     const std::string& where, Object& object) {
+  object.material = mesh.mMaterialIndex < scene.materials.size() ? mesh.mMaterialIndex : 0;
+  if (mesh.mMaterialIndex >= scene.materials.size())
+    warn_repair(where, "names material " + std::to_string(mesh.mMaterialIndex) +
+                           ", which does not exist; using material 0");
+  const unsigned channel = uv_channels[object.material];
+  if (scene.materials[object.material].texture >= 0 && channel < AI_MAX_NUMBER_OF_TEXTURECOORDS &&
+      mesh.mTextureCoords[channel] != nullptr) {
+    for (uint32_t v : instance.used) {
+      const aiVector3D& uv = mesh.mTextureCoords[channel][v];
+      object.uvs.emplace_back(uv.x, uv.y);
+    }
+    if (!std::all_of(object.uvs.begin(), object.uvs.end(),
+                     [](const Vec2f& uv) { return uv.allFinite(); })) {
+      warn_repair(where, "has NaN or infinite texture coordinates; shown without its texture");
+      object.uvs.clear();
+    }
+  }
+}
+
+/// Every mesh of every node becomes one object of `scene`: an instance of that mesh in world
+/// space. Returns the instances, one per object.
+std::vector<MeshInstance> instance_meshes(const aiScene& model, const NodeGraph& graph,
+                                          const MorphTracks& morphs,
+                                          const std::vector<unsigned>& uv_channels,
+                                          const std::string& source, Scene& scene) {
   std::vector<MeshInstance> instances;
+  std::vector<char> referenced;
   for (size_t n = 0; n < graph.nodes.size(); ++n) {
     const aiNode* node = graph.nodes[n];
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
@@ -292,95 +369,42 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
         throw InputError(source, "node '" + std::string(node->mName.C_Str()) + "' names mesh " +
                                      std::to_string(index) + ", which does not exist");
       const aiMesh& mesh = *model.mMeshes[index];
-      const std::string mesh_name = mesh.mName.C_Str();
-      const std::string where = source + ": mesh " + std::to_string(index) + " '" + mesh_name + "'";
-      Object object;
-      object.name = std::string(node->mName.C_Str()) + (mesh_name.empty() ? "" : "/" + mesh_name);
-      const size_t nv = mesh.mNumVertices;
-      if (nv > 0 && mesh.mVertices == nullptr) throw InputError(where, "has no vertex positions");
-      size_t skipped = 0;
-      std::vector<char> referenced(nv, 0);
-      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-        const aiFace& face = mesh.mFaces[f];
-        if (face.mNumIndices != 3 || face.mIndices == nullptr) {
-          ++skipped;
-          continue;
-        }
-        Triangle triangle;
-        for (int c = 0; c < 3; ++c) {
-          if (face.mIndices[c] >= nv)
-            throw InputError(where, "face " + std::to_string(f) + " has vertex index " +
-                                        std::to_string(face.mIndices[c]) + " out of range (" +
-                                        std::to_string(nv) + " vertices)");
-          triangle[size_t(c)] = face.mIndices[c];
-          referenced[face.mIndices[c]] = 1;
-        }
-        object.triangles.push_back(triangle);
-      }
-      if (skipped > 0)
-        warn_repair(where, std::to_string(skipped) +
-                               " point or line primitive(s) are not rendered; skipped");
+      const std::string where =
+          source + ": mesh " + std::to_string(index) + " '" + mesh.mName.C_Str() + "'";
+      Object object = read_triangles(*node, mesh, where, referenced);
       if (object.triangles.empty()) continue;
-
-      MeshInstance instance;
-      instance.mesh = &mesh;
-      instance.node = int(n);
-      std::vector<uint32_t> remap(nv, 0);
-      for (uint32_t v = 0; v < nv; ++v)
-        if (referenced[v]) {
-          remap[v] = uint32_t(instance.used.size());
-          instance.used.push_back(v);
-        }
-      for (Triangle& triangle : object.triangles)
-        for (uint32_t& v : triangle) v = remap[v];
-      instance.base.resize(nv);
-      for (size_t v = 0; v < nv; ++v) instance.base[v] = to_eigen(mesh.mVertices[v]);
-      for (uint32_t v : instance.used)
-        if (!instance.base[v].allFinite()) throw InputError(where, non_finite_vertex(v));
-      instance.morph = read_morph_targets(mesh, where);
-      for (const auto& key :
-           {std::pair<int, unsigned>(int(n), index), std::pair<int, unsigned>(-1, index)})
-        if (!instance.weights && morphs.count(key)) instance.weights = &morphs.at(key);
-      instance.skin = read_skin(mesh, graph, where);
-
-      object.material = mesh.mMaterialIndex < scene.materials.size() ? mesh.mMaterialIndex : 0;
-      if (mesh.mMaterialIndex >= scene.materials.size())
-        warn_repair(where, "names material " + std::to_string(mesh.mMaterialIndex) +
-                               ", which does not exist; using material 0");
-      const unsigned channel = uv_channels[object.material];
-      if (scene.materials[object.material].texture >= 0 &&
-          channel < AI_MAX_NUMBER_OF_TEXTURECOORDS && mesh.mTextureCoords[channel] != nullptr) {
-        for (uint32_t v : instance.used) {
-          const aiVector3D& uv = mesh.mTextureCoords[channel][v];
-          object.uvs.emplace_back(uv.x, uv.y);
-        }
-        if (!std::all_of(object.uvs.begin(), object.uvs.end(),
-                         [](const Vec2f& uv) { return uv.allFinite(); })) {
-          warn_repair(where, "has NaN or infinite texture coordinates; shown without its texture");
-          object.uvs.clear();
-        }
-      }
+      MeshInstance instance =
+          make_instance(mesh, n, index, referenced, graph, morphs, where, object);
+      assign_material(mesh, scene, uv_channels, instance, where, object);
       scene.objects.push_back(std::move(object));
       instances.push_back(std::move(instance));
     }
   }
-  if (scene.objects.empty()) throw InputError(source, "has no triangles to render");
+  return instances;
+}
 
+/// Gives every object its key times and room for its positions at each key, refusing a model
+/// with more keyframe positions than kinray holds.
+void allocate_keys(const std::vector<MeshInstance>& instances, const std::vector<double>& seconds,
+                   const std::string& animation_where, Scene& scene) {
   size_t vertices = 0;
   for (const MeshInstance& instance : instances) vertices += instance.used.size();
-  if (double(vertices) * double(ticks.size()) > double(kMaxKeyPositions))
-    throw InputError(animation_where, std::to_string(ticks.size()) + " keys of " +
+  if (double(vertices) * double(seconds.size()) > double(kMaxKeyPositions))
+    throw InputError(animation_where, std::to_string(seconds.size()) + " keys of " +
                                           std::to_string(vertices) +
                                           " vertices are more keyframe positions than kinray "
                                           "holds; resample with a lower key rate");
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     scene.objects[o].key_times = seconds;
-    scene.objects[o].key_positions.assign(ticks.size(),
+    scene.objects[o].key_positions.assign(seconds.size(),
                                           std::vector<Vec3>(instances[o].used.size()));
   }
+}
 
-  // Each key is independent: node transforms, then per instance morph (mesh space), then skin or
-  // the node's rigid transform (world space).
+/// Evaluates every object's positions at every key. Each key is independent: node transforms,
+/// then per instance morph (mesh space), then skin or the node's rigid transform (world space).
+void evaluate_keys(const NodeGraph& graph, const std::vector<MeshInstance>& instances,
+                   const std::vector<double>& ticks, Scene& scene) {
   parallel_for(ticks.size(), 0, [&](size_t k) {
     std::vector<Mat4> globals;
     graph.global_transforms(ticks[k], globals);
@@ -403,6 +427,13 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
       for (size_t i = 0; i < instance.used.size(); ++i) out[i] = world[instance.used[i]];
     }
   });
+}
+
+/// Keeps one key of the objects that never move, then refuses a position that became NaN or
+/// infinite.
+void drop_static_keys_and_check(const std::vector<MeshInstance>& instances,
+                                const std::vector<double>& seconds, const std::string& source,
+                                Scene& scene) {
   for (Object& object : scene.objects)
     if (object.key_count() > 1 && object.is_static()) {  // one key is enough for what never moves
       object.key_times.resize(1);
@@ -416,6 +447,44 @@ Scene convert_model(const aiScene& model, const std::string& source, const Model
                            "vertex " + std::to_string(instances[o].used[v]) +
                                " becomes NaN or infinite at t=" + std::to_string(seconds[k]) +
                                " s (bad transforms, bones or morph targets)");
+}
+
+}  // namespace
+
+unsigned model_import_flags() {
+  return aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+}
+
+bool is_model_file(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension.size() < 2) return false;
+  Assimp::Importer importer;
+  return importer.IsExtensionSupported(extension);
+}
+
+Scene convert_model(const aiScene& model, const std::string& source, const ModelOptions& options) {
+  if (!std::isfinite(options.keyrate) || options.keyrate < 0)
+    throw InputError(source, "the key rate must be a finite number >= 0, got " +
+                                 std::to_string(options.keyrate));
+  const AnimationClip clip = select_animation(model, options.animation, source);
+  const NodeGraph graph = build_node_graph(model, clip.animation, source);
+  const std::string animation_where = source + ": animation '" + clip.name + "'";
+  const MorphTracks morphs = read_morph_tracks(model, graph, clip, animation_where);
+
+  const std::vector<double> ticks = key_grid(graph, morphs, clip, options.keyrate, source);
+  std::vector<double> seconds(ticks.size());
+  for (size_t k = 0; k < ticks.size(); ++k) seconds[k] = ticks[k] / clip.ticks_per_second;
+
+  Scene scene;
+  scene.name = std::filesystem::path(source).stem().string();
+  const std::vector<unsigned> uv_channels = read_materials(model, source, scene);
+  const std::vector<MeshInstance> instances =
+      instance_meshes(model, graph, morphs, uv_channels, source, scene);
+  if (scene.objects.empty()) throw InputError(source, "has no triangles to render");
+
+  allocate_keys(instances, seconds, animation_where, scene);
+  evaluate_keys(graph, instances, ticks, scene);
+  drop_static_keys_and_check(instances, seconds, source, scene);
 
   scene.time_begin = seconds.front();
   scene.time_end = seconds.size() > 1 ? seconds.back() : seconds.front() + 1.0;

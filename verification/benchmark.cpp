@@ -435,58 +435,100 @@ std::optional<double> BenchReport::break_even_inbetweens() const {
   return std::nullopt;
 }
 
+namespace {
+
+using XOf = std::function<double(const BenchPoint&)>;
+
+// The kinetic backend's colour first, then one per Embree mode.
+const std::vector<Color> kChartPalette = {{0.85f, 0.33f, 0.1f},  {0.47f, 0.67f, 0.19f}, {0.0f, 0.45f, 0.74f},
+                                          {0.49f, 0.18f, 0.56f}, {0.3f, 0.75f, 0.93f},  {0.64f, 0.08f, 0.18f},
+                                          {0.5f, 0.5f, 0.5f}};
+
+/// The x axis of a sweep's chart: labels and scales it on `chart`, returns each point's x.
+XOf sweep_axis(const std::string& sweep, Chart& chart) {
+  XOf x_of;
+  if (sweep == "inbetweens") {
+    x_of = [](const BenchPoint& p) { return double(p.inbetweens); };
+    chart.x_label = "in-betweens per keyframe interval";
+    chart.log_x = true;
+  } else if (sweep == "triangles") {
+    x_of = [](const BenchPoint& p) { return double(p.triangles); };
+    chart.x_label = "triangles";
+    chart.log_x = true;
+  } else if (sweep == "size") {
+    x_of = [](const BenchPoint& p) { return double(p.width) * p.height; };
+    chart.x_label = "pixels";
+    chart.log_x = true;
+  } else {
+    x_of = [](const BenchPoint& p) { return double(p.threads); };
+    chart.x_label = "threads";
+  }
+  return x_of;
+}
+
+/// Time per frame of the sweep's points (sorted by x): the kinetic backend, with and without its
+/// initialisation spread over the frames, then every Embree mode of the first point.
+std::vector<ChartSeries> frame_time_series(const std::vector<const BenchPoint*>& sweep_points, const XOf& x_of) {
+  const std::vector<Color>& palette = kChartPalette;
+  const BenchPoint& first = *sweep_points.front();
+  ChartSeries kinetic{"kinetic", {}, {}, palette[0]}, kinetic_init{"kinetic + init", {}, {}, palette[0], true};
+  std::vector<ChartSeries> peers;
+  for (size_t m = 0; m < first.embree.size(); ++m)
+    peers.push_back({"embree " + first.embree[m].mode, {}, {}, palette[1 + m % (palette.size() - 1)]});
+  for (const BenchPoint* p : sweep_points) {
+    kinetic.x.push_back(x_of(*p));
+    kinetic.y.push_back(p->kinetic_ms_per_frame);
+    kinetic_init.x.push_back(x_of(*p));
+    kinetic_init.y.push_back(p->kinetic_with_init_ms_per_frame);
+    for (size_t m = 0; m < peers.size() && m < p->embree.size(); ++m) {
+      peers[m].x.push_back(x_of(*p));
+      peers[m].y.push_back(p->embree[m].ms_per_frame);
+    }
+  }
+  std::vector<ChartSeries> series = {kinetic, kinetic_init};
+  series.insert(series.end(), peers.begin(), peers.end());
+  return series;
+}
+
+/// The triangle sweep's second chart: the kinetic initialisation against one Embree build + trace.
+Chart init_chart(const std::string& scene, const std::vector<const BenchPoint*>& sweep_points) {
+  Chart init;
+  init.title = "Initialisation against one Embree build + trace: " + scene;
+  init.x_label = "triangles";
+  init.y_label = "ms";
+  init.log_x = init.log_y = true;
+  ChartSeries kinetic_series{"kinetic init", {}, {}, kChartPalette[0]};
+  ChartSeries embree_series{"embree build+trace", {}, {}, kChartPalette[2]};
+  for (const BenchPoint* p : sweep_points) {
+    kinetic_series.x.push_back(double(p->triangles));
+    kinetic_series.y.push_back(p->kinetic_init_ms);
+    embree_series.x.push_back(double(p->triangles));
+    embree_series.y.push_back(p->embree_build_and_trace_ms);
+  }
+  init.series = {kinetic_series, embree_series};
+  return init;
+}
+
+}  // namespace
+
 std::vector<std::string> BenchReport::write_charts(const std::string& folder) const {
   std::filesystem::create_directories(folder);
   std::map<std::string, std::vector<const BenchPoint*>> sweeps;
   for (const BenchPoint& p : points) sweeps[p.sweep].push_back(&p);
-  const std::vector<Color> palette = {{0.85f, 0.33f, 0.1f}, {0.47f, 0.67f, 0.19f}, {0.0f, 0.45f, 0.74f},
-                                      {0.49f, 0.18f, 0.56f}, {0.3f, 0.75f, 0.93f}, {0.64f, 0.08f, 0.18f},
-                                      {0.5f, 0.5f, 0.5f}};
   std::vector<std::string> written;
   for (auto& [sweep, sweep_points] : sweeps) {
     if (sweep == "base") continue;
-    std::function<double(const BenchPoint&)> x_of;
     Chart chart;
     chart.log_y = true;
     chart.y_label = "ms per frame";
-    if (sweep == "inbetweens") {
-      x_of = [](const BenchPoint& p) { return double(p.inbetweens); };
-      chart.x_label = "in-betweens per keyframe interval";
-      chart.log_x = true;
-    } else if (sweep == "triangles") {
-      x_of = [](const BenchPoint& p) { return double(p.triangles); };
-      chart.x_label = "triangles";
-      chart.log_x = true;
-    } else if (sweep == "size") {
-      x_of = [](const BenchPoint& p) { return double(p.width) * p.height; };
-      chart.x_label = "pixels";
-      chart.log_x = true;
-    } else {
-      x_of = [](const BenchPoint& p) { return double(p.threads); };
-      chart.x_label = "threads";
-    }
+    const XOf x_of = sweep_axis(sweep, chart);
     std::sort(sweep_points.begin(), sweep_points.end(), [&](auto a, auto b) { return x_of(*a) < x_of(*b); });
     const BenchPoint& first = *sweep_points.front();
     // The triangle sweep varies the scene's parameters: its charts name the scene alone.
     const std::string scene =
         sweep == "triangles" ? first.scene.substr(0, first.scene.find(':')) : first.scene;
     chart.title = "Time per frame against " + chart.x_label + ": " + scene;
-    ChartSeries kinetic{"kinetic", {}, {}, palette[0]}, kinetic_init{"kinetic + init", {}, {}, palette[0], true};
-    std::vector<ChartSeries> peers;
-    for (size_t m = 0; m < first.embree.size(); ++m)
-      peers.push_back({"embree " + first.embree[m].mode, {}, {}, palette[1 + m % (palette.size() - 1)]});
-    for (const BenchPoint* p : sweep_points) {
-      kinetic.x.push_back(x_of(*p));
-      kinetic.y.push_back(p->kinetic_ms_per_frame);
-      kinetic_init.x.push_back(x_of(*p));
-      kinetic_init.y.push_back(p->kinetic_with_init_ms_per_frame);
-      for (size_t m = 0; m < peers.size() && m < p->embree.size(); ++m) {
-        peers[m].x.push_back(x_of(*p));
-        peers[m].y.push_back(p->embree[m].ms_per_frame);
-      }
-    }
-    chart.series = {kinetic, kinetic_init};
-    chart.series.insert(chart.series.end(), peers.begin(), peers.end());
+    chart.series = frame_time_series(sweep_points, x_of);
     if (sweep == "inbetweens")
       if (const auto k = break_even_inbetweens()) {
         chart.marker_x = *k;
@@ -499,22 +541,8 @@ std::vector<std::string> BenchReport::write_charts(const std::string& folder) co
     written.push_back(path);
 
     if (sweep == "triangles") {
-      Chart init;
-      init.title = "Initialisation against one Embree build + trace: " + scene;
-      init.x_label = "triangles";
-      init.y_label = "ms";
-      init.log_x = init.log_y = true;
-      ChartSeries kinetic_series{"kinetic init", {}, {}, palette[0]};
-      ChartSeries embree_series{"embree build+trace", {}, {}, palette[2]};
-      for (const BenchPoint* p : sweep_points) {
-        kinetic_series.x.push_back(double(p->triangles));
-        kinetic_series.y.push_back(p->kinetic_init_ms);
-        embree_series.x.push_back(double(p->triangles));
-        embree_series.y.push_back(p->embree_build_and_trace_ms);
-      }
-      init.series = {kinetic_series, embree_series};
       const std::string init_path = (std::filesystem::path(folder) / "bench_init.png").string();
-      write_chart_png(init, init_path);
+      write_chart_png(init_chart(scene, sweep_points), init_path);
       written.push_back(init_path);
     }
   }

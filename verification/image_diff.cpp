@@ -76,6 +76,12 @@ ExactHit evaluate(const std::array<Vec3, 3>& v, const Vec3& d, double edge_toler
   return hit;
 }
 
+/// Depths equal up to the float precision of the backends (see the top of this file).
+bool same_depth(const ExactHit& a, const ExactHit& b, const TieTolerance& tolerance) {
+  const double grazing = 1.0 / std::max(std::min(a.cos, b.cos), 1.0 / kMaxGrazing);
+  return std::abs(a.z - b.z) <= tolerance.depth * std::max(a.z, b.z) * grazing;
+}
+
 }  // namespace
 
 /// Which triangles of an object share each edge. Vertices are welded by position (equal at every
@@ -124,6 +130,109 @@ const FrameComparator::Adjacency& FrameComparator::adjacency(uint32_t object) {
   return *slot;
 }
 
+/// An object's triangle that a frame names at a pixel, with its exact hit of the pixel's ray.
+struct FrameComparator::Claim {
+  uint32_t object = kNoHit, prim = kNoHit;
+  std::array<Vec3, 3> v;
+  ExactHit hit;
+};
+
+bool FrameComparator::load_claim(uint32_t object, uint32_t prim, const Vec3& d, double t,
+                                 Claim& claim) const {
+  claim.object = object;
+  claim.prim = prim;
+  if (object >= m_scene.objects.size()) return false;
+  const CameraSpaceObject& cs = m_scene.objects[object];
+  const std::vector<Triangle>& triangles = m_scene.triangles(object);
+  if (prim >= triangles.size() || !cs.visible(t)) return false;
+  for (size_t k = 0; k < 3; ++k) claim.v[k] = cs.position(triangles[prim][k], t);
+  claim.hit = evaluate(claim.v, d, m_tolerance.edge);
+  return claim.hit.valid;
+}
+
+// A crack: the ray passes near exactly one edge of `near` (not a vertex), and the object's
+// triangle across that edge lies on the other side of it in the image and is pierced too, so
+// the union of the two covers the ray robustly; whoever reported the background or something
+// behind both leaked through.
+bool FrameComparator::leaks_through_crack(const Claim& near, const Claim& other, const Vec3& d,
+                                          double t) {
+  if (std::popcount(near.hit.near_edges) != 1) return false;
+  const int k = std::countr_zero(near.hit.near_edges);
+  const Triangle& tri = m_scene.triangles(near.object)[near.prim];
+  const uint32_t a = tri[size_t(k)], b = tri[size_t((k + 1) % 3)], c = tri[size_t((k + 2) % 3)];
+  const Adjacency& adj = adjacency(near.object);
+  const auto it = adj.edges.find(adj.key(a, b));
+  if (it == adj.edges.end()) return false;
+  const CameraSpaceObject& cs = m_scene.objects[near.object];
+  const Vec3& p = near.v[size_t(k)];
+  const Vec3& q = near.v[size_t((k + 1) % 3)];
+  const Vec3 edge_normal = p.cross(q);
+  const double side = edge_normal.dot(near.v[size_t((k + 2) % 3)]);
+  for (uint32_t prim : it->second) {
+    if (prim == near.prim) continue;
+    if (other.object == near.object && other.prim == prim) return false;  // the neighbour: a tie
+    const Triangle& across = m_scene.triangles(near.object)[prim];
+    uint32_t third = kNoHit;
+    for (uint32_t w : across)
+      if (adj.weld[w] != adj.weld[a] && adj.weld[w] != adj.weld[b]) third = w;
+    if (third == kNoHit || adj.weld[c] == adj.weld[third]) continue;
+    if (!(side * edge_normal.dot(cs.position(third, t)) < 0))
+      continue;  // folds back: a silhouette
+    std::array<Vec3, 3> v;
+    for (size_t m = 0; m < 3; ++m) v[m] = cs.position(across[m], t);
+    const ExactHit hit = evaluate(v, d, m_tolerance.edge);
+    if (!hit.valid || std::popcount(hit.near_edges) > 1) continue;
+    // Something at the depth of either side (a duplicate of the neighbour, say) is no leak.
+    if (other.object == kNoHit ||
+        (other.hit.z > std::max(near.hit.z, hit.z) && !same_depth(other.hit, hit, m_tolerance) &&
+         !same_depth(other.hit, near.hit, m_tolerance)))
+      return true;
+  }
+  return false;
+}
+
+PixelClass FrameComparator::judge_mismatch(const Frame& tested, const Frame& reference, size_t px,
+                                           const Vec3& d, bool& crack) {
+  const bool a_hit = tested.object[px] != kNoHit, b_hit = reference.object[px] != kNoHit;
+  const double t = tested.time;
+  Claim a, b;
+  const bool a_valid = a_hit && load_claim(tested.object[px], tested.prim[px], d, t, a);
+  const bool b_valid = b_hit && load_claim(reference.object[px], reference.prim[px], d, t, b);
+  bool tie = false;
+  crack = false;
+  if (a_hit == a_valid && b_hit == b_valid) {
+    const Claim* near = &a;
+    const Claim* other = &b;
+    if (a_hit && b_hit) {
+      tie = same_depth(a.hit, b.hit, m_tolerance);
+      if (b.hit.z < a.hit.z) std::swap(near, other);
+    } else if (b_hit) {
+      std::swap(near, other);
+    }
+    // A tie needs both sides to hit something (issue 13): the tolerances absorb rounding in
+    // *which* surface a ray sees, never whether it sees one. A pixel one side calls background
+    // is real whatever its depth or edge margin (a scene beyond float's range once made 18.5%
+    // of a frame such "ties" and passed); the crack count still says why.
+    if (!tie && near->hit.near_edges != 0) {
+      crack = leaks_through_crack(*near, *other, d, t);
+      tie = !crack && a_hit && b_hit;
+    }
+  }
+  return tie ? PixelClass::kTie : PixelClass::kReal;
+}
+
+void FrameComparator::add_shadow_mismatches(const Frame& tested, const Frame& reference,
+                                            FrameDiff& diff) {
+  const ShadowDiff shadows = compare_shadows(m_scene, m_lights, tested, reference);
+  diff.shadow_lights = shadows.lights;
+  for (size_t px = 0; px < diff.pixels.size(); ++px) {
+    if (shadows.pixels[px] < 0 || diff.pixels[px] != PixelClass::kEqual) continue;
+    const bool tie = shadows.pixels[px] == int8_t(ShadowClass::kTie);
+    diff.pixels[px] = tie ? PixelClass::kTie : PixelClass::kReal;
+    ++(tie ? diff.mismatch_tie : diff.mismatch_real);
+  }
+}
+
 FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) {
   if (tested.width != reference.width || tested.height != reference.height ||
       tested.pixel_count() != reference.pixel_count())
@@ -136,73 +245,6 @@ FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) 
   diff.time = tested.time;
   diff.pixels.resize(tested.pixel_count());
   const PixelRays image{tested.width, tested.height};
-  const double t = tested.time;
-  const double edge_tolerance = m_tolerance.edge;
-
-  struct Claim {
-    uint32_t object = kNoHit, prim = kNoHit;
-    std::array<Vec3, 3> v;
-    ExactHit hit;
-  };
-  // False when the claim names no triangle of the scene visible at t.
-  auto load = [&](uint32_t object, uint32_t prim, const Vec3& d, Claim& claim) {
-    claim.object = object;
-    claim.prim = prim;
-    if (object >= m_scene.objects.size()) return false;
-    const CameraSpaceObject& cs = m_scene.objects[object];
-    const std::vector<Triangle>& triangles = m_scene.triangles(object);
-    if (prim >= triangles.size() || !cs.visible(t)) return false;
-    for (size_t k = 0; k < 3; ++k) claim.v[k] = cs.position(triangles[prim][k], t);
-    claim.hit = evaluate(claim.v, d, edge_tolerance);
-    return claim.hit.valid;
-  };
-
-  // Depths equal up to the float precision of the backends (see the top of this file).
-  auto same_depth = [&](const ExactHit& a, const ExactHit& b) {
-    const double grazing = 1.0 / std::max(std::min(a.cos, b.cos), 1.0 / kMaxGrazing);
-    return std::abs(a.z - b.z) <= m_tolerance.depth * std::max(a.z, b.z) * grazing;
-  };
-
-  // A crack: the ray passes near exactly one edge of `near` (not a vertex), and the object's
-  // triangle across that edge lies on the other side of it in the image and is pierced too, so
-  // the union of the two covers the ray robustly; whoever reported the background or something
-  // behind both leaked through.
-  auto crack = [&](const Claim& near, const Claim& other, const Vec3& d) {
-    if (std::popcount(near.hit.near_edges) != 1) return false;
-    const int k = std::countr_zero(near.hit.near_edges);
-    const Triangle& tri = m_scene.triangles(near.object)[near.prim];
-    const uint32_t a = tri[size_t(k)], b = tri[size_t((k + 1) % 3)], c = tri[size_t((k + 2) % 3)];
-    const Adjacency& adj = adjacency(near.object);
-    const auto it = adj.edges.find(adj.key(a, b));
-    if (it == adj.edges.end()) return false;
-    const CameraSpaceObject& cs = m_scene.objects[near.object];
-    const Vec3& p = near.v[size_t(k)];
-    const Vec3& q = near.v[size_t((k + 1) % 3)];
-    const Vec3 edge_normal = p.cross(q);
-    const double side = edge_normal.dot(near.v[size_t((k + 2) % 3)]);
-    for (uint32_t prim : it->second) {
-      if (prim == near.prim) continue;
-      if (other.object == near.object && other.prim == prim) return false;  // the neighbour: a tie
-      const Triangle& across = m_scene.triangles(near.object)[prim];
-      uint32_t third = kNoHit;
-      for (uint32_t w : across)
-        if (adj.weld[w] != adj.weld[a] && adj.weld[w] != adj.weld[b]) third = w;
-      if (third == kNoHit || adj.weld[c] == adj.weld[third]) continue;
-      if (!(side * edge_normal.dot(cs.position(third, t)) < 0))
-        continue;  // folds back: a silhouette
-      std::array<Vec3, 3> v;
-      for (size_t m = 0; m < 3; ++m) v[m] = cs.position(across[m], t);
-      const ExactHit hit = evaluate(v, d, edge_tolerance);
-      if (!hit.valid || std::popcount(hit.near_edges) > 1) continue;
-      // Something at the depth of either side (a duplicate of the neighbour, say) is no leak.
-      if (other.object == kNoHit ||
-          (other.hit.z > std::max(near.hit.z, hit.z) && !same_depth(other.hit, hit) &&
-           !same_depth(other.hit, near.hit)))
-        return true;
-    }
-    return false;
-  };
-
   for (int j = 0; j < tested.height; ++j)
     for (int i = 0; i < tested.width; ++i) {
       const size_t px = tested.index(i, j);
@@ -217,41 +259,12 @@ FrameDiff FrameComparator::compare(const Frame& tested, const Frame& reference) 
         result = PixelClass::kEqual;
         continue;
       }
-      const Vec3 d = image.direction(i, j);
-      Claim a, b;
-      const bool a_valid = a_hit && load(tested.object[px], tested.prim[px], d, a);
-      const bool b_valid = b_hit && load(reference.object[px], reference.prim[px], d, b);
-      bool tie = false, is_crack = false;
-      if (a_hit == a_valid && b_hit == b_valid) {
-        const Claim* near = &a;
-        const Claim* other = &b;
-        if (a_hit && b_hit) {
-          tie = same_depth(a.hit, b.hit);
-          if (b.hit.z < a.hit.z) std::swap(near, other);
-        } else if (b_hit) {
-          std::swap(near, other);
-        }
-        // A tie needs both sides to hit something (issue 13): the tolerances absorb rounding in
-        // *which* surface a ray sees, never whether it sees one. A pixel one side calls background
-        // is real whatever its depth or edge margin (a scene beyond float's range once made 18.5%
-        // of a frame such "ties" and passed); the crack count still says why.
-        if (!tie && near->hit.near_edges != 0) {
-          is_crack = crack(*near, *other, d);
-          tie = !is_crack && a_hit && b_hit;
-        }
-      }
-      result = tie ? PixelClass::kTie : PixelClass::kReal;
-      ++(tie ? diff.mismatch_tie : diff.mismatch_real);
+      bool is_crack = false;
+      result = judge_mismatch(tested, reference, px, image.direction(i, j), is_crack);
+      ++(result == PixelClass::kTie ? diff.mismatch_tie : diff.mismatch_real);
       if (is_crack) ++diff.cracks;
     }
-  const ShadowDiff shadows = compare_shadows(m_scene, m_lights, tested, reference);
-  diff.shadow_lights = shadows.lights;
-  for (size_t px = 0; px < diff.pixels.size(); ++px) {
-    if (shadows.pixels[px] < 0 || diff.pixels[px] != PixelClass::kEqual) continue;
-    const bool tie = shadows.pixels[px] == int8_t(ShadowClass::kTie);
-    diff.pixels[px] = tie ? PixelClass::kTie : PixelClass::kReal;
-    ++(tie ? diff.mismatch_tie : diff.mismatch_real);
-  }
+  add_shadow_mismatches(tested, reference, diff);
   return diff;
 }
 

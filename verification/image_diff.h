@@ -76,7 +76,17 @@ class FrameComparator {
 
  private:
   struct Adjacency;
+  struct Claim;
   const Adjacency& adjacency(uint32_t object);
+  /// False when the claim names no triangle of the scene visible at t.
+  bool load_claim(uint32_t object, uint32_t prim, const Vec3& d, double t, Claim& claim) const;
+  /// Whether the ray leaks through a crack of the surface that `near` closes (image_diff.cpp).
+  bool leaks_through_crack(const Claim& near, const Claim& other, const Vec3& d, double t);
+  /// Pixel `px` names different triangles in the frames: a tie or real; `crack` says why.
+  PixelClass judge_mismatch(const Frame& tested, const Frame& reference, size_t px, const Vec3& d,
+                            bool& crack);
+  /// Pixels that see the same triangle but disagree on a light become ties or real mismatches.
+  void add_shadow_mismatches(const Frame& tested, const Frame& reference, FrameDiff& diff);
 
   const CameraSpaceScene& m_scene;
   CameraSpaceLights m_lights;

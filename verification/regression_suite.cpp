@@ -216,6 +216,206 @@ std::string join_problems(const std::vector<RegressionFrameResult>& frames, cons
   return text;
 }
 
+/// Where a case's model file is installed; empty for a built-in scene.
+fs::path model_path(const RegressionCase& c, const RegressionConfig& config) {
+  if (c.root == ModelRoot::kNone) return {};
+  return fs::path(c.root == ModelRoot::kShared ? config.shared_models : config.test_models) / c.scene;
+}
+
+/// The render of a case: the kinetic backend, audited as configured, quiet.
+RenderParams case_render_params(const RegressionCase& c, const RegressionConfig& config, const fs::path& model) {
+  RenderParams params;
+  params.scene = model.empty() ? c.scene : model.string();
+  params.backend = "kinetic";
+  params.width = c.width;
+  params.height = c.height;
+  params.frames = c.frames;
+  params.time = c.time;
+  params.animation = c.animation;
+  params.audit = config.audit;
+  // Models may bring lights; the cases are tiny, so their shadow rays are traced by brute force.
+  params.shadow_tree = ShadowTree::brute;
+  params.threads = config.threads;
+  params.quiet = true;
+  return params;
+}
+
+/// Checks the stored manifest in `references` against the case: empty when the references were
+/// made for it, else the problem.
+std::string check_stored_manifest(const RegressionCase& c, const fs::path& references, const Json& expected) {
+  const fs::path stored = references / "case.json";
+  std::error_code error;
+  if (!fs::is_regular_file(stored, error))
+    return "no references in " + references.string() +
+           " (record them deliberately: kinray regress --update-references --case " + c.name + ")";
+  try {
+    const std::string difference = manifest_difference(read_json_file(stored), expected);
+    if (!difference.empty())
+      return "the references in " + references.string() + " were made for another version of the case: " +
+             difference + " (if the change is deliberate: kinray regress --update-references --case " + c.name + ")";
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// A case's report folder, emptied of an earlier run; empty when no report is configured.
+fs::path clear_report_folder(const RegressionCase& c, const RegressionConfig& config) {
+  if (config.report.empty()) return {};
+  const fs::path report = fs::path(config.report) / c.name;
+  std::error_code error;
+  fs::remove_all(report, error);  // only this case's folder: no stale images of an earlier run
+  return report;
+}
+
+/// What every frame of a case is rendered with, compared with and reported to.
+struct CaseFrames {
+  const RegressionCase& c;
+  const RegressionConfig& config;
+  RenderJob& job;
+  Backend& kinetic;
+  Backend& embree;
+  FrameComparator& comparator;
+  const fs::path& references;
+};
+
+/// One frame's images and comparisons, kept for its failure report. The frames are reused
+/// from one frame of a case to the next.
+struct FrameImages {
+  Frame kinetic, embree, reference;
+  FrameDiff against_embree;
+  std::optional<FrameDiff> against_reference;
+  cv::Mat tested_bgr, reference_bgr;
+};
+
+/// Compares the kinetic frame `f` against its stored reference: triangle IDs, then the shaded
+/// colours; adds the problems to `line`.
+void compare_with_reference(const CaseFrames& cf, size_t f, FrameImages& images, RegressionFrameResult& line) {
+  const RegressionCase& c = cf.c;
+  const ColorThresholds& color = cf.config.color;
+  try {
+    images.reference.resize(c.width, c.height);
+    read_id_png((cf.references / numbered("id", f)).string(), images.reference);
+    images.reference_bgr = read_color_png((cf.references / numbered("color", f)).string());
+    if (images.reference.width != c.width || images.reference.height != c.height ||
+        images.reference_bgr.cols != c.width || images.reference_bgr.rows != c.height)
+      throw InputError(cf.references.string(), "reference frame " + std::to_string(f) + " is not " +
+                                                   std::to_string(c.width) + "x" + std::to_string(c.height));
+    images.reference.time = line.time;
+    set_colors(images.reference_bgr, images.reference);
+    images.against_reference = cf.comparator.compare(images.kinetic, images.reference);
+    line.reference_real = images.against_reference->mismatch_real;
+    line.reference_ties = images.against_reference->mismatch_tie;
+    if (line.reference_real > 0)
+      line.problems.push_back(std::to_string(line.reference_real) + " real mismatches against the reference " +
+                              (cf.references / numbered("id", f)).string());
+    const CodeError colors = compare_codes(images.tested_bgr, images.reference_bgr, *images.against_reference);
+    line.psnr_db = colors.psnr_db;
+    line.max_code_error = colors.max_on_agreeing;
+    if (line.max_code_error > color.max_code_error)
+      line.problems.push_back("shaded colour differs from " + (cf.references / numbered("color", f)).string() + " by " +
+                              std::to_string(line.max_code_error) + " codes where the triangles agree (allowed: " +
+                              std::to_string(color.max_code_error) + ")");
+    if (line.psnr_db && *line.psnr_db < color.min_psnr_db) {
+      char text[160];
+      std::snprintf(text, sizeof text, "shaded PSNR %.2f dB against the reference is below %.1f dB", *line.psnr_db,
+                    color.min_psnr_db);
+      line.problems.push_back(text);
+    }
+  } catch (const InputError& e) {
+    line.problems.push_back(std::string("cannot read the reference: ") + e.what());
+  }
+}
+
+/// Renders frame `f` with both backends and compares the kinetic frame against Embree and, unless
+/// updating, against the reference. False when the kinetic backend failed (the case stops there).
+bool compare_frame(const CaseFrames& cf, size_t f, FrameImages& images, RegressionFrameResult& line) {
+  try {
+    cf.job.render_frame(cf.kinetic, f, images.kinetic);
+  } catch (const std::exception& e) {
+    // An audit violation (std::logic_error) or any other failure of the kinetic backend.
+    line.problems.push_back(std::string("the kinetic backend failed: ") + e.what());
+    return false;
+  }
+  const Frame& a = images.kinetic;
+  cf.job.render_frame(cf.embree, f, images.embree);
+  line.covered = size_t(std::count_if(a.object.begin(), a.object.end(), [](uint32_t o) { return o != kNoHit; }));
+  images.against_embree = cf.comparator.compare(a, images.embree);
+  line.embree_real = images.against_embree.mismatch_real;
+  line.embree_ties = images.against_embree.mismatch_tie;
+  if (line.embree_real > 0)
+    line.problems.push_back(std::to_string(line.embree_real) + " real mismatches against Embree (" +
+                            std::to_string(images.against_embree.cracks) + " cracks)");
+
+  images.against_reference.reset();
+  images.reference_bgr = cv::Mat();
+  images.tested_bgr = color_image(a);
+  if (!cf.config.update) compare_with_reference(cf, f, images, line);
+  return true;
+}
+
+/// Writes the images of failed frame `f` into `report`, created on first use and then named in
+/// `report_folder`; a write failure is one more problem of the frame.
+void write_frame_report(const fs::path& report, size_t f, const FrameImages& images, std::string& report_folder,
+                        RegressionFrameResult& line) {
+  auto report_file = [&](const std::string& name) {
+    fs::create_directories(report);
+    report_folder = report.string();
+    return (report / name).string();
+  };
+  try {
+    write_color_png(report_file(numbered("kinetic", f)), images.kinetic);
+    write_id_png(report_file(numbered("kinetic_id", f)), images.kinetic);
+    write_color_png(report_file(numbered("embree", f)), images.embree);
+    write_heat_map(images.against_embree, report_file(numbered("embree_diff", f)), &images.embree);
+    if (images.against_reference) {
+      write_image(report_file(numbered("reference", f)), images.reference_bgr);
+      write_heat_map(*images.against_reference, report_file(numbered("reference_diff", f)), &images.reference);
+      write_color_error(report_file(numbered("color_error", f)), images.tested_bgr, images.reference_bgr);
+    }
+  } catch (const std::exception& e) {
+    line.problems.push_back(std::string("cannot write the report: ") + e.what());
+  }
+}
+
+/// Compares every frame of the case into `result.frames` until the kinetic backend fails, writing
+/// the report of each failed frame; keeps the kinetic frames in `rendered` when updating.
+void compare_frames(const CaseFrames& cf, const fs::path& report, RegressionCaseResult& result,
+                    std::vector<Frame>& rendered) {
+  FrameImages images;
+  for (size_t f = 0; f < cf.job.frame_times().size(); ++f) {
+    RegressionFrameResult line;
+    line.frame = f;
+    line.time = cf.job.frame_times()[f];
+    if (!compare_frame(cf, f, images, line)) {
+      result.frames.push_back(std::move(line));
+      break;
+    }
+    if (!line.passed() && !report.empty()) write_frame_report(report, f, images, result.report_folder, line);
+    if (cf.config.update) rendered.push_back(images.kinetic);
+    result.frames.push_back(std::move(line));
+  }
+}
+
+/// Writes the rendered frames and the manifest as the case's references: empty when written,
+/// else the problem.
+std::string write_references(const fs::path& references, const std::vector<Frame>& rendered, const Json& expected) {
+  std::error_code error;
+  fs::create_directories(references, error);
+  if (error) return "cannot create " + references.string() + ": " + error.message();
+  try {
+    for (size_t f = 0; f < rendered.size(); ++f) {
+      write_id_png((references / numbered("id", f)).string(), rendered[f]);
+      write_color_png((references / numbered("color", f)).string(), rendered[f]);
+    }
+    remove_stale_frames(references, rendered.size());
+    write_file_atomically((references / "case.json").string(), expected.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    return std::string("cannot write the references: ") + e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 const std::vector<RegressionCase>& regression_cases() { return kCases; }
@@ -252,161 +452,41 @@ RegressionCaseResult run_regression_case(const RegressionCase& c, const Regressi
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
   };
+  auto fail = [&](std::string problem) {
+    general.push_back(std::move(problem));
+    return finish(RegressionStatus::kFailed);
+  };
 
-  RenderParams params;
-  params.scene = c.scene;
-  if (c.root != ModelRoot::kNone) {
-    const fs::path path = fs::path(c.root == ModelRoot::kShared ? config.shared_models : config.test_models) / c.scene;
-    std::error_code error;
-    if (!fs::is_regular_file(path, error)) {
-      result.message = path.string() + " is not installed";
-      return finish(RegressionStatus::kSkipped);
-    }
-    params.scene = path.string();
+  const fs::path model = model_path(c, config);
+  std::error_code error;
+  if (!model.empty() && !fs::is_regular_file(model, error)) {
+    result.message = model.string() + " is not installed";
+    return finish(RegressionStatus::kSkipped);
   }
-  params.backend = "kinetic";
-  params.width = c.width;
-  params.height = c.height;
-  params.frames = c.frames;
-  params.time = c.time;
-  params.animation = c.animation;
-  params.audit = config.audit;
-  // Models may bring lights; the cases are tiny, so their shadow rays are traced by brute force.
-  params.shadow_tree = ShadowTree::brute;
-  params.threads = config.threads;
-  params.quiet = true;
-
   std::unique_ptr<RenderJob> job;
   try {
-    job = std::make_unique<RenderJob>(params);
+    job = std::make_unique<RenderJob>(case_render_params(c, config, model));
   } catch (const std::exception& e) {
-    general.push_back(std::string("cannot load the scene: ") + e.what());
-    return finish(RegressionStatus::kFailed);
+    return fail(std::string("cannot load the scene: ") + e.what());
   }
   const Json expected = manifest(c, *job);
   const fs::path references = fs::path(config.references) / c.name;
   if (!config.update) {
-    const fs::path stored = references / "case.json";
-    std::error_code error;
-    if (!fs::is_regular_file(stored, error)) {
-      general.push_back("no references in " + references.string() +
-                        " (record them deliberately: kinray regress --update-references --case " + c.name + ")");
-      return finish(RegressionStatus::kFailed);
-    }
-    try {
-      const std::string difference = manifest_difference(read_json_file(stored), expected);
-      if (!difference.empty()) {
-        general.push_back("the references in " + references.string() + " were made for another version of the case: " +
-                          difference + " (if the change is deliberate: kinray regress --update-references --case " +
-                          c.name + ")");
-        return finish(RegressionStatus::kFailed);
-      }
-    } catch (const InputError& e) {
-      general.push_back(e.what());
-      return finish(RegressionStatus::kFailed);
-    }
+    const std::string problem = check_stored_manifest(c, references, expected);
+    if (!problem.empty()) return fail(problem);
   }
-
-  fs::path report;
-  if (!config.report.empty()) {
-    report = fs::path(config.report) / c.name;
-    std::error_code error;
-    fs::remove_all(report, error);  // only this case's folder: no stale images of an earlier run
-  }
-  auto report_file = [&](const std::string& name) {
-    fs::create_directories(report);
-    result.report_folder = report.string();
-    return (report / name).string();
-  };
+  const fs::path report = clear_report_folder(c, config);
 
   std::unique_ptr<Backend> kinetic, embree;
   try {
     kinetic = job->make_backend("kinetic");
     embree = job->make_backend("embree");
   } catch (const std::exception& e) {
-    general.push_back(std::string("cannot create the backends: ") + e.what());
-    return finish(RegressionStatus::kFailed);
+    return fail(std::string("cannot create the backends: ") + e.what());
   }
   FrameComparator comparator(job->camera_space(), config.tolerance);
   std::vector<Frame> rendered;  // kept for an update, which writes only once every frame passed
-  Frame a, b, stored;
-  for (size_t f = 0; f < job->frame_times().size(); ++f) {
-    RegressionFrameResult line;
-    line.frame = f;
-    line.time = job->frame_times()[f];
-    try {
-      job->render_frame(*kinetic, f, a);
-    } catch (const std::exception& e) {
-      // An audit violation (std::logic_error) or any other failure of the kinetic backend.
-      line.problems.push_back(std::string("the kinetic backend failed: ") + e.what());
-      result.frames.push_back(std::move(line));
-      break;
-    }
-    job->render_frame(*embree, f, b);
-    line.covered = size_t(std::count_if(a.object.begin(), a.object.end(), [](uint32_t o) { return o != kNoHit; }));
-    const FrameDiff against_embree = comparator.compare(a, b);
-    line.embree_real = against_embree.mismatch_real;
-    line.embree_ties = against_embree.mismatch_tie;
-    if (line.embree_real > 0)
-      line.problems.push_back(std::to_string(line.embree_real) + " real mismatches against Embree (" +
-                              std::to_string(against_embree.cracks) + " cracks)");
-
-    std::optional<FrameDiff> against_reference;
-    cv::Mat reference_bgr;
-    const cv::Mat tested_bgr = color_image(a);
-    if (!config.update) {
-      try {
-        stored.resize(c.width, c.height);
-        read_id_png((references / numbered("id", f)).string(), stored);
-        reference_bgr = read_color_png((references / numbered("color", f)).string());
-        if (stored.width != c.width || stored.height != c.height || reference_bgr.cols != c.width ||
-            reference_bgr.rows != c.height)
-          throw InputError(references.string(), "reference frame " + std::to_string(f) + " is not " +
-                                                    std::to_string(c.width) + "x" + std::to_string(c.height));
-        stored.time = line.time;
-        set_colors(reference_bgr, stored);
-        against_reference = comparator.compare(a, stored);
-        line.reference_real = against_reference->mismatch_real;
-        line.reference_ties = against_reference->mismatch_tie;
-        if (line.reference_real > 0)
-          line.problems.push_back(std::to_string(line.reference_real) + " real mismatches against the reference " +
-                                  (references / numbered("id", f)).string());
-        const CodeError colors = compare_codes(tested_bgr, reference_bgr, *against_reference);
-        line.psnr_db = colors.psnr_db;
-        line.max_code_error = colors.max_on_agreeing;
-        if (line.max_code_error > config.color.max_code_error)
-          line.problems.push_back("shaded colour differs from " + (references / numbered("color", f)).string() + " by " +
-                                  std::to_string(line.max_code_error) + " codes where the triangles agree (allowed: " +
-                                  std::to_string(config.color.max_code_error) + ")");
-        if (line.psnr_db && *line.psnr_db < config.color.min_psnr_db) {
-          char text[160];
-          std::snprintf(text, sizeof text, "shaded PSNR %.2f dB against the reference is below %.1f dB", *line.psnr_db,
-                        config.color.min_psnr_db);
-          line.problems.push_back(text);
-        }
-      } catch (const InputError& e) {
-        line.problems.push_back(std::string("cannot read the reference: ") + e.what());
-      }
-    }
-
-    if (!line.passed() && !report.empty()) {
-      try {
-        write_color_png(report_file(numbered("kinetic", f)), a);
-        write_id_png(report_file(numbered("kinetic_id", f)), a);
-        write_color_png(report_file(numbered("embree", f)), b);
-        write_heat_map(against_embree, report_file(numbered("embree_diff", f)), &b);
-        if (against_reference) {
-          write_image(report_file(numbered("reference", f)), reference_bgr);
-          write_heat_map(*against_reference, report_file(numbered("reference_diff", f)), &stored);
-          write_color_error(report_file(numbered("color_error", f)), tested_bgr, reference_bgr);
-        }
-      } catch (const std::exception& e) {
-        line.problems.push_back(std::string("cannot write the report: ") + e.what());
-      }
-    }
-    if (config.update) rendered.push_back(a);
-    result.frames.push_back(std::move(line));
-  }
+  compare_frames({c, config, *job, *kinetic, *embree, comparator, references}, report, result, rendered);
 
   const bool all_passed = std::all_of(result.frames.begin(), result.frames.end(),
                                       [](const RegressionFrameResult& f) { return f.passed(); }) &&
@@ -416,24 +496,8 @@ RegressionCaseResult run_regression_case(const RegressionCase& c, const Regressi
     return finish(RegressionStatus::kFailed);
   }
   if (!config.update) return finish(RegressionStatus::kPassed);
-
-  std::error_code error;
-  fs::create_directories(references, error);
-  if (error) {
-    general.push_back("cannot create " + references.string() + ": " + error.message());
-    return finish(RegressionStatus::kFailed);
-  }
-  try {
-    for (size_t f = 0; f < rendered.size(); ++f) {
-      write_id_png((references / numbered("id", f)).string(), rendered[f]);
-      write_color_png((references / numbered("color", f)).string(), rendered[f]);
-    }
-    remove_stale_frames(references, rendered.size());
-    write_file_atomically((references / "case.json").string(), expected.dump(2) + "\n");
-  } catch (const std::exception& e) {
-    general.push_back(std::string("cannot write the references: ") + e.what());
-    return finish(RegressionStatus::kFailed);
-  }
+  const std::string problem = write_references(references, rendered, expected);
+  if (!problem.empty()) return fail(problem);
   return finish(RegressionStatus::kUpdated);
 }
 

@@ -134,33 +134,10 @@ std::vector<Triangle> welded(const FlightplanMesh& mesh, size_t keys) {
   return out;
 }
 
-}  // namespace
-
-int cubic_sign_on_unit_interval(const std::array<double, 4>& b, double margin, int depth) {
-  const auto sign_beyond_margin = [margin](double x) { return x > margin ? 1 : x < -margin ? -1 : 0; };
-  // The end values are b[0] and b[3]: when they do not share a proved sign, nothing will.
-  const int sign = sign_beyond_margin(b[0]);
-  if (sign == 0 || sign_beyond_margin(b[3]) != sign) return 0;
-  if (sign_beyond_margin(b[1]) == sign && sign_beyond_margin(b[2]) == sign) return sign;
-  if (depth == 0) return 0;
-  BernsteinPolynomial f;
-  f.degree = 3;
-  std::copy(b.begin(), b.end(), f.b.begin());
-  const auto [left, right] = subdivide(f, 0.5);
-  const std::array<double, 4> l = {left.b[0], left.b[1], left.b[2], left.b[3]};
-  const std::array<double, 4> r = {right.b[0], right.b[1], right.b[2], right.b[3]};
-  const int a = cubic_sign_on_unit_interval(l, margin, depth - 1);
-  return a != 0 && cubic_sign_on_unit_interval(r, margin, depth - 1) == a ? a : 0;
-}
-
-int back_face_cull_sign(const FlightplanMesh& mesh, int threads, WorkProgress* progress) {
-  const size_t keys = mesh.is_static ? 1 : mesh.key_count();
-  const std::vector<Triangle> triangles = welded(mesh, keys);
-  if (!closed_oriented_manifold(triangles, threads)) return 0;
-  std::vector<int32_t> component;
-  const uint32_t count = components(mesh, triangles, component);
-
-  // c at each key: the centroid of the component's vertices (unused vertices do not count).
+// c at each key: the centroid of each component's vertices (unused vertices do not count), at
+// [key * count + component].
+std::vector<Vec> component_centres(const FlightplanMesh& mesh, const std::vector<int32_t>& component, uint32_t count,
+                                   size_t keys, int threads) {
   std::vector<uint32_t> members(count, 0);
   for (uint32_t v = 0; v < mesh.vertex_count; ++v)
     if (component[v] >= 0) ++members[size_t(component[v])];
@@ -170,12 +147,17 @@ int back_face_cull_sign(const FlightplanMesh& mesh, int threads, WorkProgress* p
       if (component[v] >= 0) centre[k * count + size_t(component[v])] += mesh.key_position(k, v);
     for (uint32_t i = 0; i < count; ++i) centre[k * count + i] /= double(members[i]);
   });
+  return centre;
+}
 
-  // (2) on every segment [key k0, key k1] (one constant "segment" for a standing mesh): the
-  // cubic det(v0 - c, v1 - c, v2 - c) in the local time u in [0, 1]. Each v_i - c is
-  // (1 - u) P_i + u Q_i, and det is trilinear, so its k-th Bernstein coefficient is the mean of
-  // the determinants taking Q in k of the three places and P in the others. Each block of
-  // triangles proves one sign over all segments (0: none), then the blocks must agree.
+// (2) on every segment [key k0, key k1] (one constant "segment" for a standing mesh): the
+// cubic det(v0 - c, v1 - c, v2 - c) in the local time u in [0, 1]. Each v_i - c is
+// (1 - u) P_i + u Q_i, and det is trilinear, so its k-th Bernstein coefficient is the mean of
+// the determinants taking Q in k of the three places and P in the others. Each block of
+// triangles proves one sign over all segments (0: none), then the blocks must agree.
+int proved_orientation(const FlightplanMesh& mesh, std::span<const Triangle> triangles,
+                       const std::vector<int32_t>& component, const std::vector<Vec>& centre, uint32_t count,
+                       size_t keys, int threads, WorkProgress* progress) {
   std::vector<int> block_sign(block_count(triangles.size()), 0);
   const size_t segments = culling_proof_segments(mesh);
   parallel_for_dynamic(block_sign.size(), threads, [&](size_t block) {
@@ -219,10 +201,16 @@ int back_face_cull_sign(const FlightplanMesh& mesh, int threads, WorkProgress* p
   const int sigma = block_sign.empty() ? 0 : block_sign[0];
   if (sigma == 0 || std::any_of(block_sign.begin(), block_sign.end(), [&](int s) { return s != sigma; }))
     return 0;
+  return sigma;
+}
 
-  // (3) at key 0: the angle each triangle spans at its vertex a, about the axis a - c, between
-  // the directions to its two other vertices (in (0, pi) by (2)); summed per vertex, in triangle
-  // order (the sums are the same whatever the threads).
+// (3) at key 0: the angle each triangle spans at its vertex a, about the axis a - c, between
+// the directions to its two other vertices (in (0, pi) by (2)); summed per vertex, in triangle
+// order (the sums are the same whatever the threads). True when every used vertex turns by at
+// least 3 pi.
+bool vertex_turns_hold(const FlightplanMesh& mesh, std::span<const Triangle> triangles,
+                       const std::vector<int32_t>& component, const std::vector<Vec>& centre, int sigma,
+                       int threads) {
   std::vector<std::array<double, 3>> angle(triangles.size());
   parallel_for(triangles.size(), threads, [&](size_t t) {
     const Triangle& tri = triangles[t];
@@ -240,10 +228,15 @@ int back_face_cull_sign(const FlightplanMesh& mesh, int threads, WorkProgress* p
   for (size_t t = 0; t < triangles.size(); ++t)
     for (int i = 0; i < 3; ++i) turn[triangles[t][size_t(i)]] += angle[t][size_t(i)];
   for (uint32_t v = 0; v < mesh.vertex_count; ++v)
-    if (component[v] >= 0 && !(turn[v] < 3 * std::numbers::pi)) return 0;
+    if (component[v] >= 0 && !(turn[v] < 3 * std::numbers::pi)) return false;
+  return true;
+}
 
-  // (4) positions are linear on a segment, so the box of a component at its two end keys holds
-  // the component throughout it; before the first and after the last key it stands still.
+// (4) positions are linear on a segment, so the box of a component at its two end keys holds
+// the component throughout it; before the first and after the last key it stands still. True
+// when the eye is outside every component's box on every segment.
+bool eye_outside_components(const FlightplanMesh& mesh, const std::vector<int32_t>& component, uint32_t count,
+                            size_t keys, int threads) {
   std::vector<char> eye_outside(keys, 0);
   parallel_for(keys, threads, [&](size_t k) {
     std::vector<Eigen::AlignedBox3d> boxes(count);
@@ -253,7 +246,40 @@ int back_face_cull_sign(const FlightplanMesh& mesh, int threads, WorkProgress* p
     // A closed box: the eye on it declines.
     eye_outside[k] = std::none_of(boxes.begin(), boxes.end(), [](const auto& box) { return box.contains(Vec::Zero()); });
   });
-  if (std::find(eye_outside.begin(), eye_outside.end(), 0) != eye_outside.end()) return 0;
+  return std::find(eye_outside.begin(), eye_outside.end(), 0) == eye_outside.end();
+}
+
+}  // namespace
+
+
+int cubic_sign_on_unit_interval(const std::array<double, 4>& b, double margin, int depth) {
+  const auto sign_beyond_margin = [margin](double x) { return x > margin ? 1 : x < -margin ? -1 : 0; };
+  // The end values are b[0] and b[3]: when they do not share a proved sign, nothing will.
+  const int sign = sign_beyond_margin(b[0]);
+  if (sign == 0 || sign_beyond_margin(b[3]) != sign) return 0;
+  if (sign_beyond_margin(b[1]) == sign && sign_beyond_margin(b[2]) == sign) return sign;
+  if (depth == 0) return 0;
+  BernsteinPolynomial f;
+  f.degree = 3;
+  std::copy(b.begin(), b.end(), f.b.begin());
+  const auto [left, right] = subdivide(f, 0.5);
+  const std::array<double, 4> l = {left.b[0], left.b[1], left.b[2], left.b[3]};
+  const std::array<double, 4> r = {right.b[0], right.b[1], right.b[2], right.b[3]};
+  const int a = cubic_sign_on_unit_interval(l, margin, depth - 1);
+  return a != 0 && cubic_sign_on_unit_interval(r, margin, depth - 1) == a ? a : 0;
+}
+
+int back_face_cull_sign(const FlightplanMesh& mesh, int threads, WorkProgress* progress) {
+  const size_t keys = mesh.is_static ? 1 : mesh.key_count();
+  const std::vector<Triangle> triangles = welded(mesh, keys);
+  if (!closed_oriented_manifold(triangles, threads)) return 0;
+  std::vector<int32_t> component;
+  const uint32_t count = components(mesh, triangles, component);
+  const std::vector<Vec> centre = component_centres(mesh, component, count, keys, threads);
+  const int sigma = proved_orientation(mesh, triangles, component, centre, count, keys, threads, progress);
+  if (sigma == 0) return 0;
+  if (!vertex_turns_hold(mesh, triangles, component, centre, sigma, threads)) return 0;
+  if (!eye_outside_components(mesh, component, count, keys, threads)) return 0;
   // sigma > 0: outward normals, and a triangle faces the eye at the origin iff
   // ((v1 - v0) x (v2 - v0)) . (0 - v0) > 0, i.e. det(v0, v1, v2) < 0.
   return -sigma;
