@@ -26,7 +26,7 @@ struct BackendConfig {
   DepthSortKind sort = DepthSortKind::kList;  ///< kinetic: per-pixel depth order
   bool audit = false;           ///< kinetic: audit every certificate between events
   ShadowTree shadow_tree = ShadowTree::aabb;  ///< kinetic: what traces shadow rays (--shadow-tree)
-  ShutterParams shutter;        ///< motion blur: samples (sampling backends), order (kinetic)
+  ShutterParams shutter{};      ///< motion blur: samples (sampling backends), order (kinetic)
 };
 
 class Backend {

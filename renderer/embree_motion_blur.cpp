@@ -161,7 +161,7 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
         const double t = stratified_time(window, uint32_t(p), s, m_samples, seed);
         const RTCHit hit = trace(d, t, context);
         average.add(hit.geomID == RTC_INVALID_GEOMETRY_ID
-                        ? kBackground
+                        ? kBackgroundColor
                         : shade_hit(m_scene, image, i, j, hit.geomID, hit.primID, t),
                     1.0);
       }

@@ -73,7 +73,7 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
                                double t1, double length, ColorAverage& average) const {
   if (!(t1 > t0)) return;
   if (front == kNoGridHit) {
-    average.add(kBackground, (t1 - t0) / length);
+    average.add(kBackgroundColor, (t1 - t0) / length);
     return;
   }
   const uint32_t m = grid.mesh_of_triangle(front);
@@ -88,7 +88,7 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
 void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
                                       ColorAverage& average) const {
   if (front == kNoGridHit) {
-    average.add(kBackground, 1.0);
+    average.add(kBackgroundColor, 1.0);
     return;
   }
   const uint32_t m = grid.mesh_of_triangle(front);

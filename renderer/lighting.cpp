@@ -52,7 +52,7 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
       if (frame.object[p] == kNoHit) {
-        frame.color[p] = kBackground;
+        frame.color[p] = kBackgroundColor;
         continue;
       }
       const SurfacePoint& s = surfaces.emplace_back(

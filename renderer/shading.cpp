@@ -75,7 +75,7 @@ void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {
     const int j = int(row);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
-      frame.color[p] = frame.object[p] == kNoHit ? kBackground
+      frame.color[p] = frame.object[p] == kNoHit ? kBackgroundColor
                                                  : shade_hit(scene, image, i, j, frame.object[p],
                                                              frame.prim[p], frame.time);
     }

@@ -8,7 +8,7 @@
 
 namespace kinray {
 
-inline const Color kBackground(0.06f, 0.07f, 0.09f);
+inline const Color kBackgroundColor(0.06f, 0.07f, 0.09f);
 /// The share of the base colour that every hit receives, lit or not.
 inline constexpr float kAmbient = 0.15f;
 /// The share a light at normal incidence adds (white light: ambient + diffuse = 1).

@@ -123,7 +123,7 @@ TEST(MotionBlur, KineticMatchesTheExactAverageOfASlidingQuad) {
         std::clamp((window.close - std::max(t_c, window.open)) / window.length(), 0.0, 1.0);
     const Color quad = shade_hit(cs, image, i, j, 0, 0, 0.4);
     const Color expected =
-        (quad.cast<double>() * covered + kBackground.cast<double>() * (1 - covered)).cast<float>();
+        (quad.cast<double>() * covered + kBackgroundColor.cast<double>() * (1 - covered)).cast<float>();
     const size_t p = blurred.index(i, j);
     EXPECT_NEAR(blurred.color[p].x(), expected.x(), 1e-6) << "column " << i;
     EXPECT_NEAR(blurred.color[p].z(), expected.z(), 1e-6) << "column " << i;

@@ -224,7 +224,7 @@ TEST(OsmesaBackend, ShadesLikeEveryOtherBackend) {
   backend->render(0.0, frame);
   shade_frame(cs, frame, 1);
   const PixelRays image{kSize, kSize};
-  EXPECT_EQ(frame.color[frame.index(0, 0)], kBackground);
+  EXPECT_EQ(frame.color[frame.index(0, 0)], kBackgroundColor);
   EXPECT_EQ(frame.color[frame.index(12, 8)],
             shade_hit(cs, image, 12, 8, 0, frame.prim[frame.index(12, 8)], 0.0));
 }

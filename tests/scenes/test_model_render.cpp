@@ -52,8 +52,8 @@ INSTANTIATE_TEST_SUITE_P(
                       testing::kTestModels / "FBX/huesitos.fbx",  // the model's own camera
                       testing::kSharedModels /
                           "glTF2/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf"),
-    [](const ::testing::TestParamInfo<std::filesystem::path>& info) {
-      std::string name = info.param.stem().string();
+    [](const ::testing::TestParamInfo<std::filesystem::path>& model) {
+      std::string name = model.param.stem().string();
       for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
       return name;
