@@ -28,6 +28,18 @@ namespace kinray {
   return sign_after(f, s) >= 0 ? 1 : -1;
 }
 
+/// The sign of edge function n . d along the perturbed ray of (x, y, 1) just after s where
+/// Horner's value there is an exact 0 (rare): out of line, so that the callers' fast paths keep
+/// small frames.
+[[gnu::noinline]] inline int perturbed_edge_sign(const EdgeNormal& n, double x, double y, double s) {
+  return sign_plus(n.perturbed(x, y), s);
+}
+/// The same for the reversed normal (EdgeNormal::reversed).
+[[gnu::noinline]] inline int perturbed_reversed_edge_sign(const EdgeNormal& n, double x, double y,
+                                                         double s) {
+  return sign_plus(n.reversed().perturbed(x, y), s);
+}
+
 /// One edge function n . d along the ray d = (x, y, 1): along(x, y)'s coefficients and Horner's
 /// value at s, with the operations of edge_sign (which is built on it). A boundary event
 /// computes it once per watched column and hands it on to that column's certificate
@@ -45,7 +57,7 @@ struct EdgeOnRay {
     // Horner's value: when it is not zero it is the sign, and E is not the zero polynomial (no
     // perturbation, no derivative).
     if (v != 0) return v > 0 ? 1 : -1;
-    return sign_plus(n.perturbed(x, y), s);
+    return perturbed_edge_sign(n, x, y, s);
   }
 };
 
@@ -62,7 +74,7 @@ struct EdgeOnRay {
   const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
   const double v = (c2 * s + c1) * s + c0;
   if (v != 0) return v > 0 ? -1 : 1;
-  return sign_plus(n.reversed().perturbed(x, y), s);
+  return perturbed_reversed_edge_sign(n, x, y, s);
 }
 
 /// CoverageRule(m, s, orientation_sign).covers_in_row(x, y, a, b) for a single ray, building only
