@@ -127,15 +127,18 @@ class FrustumBand {
     double s = 0;
     bool moving = true;
   };
-  /// An edge's motion (p to q, its own direction) on its mesh's current segment, and now.
+  /// An edge's motion (p to q, its own direction) on its mesh's current segment, and now. The
+  /// end points are BandMotion's (not copies: an event reads them once if at all), valid until
+  /// the mesh's next flightplan update.
   struct EdgeNow {
-    PointMotion p, q;
+    const PointMotion* p = nullptr;
+    const PointMotion* q = nullptr;
     MeshSegment segment;
     double s = 0;
     bool moving = true;
     uint32_t edge = 0;  ///< global edge id
     /// Built afresh (the audit's independent check); the events read BandMotion's cache.
-    [[nodiscard]] EdgeNormal normal() const { return edge_normal(p, q); }
+    [[nodiscard]] EdgeNormal normal() const { return edge_normal(*p, *q); }
   };
   /// A vertex's slot among the band's row planes, as a step pattern of row sides.
   struct RowPattern {
