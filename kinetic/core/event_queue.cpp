@@ -207,16 +207,21 @@ void EventQueue::sift_down(uint32_t r, Node node) {
     if (first >= n) break;
     const Node* c = m_heap + first + kOffset;
     const uint32_t count = n - first < kArity ? n - first : kArity;
-    // Smallest time without branches (random times mispredict), then the rare exact ties.
+    // Smallest time without branches (random times mispredict), then the rare exact ties. A
+    // child before the first smallest is later than it, so a tie can only follow it: `tie`
+    // notes one on the way, and the keys are compared only then.
     uint32_t best = 0;
     double best_time = c[0].time;
+    bool tie = false;
     for (uint32_t i = 1; i < count; ++i) {
       const bool smaller = c[i].time < best_time;
+      tie = !smaller & (tie | (c[i].time == best_time));
       best = smaller ? i : best;
       best_time = smaller ? c[i].time : best_time;
     }
-    for (uint32_t i = 0; i < count; ++i)
-      if (c[i].time == best_time && i != best && less(c[i], c[best])) best = i;
+    if (tie) [[unlikely]]
+      for (uint32_t i = 0; i < count; ++i)
+        if (c[i].time == best_time && i != best && less(c[i], c[best])) best = i;
     if (!less(c[best], node)) break;
     place(r, c[best]);
     r = first + best;

@@ -1,6 +1,7 @@
 #include "kinetic/core/polynomial.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "kinetic/core/binomial.h"
 #include "util/check.h"
@@ -55,13 +56,14 @@ Polynomial operator-(const Polynomial& f) {
   return h;
 }
 
-Polynomial operator*(const Polynomial& f, const Polynomial& g) {
-  const int df = f.effective_degree(), dg = g.effective_degree();
-  KINRAY_CHECK_MSG(df + dg <= kN, "polynomial product exceeds kMaxPolynomialDegree");
+namespace {
+
+/// The product of f and g of effective degrees df and dg. Pairs (i, k-i) and (k-i, i) are summed
+/// together so that f * g == g * f bit for bit.
+Polynomial product(const Polynomial& f, const Polynomial& g, int df, int dg) {
   Polynomial h;
   h.degree = df + dg;
   for (int k = 0; k <= h.degree; ++k) {
-    // Pairs (i, k-i) and (k-i, i) are summed together so that f * g == g * f bit for bit.
     double sum = 0;
     for (int i = 0; 2 * i <= k; ++i) {
       const int j = k - i;
@@ -78,6 +80,52 @@ Polynomial operator*(const Polynomial& f, const Polynomial& g) {
     h.c[k] = sum;
   }
   return h;
+}
+
+/// product(f, g, DF, DG) written out for degrees known at compile time: coefficient K, its
+/// terms I in the same order, the same operations (a product out of the degrees is the same 0.0).
+template <int DF, int DG, int K, int I>
+double product_sum(const Polynomial& f, const Polynomial& g, double sum) {
+  if constexpr (2 * I > K) {
+    return sum;
+  } else {
+    constexpr int J = K - I;
+    double term;
+    if constexpr (I == J) {
+      term = (I <= DF && I <= DG) ? f.c[I] * g.c[I] : 0.0;
+    } else {
+      const double x = (I <= DF && J <= DG) ? f.c[I] * g.c[J] : 0.0;
+      const double y = (J <= DF && I <= DG) ? f.c[J] * g.c[I] : 0.0;
+      term = x + y;
+    }
+    return product_sum<DF, DG, K, I + 1>(f, g, sum + term);
+  }
+}
+
+template <int DF, int DG, size_t... K>
+Polynomial product_of(const Polynomial& f, const Polynomial& g, std::index_sequence<K...>) {
+  Polynomial h;
+  h.degree = DF + DG;
+  ((h.c[K] = product_sum<DF, DG, int(K), 0>(f, g, 0.0)), ...);
+  return h;
+}
+
+template <int DF, int DG>
+Polynomial product_of(const Polynomial& f, const Polynomial& g) {
+  return product_of<DF, DG>(f, g, std::make_index_sequence<size_t(DF + DG + 1)>());
+}
+
+}  // namespace
+
+Polynomial operator*(const Polynomial& f, const Polynomial& g) {
+  const int df = f.effective_degree(), dg = g.effective_degree();
+  KINRAY_CHECK_MSG(df + dg <= kN, "polynomial product exceeds kMaxPolynomialDegree");
+  // The frequent degrees written out: a boundary's depth (1 by 1) and a depth certificate's
+  // N D (3 by 2, 2 by 3).
+  if (df == 1 && dg == 1) return product_of<1, 1>(f, g);
+  if (df == 3 && dg == 2) return product_of<3, 2>(f, g);
+  if (df == 2 && dg == 3) return product_of<2, 3>(f, g);
+  return product(f, g, df, dg);
 }
 
 Polynomial operator*(double k, const Polynomial& f) {

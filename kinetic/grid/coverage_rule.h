@@ -28,16 +28,42 @@ namespace kinray {
   return sign_after(f, s) >= 0 ? 1 : -1;
 }
 
+/// The sign of edge function n . d along the perturbed ray of (x, y, 1) just after s where
+/// Horner's value there is an exact 0 (rare): out of line, so that the callers' fast paths keep
+/// small frames.
+[[gnu::noinline]] inline int perturbed_edge_sign(const EdgeNormal& n, double x, double y, double s) {
+  return sign_plus(n.perturbed(x, y), s);
+}
+/// The same for the reversed normal (EdgeNormal::reversed).
+[[gnu::noinline]] inline int perturbed_reversed_edge_sign(const EdgeNormal& n, double x, double y,
+                                                         double s) {
+  return sign_plus(n.reversed().perturbed(x, y), s);
+}
+
+/// One edge function n . d along the ray d = (x, y, 1): along(x, y)'s coefficients and Horner's
+/// value at s, with the operations of edge_sign (which is built on it). A boundary event
+/// computes it once per watched column and hands it on to that column's certificate
+/// (FrustumBand::edge_failure_time) and to the coverage test of the column it crossed.
+struct EdgeOnRay {
+  double x, c0, c1, c2, v;
+  EdgeOnRay(const EdgeNormal& n, double x_, double y, double s)
+      : x(x_),
+        c0(n.c0.x() * x_ + n.c0.y() * y + n.c0.z()),
+        c1(n.c1.x() * x_ + n.c1.y() * y + n.c1.z()),
+        c2(n.c2.x() * x_ + n.c2.y() * y + n.c2.z()),
+        v((c2 * s + c1) * s + c0) {}
+  /// edge_sign(n, x, y, s), for the n, y and s it was built from.
+  [[nodiscard]] int sign(const EdgeNormal& n, double y, double s) const {
+    // Horner's value: when it is not zero it is the sign, and E is not the zero polynomial (no
+    // perturbation, no derivative).
+    if (v != 0) return v > 0 ? 1 : -1;
+    return perturbed_edge_sign(n, x, y, s);
+  }
+};
+
 /// The sign (+1 or -1) of edge function n . d along the perturbed ray of (x, y, 1) just after s.
 [[nodiscard]] inline int edge_sign(const EdgeNormal& n, double x, double y, double s) {
-  // Horner's value of along(x, y) at s, with the same operations on the same values: when it is
-  // not zero it is the sign, and E is not the zero polynomial (no perturbation, no derivative).
-  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
-  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
-  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
-  const double v = (c2 * s + c1) * s + c0;
-  if (v != 0) return v > 0 ? 1 : -1;
-  return sign_plus(n.perturbed(x, y), s);
+  return EdgeOnRay(n, x, y, s).sign(n, y, s);
 }
 
 /// edge_sign(n.reversed(), x, y, s) without building the reversed normal: its along(x, y) and
@@ -48,7 +74,7 @@ namespace kinray {
   const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
   const double v = (c2 * s + c1) * s + c0;
   if (v != 0) return v > 0 ? -1 : 1;
-  return sign_plus(n.reversed().perturbed(x, y), s);
+  return perturbed_reversed_edge_sign(n, x, y, s);
 }
 
 /// CoverageRule(m, s, orientation_sign).covers_in_row(x, y, a, b) for a single ray, building only

@@ -22,10 +22,7 @@ class EdgeNormalCache {
   /// The normal of edge `edge` from p to q (its own direction), built on first use after the
   /// last invalidate().
   [[nodiscard]] const EdgeNormal& get(uint32_t edge, const PointMotion& p, const PointMotion& q) {
-    if (m_stamps[edge] != m_generation) {
-      m_normals[edge] = edge_normal(p, q);
-      m_stamps[edge] = m_generation;
-    }
+    if (m_stamps[edge] != m_generation) build(edge, p, q);
     return m_normals[edge];
   }
   /// Forgets every normal (some vertex motions changed).
@@ -40,6 +37,11 @@ class EdgeNormalCache {
   }
 
  private:
+  /// The miss (once per edge and segment), out of line: the callers' fast paths stay small.
+  [[gnu::noinline]] void build(uint32_t edge, const PointMotion& p, const PointMotion& q) {
+    m_normals[edge] = edge_normal(p, q);
+    m_stamps[edge] = m_generation;
+  }
   std::vector<EdgeNormal> m_normals;
   std::vector<uint32_t> m_stamps;  ///< the generation each normal was built in
   uint32_t m_generation = 1;

@@ -127,15 +127,18 @@ class FrustumBand {
     double s = 0;
     bool moving = true;
   };
-  /// An edge's motion (p to q, its own direction) on its mesh's current segment, and now.
+  /// An edge's motion (p to q, its own direction) on its mesh's current segment, and now. The
+  /// end points are BandMotion's (not copies: an event reads them once if at all), valid until
+  /// the mesh's next flightplan update.
   struct EdgeNow {
-    PointMotion p, q;
+    const PointMotion* p = nullptr;
+    const PointMotion* q = nullptr;
     MeshSegment segment;
     double s = 0;
     bool moving = true;
     uint32_t edge = 0;  ///< global edge id
     /// Built afresh (the audit's independent check); the events read BandMotion's cache.
-    [[nodiscard]] EdgeNormal normal() const { return edge_normal(p, q); }
+    [[nodiscard]] EdgeNormal normal() const { return edge_normal(*p, *q); }
   };
   /// A vertex's slot among the band's row planes, as a step pattern of row sides.
   struct RowPattern {
@@ -171,7 +174,13 @@ class FrustumBand {
   /// vanishes: the certificates of a boundary's watched columns.
   [[nodiscard]] double edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
                                          const MeshSegment& seg) const;
-  void schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* edge = nullptr);
+  /// edge_failure_time of an edge function already along its column (`r`, at y).
+  [[nodiscard]] double edge_failure_time(int sign, const EdgeNormal& n, const EdgeOnRay& r, double y,
+                                         const MeshSegment& seg) const;
+  /// Schedules the boundary's event; `rays`, if given, are its edge function along the two
+  /// columns its slot watches (lo, hi), computed by the event.
+  void schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* edge = nullptr,
+                         const std::array<EdgeOnRay, 2>* rays = nullptr);
   void schedule_vertex(uint32_t v);
   void schedule_orientation(uint32_t tri, const TriangleNow& tn);
   void schedule_flightplan(uint32_t m);
@@ -184,7 +193,10 @@ class FrustumBand {
   /// Recomputes the record's covered interval (from its boundary slots, or every column).
   void rescan_record(uint32_t rec, const TriangleNow& tn, bool full);
   /// Does the record's triangle cover `column` just after now (local time s on its segment)?
-  [[nodiscard]] bool covers_now(uint32_t rec, int column, double s) const;
+  /// `own`, if given, is the edge function of the record's boundary `boundary` along `column`
+  /// at s (the boundary event's), which is not evaluated again.
+  [[nodiscard]] bool covers_now(uint32_t rec, int column, double s, uint32_t boundary = kNoBoundary,
+                                const EdgeOnRay* own = nullptr) const;
   /// Brings one column of a record to `covered` (the interval moves by one column at an end).
   void set_pixel(uint32_t rec, int column, bool covered);
   /// Re-evaluates one column of a record.
@@ -269,7 +281,7 @@ class FrustumBand {
   /// A boundary event of a point behind the eye: it may come back in front, into the off slot.
   void handle_boundary_behind_eye(uint32_t id, const EdgeNow& en, const EdgeNormal& edge);
   /// A boundary crossed `column`: the column passes between the records it bounds.
-  void pass_column(uint32_t id, int column, double s);
+  void pass_column(uint32_t id, int column, double s, const EdgeOnRay& own);
   void handle_vertex(uint32_t v);
   void handle_orientation(uint32_t tri);
   void handle_swap(const EventKey& key, uint64_t payload);

@@ -199,8 +199,10 @@ class FrustumBand::Audit {
     const uint32_t m = scene.mesh_of_vertex(ends[0]);
     EdgeNow en;
     en.segment = band.m_motion.segment(m);
-    en.p = scene.vertex_motion(m, ends[0] - scene.vertex_begin(m), en.segment);
-    en.q = scene.vertex_motion(m, ends[1] - scene.vertex_begin(m), en.segment);
+    const PointMotion p = scene.vertex_motion(m, ends[0] - scene.vertex_begin(m), en.segment);
+    const PointMotion q = scene.vertex_motion(m, ends[1] - scene.vertex_begin(m), en.segment);
+    en.p = &p;
+    en.q = &q;
     en.s = m_t - en.segment.origin;
     const SlotTracker& st = b.tracker;
     const bool front = sign_plus(band.boundary_front(en, b.row), en.s) > 0;

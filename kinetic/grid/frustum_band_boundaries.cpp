@@ -97,7 +97,9 @@ void FrustumBand::handle_boundary(uint32_t id) {
   const EdgeNow en = edge_now(b.edge);
   const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);
-  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
+  // The edge function along each column looked at, computed once: its sign here, then the
+  // certificates of the new slot's columns and the coverage test of the column crossed.
+  auto ray = [&](int c) { return EdgeOnRay(edge, m_scene.column_x(c), y, en.s); };
   if (st.slot == kBehindEye) {
     handle_boundary_behind_eye(id, en, edge);
     return;
@@ -105,7 +107,8 @@ void FrustumBand::handle_boundary(uint32_t id) {
   // Plain ints, not a structured binding: clang 14 (the fuzz build) cannot capture one.
   const std::pair<int, int> watched = m_columns.watched(st.slot);
   const int lo = watched.first, hi = watched.second;
-  const int gl = sign_at(lo), gh = hi == lo ? gl : sign_at(hi);
+  const EdgeOnRay rl = ray(lo), rh = hi == lo ? rl : ray(hi);
+  const int gl = rl.sign(edge, y, en.s), gh = hi == lo ? gl : rh.sign(edge, y, en.s);
   const bool changed_lo = gl != st.sign_lo, changed_hi = gh != st.sign_hi;
   if (st.slot == 0 && sign_plus(boundary_front(en, b.row), en.s) < 0) {
     // Behind the eye through the eye plane, at infinity: nothing visible changes.
@@ -121,11 +124,13 @@ void FrustumBand::handle_boundary(uint32_t id) {
   }
   if (!changed_lo && !changed_hi) {
     ++m_stats.spurious;
-    schedule_boundary(id, en, &edge);
+    const std::array<EdgeOnRay, 2> rays = {rl, rh};
+    schedule_boundary(id, en, &edge, &rays);
     return;
   }
   ++m_stats.events.boundary;
   int column = lo;
+  std::array<EdgeOnRay, 2> rays = {rl, rh};
   if (lo == hi) {  // a one-column image: the only slot is off
     st.sign_lo = st.sign_hi = int8_t(gl);
   } else {
@@ -136,8 +141,12 @@ void FrustumBand::handle_boundary(uint32_t id) {
     column = changed_lo ? lo : hi;
     const int slot = m_columns.across(st.slot, column);
     const auto [nlo, nhi] = m_columns.watched(slot);
-    auto known = [&](int c) { return c == lo ? gl : (c == hi ? gh : sign_at(c)); };
-    const int sl = known(nlo), sh = known(nhi);
+    auto known = [&](int c) { return c == lo ? rl : (c == hi ? rh : ray(c)); };
+    rays = {known(nlo), known(nhi)};
+    auto known_sign = [&](int c, const EdgeOnRay& r) {
+      return c == lo ? gl : (c == hi ? gh : r.sign(edge, y, en.s));
+    };
+    const int sl = known_sign(nlo, rays[0]), sh = known_sign(nhi, rays[1]);
     if (!SlotCircle::consistent(slot, sl, sh)) {
       rebuild_boundary(id);
       return;
@@ -146,8 +155,8 @@ void FrustumBand::handle_boundary(uint32_t id) {
     st.sign_lo = int8_t(sl);
     st.sign_hi = int8_t(sh);
   }
-  schedule_boundary(id, en, &edge);
-  pass_column(id, column, en.s);
+  schedule_boundary(id, en, &edge, &rays);
+  pass_column(id, column, en.s, column == lo ? rl : rh);
 }
 
 void FrustumBand::handle_boundary_behind_eye(uint32_t id, const EdgeNow& en,
@@ -175,14 +184,15 @@ void FrustumBand::handle_boundary_behind_eye(uint32_t id, const EdgeNow& en,
   schedule_boundary(id, en, &edge);
 }
 
-void FrustumBand::pass_column(uint32_t id, int column, double s) {
+void FrustumBand::pass_column(uint32_t id, int column, double s, const EdgeOnRay& own) {
   // The column passes from one triangle of the edge to the other: the one that loses it goes
   // first, so the pixel's order never holds both (no depth certificate between them).
-  // Both triangles are on the edge's mesh segment, at its local time s.
+  // Both triangles are on the edge's mesh segment, at its local time s, and both test the
+  // boundary's own edge function at this column: `own`, the event's.
   const std::array<uint32_t, 2> records = m_boundaries[id].records;
   std::array<bool, 2> covered = {false, false};
   for (size_t k = 0; k < 2; ++k)
-    if (records[k] != kNoRecord) covered[k] = covers_now(records[k], column, s);
+    if (records[k] != kNoRecord) covered[k] = covers_now(records[k], column, s, id, &own);
   for (bool gains : {false, true})
     for (size_t k = 0; k < 2; ++k)
       if (records[k] != kNoRecord && covered[k] == gains) set_pixel(records[k], column, gains);

@@ -19,8 +19,8 @@ FrustumBand::EdgeNow FrustumBand::edge_now(uint32_t edge) const {
   const auto& ends = m_scene.edge_vertices(edge);
   const uint32_t m = m_scene.mesh_of_vertex(ends[0]);
   en.segment = m_motion.segment(m);
-  en.p = m_motion.vertex(ends[0]);
-  en.q = m_motion.vertex(ends[1]);
+  en.p = &m_motion.vertex(ends[0]);
+  en.q = &m_motion.vertex(ends[1]);
   en.s = m_sim.now() - en.segment.origin;
   en.moving = !m_scene.mesh(m).is_static;
   en.edge = edge;
@@ -46,8 +46,8 @@ FrustumBand::RowPattern FrustumBand::locate_vertex(const PointMotion& p, double 
 
 Polynomial FrustumBand::boundary_front(const EdgeNow& en, int row) const {
   const double y = m_scene.row_y(row);
-  const Polynomial z = boundary_depth(en.p, en.q, y);
-  return sign_plus(row_side(en.q, y), en.s) > 0 ? z : -z;
+  const Polynomial z = boundary_depth(*en.p, *en.q, y);
+  return sign_plus(row_side(*en.q, y), en.s) > 0 ? z : -z;
 }
 
 void FrustumBand::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const {

@@ -177,7 +177,8 @@ void FrustumBand::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) 
   set_coverage(rec, lo, hi);
 }
 
-bool FrustumBand::covers_now(uint32_t rec, int column, double s) const {
+bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t boundary,
+                             const EdgeOnRay* own) const {
   const RowRecord& r = m_records[rec];
   // The triangle's orientation sign is kept up to date by its orientation events (a change at
   // this very instant is still pending and rebuilds the record when processed). The edge
@@ -185,12 +186,21 @@ bool FrustumBand::covers_now(uint32_t rec, int column, double s) const {
   const int o = m_triangles[r.triangle].orientation;
   if (o == 0) return false;
   const double x = m_scene.column_x(column), y = m_scene.row_y(r.row);
-  auto sign_of = [&](int e) {
-    const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
-    return edge_direction(r.triangle, e) > 0 ? edge_sign(n, x, y, s)
-                                             : reversed_edge_sign(n, x, y, s);
-  };
-  return sign_of(r.edge[0]) == o && sign_of(r.edge[1]) == o;
+  for (size_t k = 0; k < 2; ++k) {
+    const int e = r.edge[k];
+    const bool forward = edge_direction(r.triangle, e) > 0;
+    int sign;
+    if (r.boundary[k] == boundary && own->v != 0) {
+      // The given boundary's edge function along this column, already evaluated: a Horner
+      // value that is not 0 is the sign, and the reversed normal's is its exact negation.
+      sign = (own->v > 0) == forward ? 1 : -1;
+    } else {
+      const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
+      sign = forward ? edge_sign(n, x, y, s) : reversed_edge_sign(n, x, y, s);
+    }
+    if (sign != o) return false;
+  }
+  return true;
 }
 
 void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {

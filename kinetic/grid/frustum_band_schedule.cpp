@@ -42,7 +42,16 @@ double FrustumBand::edge_failure_time(int sign, const EdgeNormal& n, double x, d
   return quadratic_failure_time(sign, c0, c1, c2, seg.origin, m_sim.now(), seg.end);
 }
 
-void FrustumBand::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known) {
+double FrustumBand::edge_failure_time(int sign, const EdgeNormal& n, const EdgeOnRay& r, double y,
+                                      const MeshSegment& seg) const {
+  // The same coefficients as above (EdgeOnRay computes them with those operations).
+  if (r.c0 == 0 && r.c1 == 0 && r.c2 == 0) return failure_time(sign, n.perturbed(r.x, y), seg);
+  if (sign == 0) return m_sim.now();
+  return quadratic_failure_time(sign, r.c0, r.c1, r.c2, seg.origin, m_sim.now(), seg.end);
+}
+
+void FrustumBand::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known,
+                                    const std::array<EdgeOnRay, 2>* rays) {
   if (!en.moving) return;
   EdgeBoundary& b = m_boundaries[id];
   SlotTracker& st = b.tracker;
@@ -53,9 +62,14 @@ void FrustumBand::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNo
     const EdgeNormal& edge = known ? *known : m_motion.edge_normal(en.edge);
     const double y = m_scene.row_y(b.row);
     const auto [lo, hi] = m_columns.watched(st.slot);
-    t = edge_failure_time(st.sign_lo, edge, m_scene.column_x(lo), y, en.segment);
-    if (hi != lo)
-      t = std::min(t, edge_failure_time(st.sign_hi, edge, m_scene.column_x(hi), y, en.segment));
+    if (rays != nullptr) {
+      t = edge_failure_time(st.sign_lo, edge, (*rays)[0], y, en.segment);
+      if (hi != lo) t = std::min(t, edge_failure_time(st.sign_hi, edge, (*rays)[1], y, en.segment));
+    } else {
+      t = edge_failure_time(st.sign_lo, edge, m_scene.column_x(lo), y, en.segment);
+      if (hi != lo)
+        t = std::min(t, edge_failure_time(st.sign_hi, edge, m_scene.column_x(hi), y, en.segment));
+    }
     // Only from the off slot (at infinity) can the point pass behind the eye.
     if (st.slot == 0) t = std::min(t, failure_time(1, boundary_front(en, b.row), en.segment));
   }

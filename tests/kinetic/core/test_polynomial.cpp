@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <random>
 
 #include "kinetic/core/polynomial.h"
@@ -57,6 +58,56 @@ TEST(Polynomial, DifferenceIsExactlyAntisymmetricAndProductCommutative) {
     const Polynomial f = random_polynomial(rng, trial % 5), g = random_polynomial(rng, trial % 4);
     EXPECT_TRUE(f - g == -(g - f));
     EXPECT_TRUE(f * g == g * f);
+  }
+}
+
+// operator* writes the products of degrees 1x1, 3x2 and 2x3 out at compile time: they must be the
+// general loop's doubles bit for bit, signed zeros included (a coefficient -0.0 or 0.0, a term
+// that rounds to zero, an effective degree below the stored one).
+TEST(Polynomial, WrittenOutProductsAreTheGeneralLoopBitForBit) {
+  auto general = [](const Polynomial& f, const Polynomial& g) {
+    const int df = f.effective_degree(), dg = g.effective_degree();
+    Polynomial h;
+    h.degree = df + dg;
+    for (int k = 0; k <= h.degree; ++k) {
+      double sum = 0;
+      for (int i = 0; 2 * i <= k; ++i) {
+        const int j = k - i;
+        double term;
+        if (i == j) {
+          term = (i <= df && i <= dg) ? f.c[i] * g.c[i] : 0.0;
+        } else {
+          const double x = (i <= df && j <= dg) ? f.c[i] * g.c[j] : 0.0;
+          const double y = (j <= df && i <= dg) ? f.c[j] * g.c[i] : 0.0;
+          term = x + y;
+        }
+        sum += term;
+      }
+      h.c[k] = sum;
+    }
+    return h;
+  };
+  std::mt19937_64 rng(11);
+  const double specials[] = {0.0, -0.0, 1e-200, -1e-200, 1.0, -1.0, 0x1p-1074};
+  auto coefficient = [&](int pick) {
+    if (pick % 3 == 0) return specials[size_t(pick / 3) % std::size(specials)];
+    return std::uniform_real_distribution<double>(-2, 2)(rng);
+  };
+  const int degrees[][2] = {{1, 1}, {3, 2}, {2, 3}, {1, 2}, {3, 3}};
+  for (int trial = 0; trial < 20000; ++trial) {
+    const auto& d = degrees[size_t(trial) % std::size(degrees)];
+    Polynomial f, g;
+    f.degree = d[0];
+    g.degree = d[1];
+    for (int k = 0; k <= f.degree; ++k) f.c[k] = coefficient(int(rng() % 9));
+    for (int k = 0; k <= g.degree; ++k) g.c[k] = coefficient(int(rng() % 9));
+    if (trial % 7 == 0) f.c[f.degree] = trial % 2 ? 1e-300 : 1.0;  // keep the degree often
+    if (f.effective_degree() + g.effective_degree() > kMaxPolynomialDegree) continue;
+    const Polynomial a = f * g, b = general(f, g);
+    ASSERT_EQ(a.degree, b.degree) << trial;
+    for (int k = 0; k <= kMaxPolynomialDegree; ++k)
+      ASSERT_EQ(std::signbit(a.c[k]), std::signbit(b.c[k])) << trial << " " << k;
+    ASSERT_TRUE(a == b) << trial;
   }
 }
 
