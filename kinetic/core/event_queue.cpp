@@ -215,7 +215,7 @@ void EventQueue::sift_down(uint32_t r, Node node) {
     bool tie = false;
     for (uint32_t i = 1; i < count; ++i) {
       const bool smaller = c[i].time < best_time;
-      tie = !smaller & (tie | (c[i].time == best_time));
+      tie = (!smaller) & (tie | (c[i].time == best_time));
       best = smaller ? i : best;
       best_time = smaller ? c[i].time : best_time;
     }
