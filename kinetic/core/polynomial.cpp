@@ -128,6 +128,10 @@ Polynomial operator*(const Polynomial& f, const Polynomial& g) {
   return product(f, g, df, dg);
 }
 
+Polynomial detail::general_product(const Polynomial& f, const Polynomial& g) {
+  return product(f, g, f.effective_degree(), g.effective_degree());
+}
+
 Polynomial operator*(double k, const Polynomial& f) {
   Polynomial h = f;
   for (int i = 0; i <= h.degree; ++i) h.c[i] = k * f.c[i];

@@ -53,6 +53,12 @@ Polynomial operator*(const Polynomial& f, const Polynomial& g);
 Polynomial operator*(double k, const Polynomial& f);
 bool operator==(const Polynomial& f, const Polynomial& g);  ///< same coefficients (degree aside)
 
+namespace detail {
+/// f * g by the general loop of operator* (which writes the frequent degrees out, to the same
+/// doubles): for tests that check the written-out products against it.
+Polynomial general_product(const Polynomial& f, const Polynomial& g);
+}  // namespace detail
+
 /// f(s + shift) as a polynomial in s (re-centre the local time origin); Taylor shift.
 Polynomial shifted(const Polynomial& f, double shift);
 /// f(k s) as a polynomial in s.

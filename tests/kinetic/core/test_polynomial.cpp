@@ -65,28 +65,6 @@ TEST(Polynomial, DifferenceIsExactlyAntisymmetricAndProductCommutative) {
 // general loop's doubles bit for bit, signed zeros included (a coefficient -0.0 or 0.0, a term
 // that rounds to zero, an effective degree below the stored one).
 TEST(Polynomial, WrittenOutProductsAreTheGeneralLoopBitForBit) {
-  auto general = [](const Polynomial& f, const Polynomial& g) {
-    const int df = f.effective_degree(), dg = g.effective_degree();
-    Polynomial h;
-    h.degree = df + dg;
-    for (int k = 0; k <= h.degree; ++k) {
-      double sum = 0;
-      for (int i = 0; 2 * i <= k; ++i) {
-        const int j = k - i;
-        double term;
-        if (i == j) {
-          term = (i <= df && i <= dg) ? f.c[i] * g.c[i] : 0.0;
-        } else {
-          const double x = (i <= df && j <= dg) ? f.c[i] * g.c[j] : 0.0;
-          const double y = (j <= df && i <= dg) ? f.c[j] * g.c[i] : 0.0;
-          term = x + y;
-        }
-        sum += term;
-      }
-      h.c[k] = sum;
-    }
-    return h;
-  };
   std::mt19937_64 rng(11);
   const double specials[] = {0.0, -0.0, 1e-200, -1e-200, 1.0, -1.0, 0x1p-1074};
   auto coefficient = [&](int pick) {
@@ -103,7 +81,7 @@ TEST(Polynomial, WrittenOutProductsAreTheGeneralLoopBitForBit) {
     for (int k = 0; k <= g.degree; ++k) g.c[k] = coefficient(int(rng() % 9));
     if (trial % 7 == 0) f.c[f.degree] = trial % 2 ? 1e-300 : 1.0;  // keep the degree often
     if (f.effective_degree() + g.effective_degree() > kMaxPolynomialDegree) continue;
-    const Polynomial a = f * g, b = general(f, g);
+    const Polynomial a = f * g, b = detail::general_product(f, g);
     ASSERT_EQ(a.degree, b.degree) << trial;
     for (int k = 0; k <= kMaxPolynomialDegree; ++k)
       ASSERT_EQ(std::signbit(a.c[k]), std::signbit(b.c[k])) << trial << " " << k;

@@ -340,8 +340,12 @@ TEST_P(GridSorts, TrianglesFlatForAWholeKeyIntervalCoverNothingThen) {
   };
   for (double t : {0.25, 0.5, 0.9, 1.0, 1.3, 1.5, 1.99, 2.0, 2.1, 2.5, 3.0}) {
     grid.advance_to(t);  // audited at every event
-    if (t >= 1.0 && t < 2.0) EXPECT_EQ(covered(), 0u) << "t = " << t;
-    if (t <= 0.5 || t >= 2.5) EXPECT_GT(covered(), 100u) << "t = " << t;
+    if (t >= 1.0 && t < 2.0) {
+      EXPECT_EQ(covered(), 0u) << "t = " << t;
+    }
+    if (t <= 0.5 || t >= 2.5) {
+      EXPECT_GT(covered(), 100u) << "t = " << t;
+    }
   }
 }
 
