@@ -69,10 +69,7 @@ struct EdgeOnRay {
 /// edge_sign(n.reversed(), x, y, s) without building the reversed normal: its along(x, y) and
 /// Horner's value are the exact negations of n's, so only an exact 0 needs the reversed normal.
 [[nodiscard]] inline int reversed_edge_sign(const EdgeNormal& n, double x, double y, double s) {
-  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
-  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
-  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
-  const double v = (c2 * s + c1) * s + c0;
+  const double v = EdgeOnRay(n, x, y, s).v;
   if (v != 0) return v > 0 ? -1 : 1;
   return perturbed_reversed_edge_sign(n, x, y, s);
 }

@@ -170,15 +170,13 @@ class FrustumBand {
 
   // Scheduling.
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;
-  /// failure_time(sign, n.perturbed(x, y), seg), building the polynomial only when along(x, y)
-  /// vanishes: the certificates of a boundary's watched columns.
-  [[nodiscard]] double edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
-                                         const MeshSegment& seg) const;
-  /// edge_failure_time of an edge function already along its column (`r`, at y).
+  /// failure_time(sign, n.perturbed(r.x, y), seg), from r's coefficients of along(r.x, y),
+  /// building the polynomial only when they vanish: the certificates of a boundary's watched
+  /// columns.
   [[nodiscard]] double edge_failure_time(int sign, const EdgeNormal& n, const EdgeOnRay& r, double y,
                                          const MeshSegment& seg) const;
   /// Schedules the boundary's event; `rays`, if given, are its edge function along the two
-  /// columns its slot watches (lo, hi), computed by the event.
+  /// columns its slot watches (lo, hi), computed by the event; otherwise they are computed here.
   void schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* edge = nullptr,
                          const std::array<EdgeOnRay, 2>* rays = nullptr);
   void schedule_vertex(uint32_t v);

@@ -122,15 +122,14 @@ void FrustumBand::handle_boundary(uint32_t id) {
     schedule_boundary(id, en, &edge);
     return;
   }
+  std::array<EdgeOnRay, 2> rays = {rl, rh};  // the watched columns' (lo, hi), for the schedule
   if (!changed_lo && !changed_hi) {
     ++m_stats.spurious;
-    const std::array<EdgeOnRay, 2> rays = {rl, rh};
     schedule_boundary(id, en, &edge, &rays);
     return;
   }
   ++m_stats.events.boundary;
   int column = lo;
-  std::array<EdgeOnRay, 2> rays = {rl, rh};
   if (lo == hi) {  // a one-column image: the only slot is off
     st.sign_lo = st.sign_hi = int8_t(gl);
   } else {

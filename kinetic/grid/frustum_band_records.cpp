@@ -190,7 +190,7 @@ bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t bounda
     const int e = r.edge[k];
     const bool forward = edge_direction(r.triangle, e) > 0;
     int sign;
-    if (r.boundary[k] == boundary && own->v != 0) {
+    if (own != nullptr && r.boundary[k] == boundary && own->v != 0) {
       // The given boundary's edge function along this column, already evaluated: a Horner
       // value that is not 0 is the sign, and the reversed normal's is its exact negation.
       sign = (own->v > 0) == forward ? 1 : -1;

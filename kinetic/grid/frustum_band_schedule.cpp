@@ -30,21 +30,10 @@ double FrustumBand::failure_time(int sign, const Polynomial& f, const MeshSegmen
   return certificate_failure_time(sign, f, seg.origin, m_sim.now(), seg.end);
 }
 
-double FrustumBand::edge_failure_time(int sign, const EdgeNormal& n, double x, double y,
-                                      const MeshSegment& seg) const {
-  // along(x, y)'s coefficients, with its operations; when one is not 0 that is the perturbed
-  // polynomial, stored with degree 2 and not zero, which failure_time hands on as it is.
-  const double c0 = n.c0.x() * x + n.c0.y() * y + n.c0.z();
-  const double c1 = n.c1.x() * x + n.c1.y() * y + n.c1.z();
-  const double c2 = n.c2.x() * x + n.c2.y() * y + n.c2.z();
-  if (c0 == 0 && c1 == 0 && c2 == 0) return failure_time(sign, n.perturbed(x, y), seg);
-  if (sign == 0) return m_sim.now();
-  return quadratic_failure_time(sign, c0, c1, c2, seg.origin, m_sim.now(), seg.end);
-}
-
 double FrustumBand::edge_failure_time(int sign, const EdgeNormal& n, const EdgeOnRay& r, double y,
                                       const MeshSegment& seg) const {
-  // The same coefficients as above (EdgeOnRay computes them with those operations).
+  // along(x, y)'s coefficients (EdgeOnRay's); when one is not 0 that is the perturbed
+  // polynomial, stored with degree 2 and not zero, which failure_time hands on as it is.
   if (r.c0 == 0 && r.c1 == 0 && r.c2 == 0) return failure_time(sign, n.perturbed(r.x, y), seg);
   if (sign == 0) return m_sim.now();
   return quadratic_failure_time(sign, r.c0, r.c1, r.c2, seg.origin, m_sim.now(), seg.end);
@@ -62,14 +51,11 @@ void FrustumBand::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNo
     const EdgeNormal& edge = known ? *known : m_motion.edge_normal(en.edge);
     const double y = m_scene.row_y(b.row);
     const auto [lo, hi] = m_columns.watched(st.slot);
-    if (rays != nullptr) {
-      t = edge_failure_time(st.sign_lo, edge, (*rays)[0], y, en.segment);
-      if (hi != lo) t = std::min(t, edge_failure_time(st.sign_hi, edge, (*rays)[1], y, en.segment));
-    } else {
-      t = edge_failure_time(st.sign_lo, edge, m_scene.column_x(lo), y, en.segment);
-      if (hi != lo)
-        t = std::min(t, edge_failure_time(st.sign_hi, edge, m_scene.column_x(hi), y, en.segment));
-    }
+    auto ray = [&](size_t k, int column) {
+      return rays != nullptr ? (*rays)[k] : EdgeOnRay(edge, m_scene.column_x(column), y, en.s);
+    };
+    t = edge_failure_time(st.sign_lo, edge, ray(0, lo), y, en.segment);
+    if (hi != lo) t = std::min(t, edge_failure_time(st.sign_hi, edge, ray(1, hi), y, en.segment));
     // Only from the off slot (at infinity) can the point pass behind the eye.
     if (st.slot == 0) t = std::min(t, failure_time(1, boundary_front(en, b.row), en.segment));
   }

@@ -27,32 +27,20 @@ class PixelOrdersOf final : public PixelOrders {
   }
 
   uint32_t insert(size_t pixel, uint32_t tri, double now) override {
-    Sort& order = m_cells_of[pixel].order;
-    const size_t bytes = order.memory_bytes();
-    order.insert(tri, now);
-    m_bytes += order.memory_bytes() - bytes;
     ++m_entries;
-    return order.front().value_or(kNoFront);
+    return change(pixel, [&](Sort& order) { order.insert(tri, now); });
   }
   uint32_t erase(size_t pixel, uint32_t tri, double now) override {
-    Sort& order = m_cells_of[pixel].order;
-    const size_t bytes = order.memory_bytes();
-    order.erase(tri, now);
-    m_bytes -= bytes - order.memory_bytes();
     --m_entries;
-    return order.front().value_or(kNoFront);
+    return change(pixel, [&](Sort& order) { order.erase(tri, now); });
   }
   uint32_t replace_motion(size_t pixel, uint32_t tri, double now) override {
     Sort& order = m_cells_of[pixel].order;
-    order.replace_motion(tri, now);
+    order.replace_motion(tri, now);  // the same members and bytes (the audit's running counts)
     return order.front().value_or(kNoFront);
   }
   uint32_t handle_event(size_t pixel, uint64_t payload, double now) override {
-    Sort& order = m_cells_of[pixel].order;
-    const size_t bytes = order.memory_bytes();
-    order.handle_event(payload, now);
-    m_bytes = m_bytes - bytes + order.memory_bytes();
-    return order.front().value_or(kNoFront);
+    return change(pixel, [&](Sort& order) { order.handle_event(payload, now); });
   }
 
   uint32_t front(size_t pixel) const override {
@@ -79,6 +67,17 @@ class PixelOrdersOf final : public PixelOrders {
   }
 
  private:
+  /// Applies a change to the pixel's order, keeping m_bytes (unsigned: the difference wraps
+  /// back when the order shrinks); returns its front after it.
+  template <class Change>
+  uint32_t change(size_t pixel, Change&& apply) {
+    Sort& order = m_cells_of[pixel].order;
+    const size_t before = order.memory_bytes();
+    apply(order);
+    m_bytes = m_bytes - before + order.memory_bytes();
+    return order.front().value_or(kNoFront);
+  }
+
   struct Cell {
     Cell(const BandMotion* motion, int column, int row, EventQueue& queue, uint32_t owner,
          const KineticSortConfig& config)
