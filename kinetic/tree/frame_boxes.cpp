@@ -1,7 +1,13 @@
 #include "kinetic/tree/frame_boxes.h"
 
+#include <emmintrin.h>
+
+#include <bit>
 #include <cmath>
 #include <limits>
+
+#include "kinetic/tree/wide_slab_test.h"
+#include "util/check.h"
 
 namespace kinray {
 
@@ -9,6 +15,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::array<float, 6> kEmpty = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
+constexpr std::array<float, 6> kEverywhere = {-kInf, -kInf, -kInf, kInf, kInf, kInf};
 
 /// A float <= x and a float >= x, without branches: the nearest float f is within half an ulp of
 /// x, and |f| 2^-22 is at least an ulp of f (1e-30 covers the values that round to 0), so the
@@ -22,129 +29,214 @@ float round_up(double x) {
   return f + (std::fabs(f) * 0x1p-22f + 1e-30f);
 }
 
-/// slab_entry for a ray with no zero direction component: every slab parameter is a number (the
-/// box is not empty), so the test needs no branch per axis (they mispredict half the time).
-double slab_entry_finite(const std::array<float, 6>& b, const Eigen::Vector3d& o,
-                         const Eigen::Vector3d& inv, double s_min, double s_max) {
-  if (!(b[0] <= b[3])) return std::numeric_limits<double>::infinity();  // absent subtree
-  double lo = s_min, hi = s_max;
+std::array<float, 6> rounded(const Aabb& box, double pad) {
+  if (!(box.lo[0] <= box.hi[0])) return kEmpty;
+  std::array<float, 6> b;
   for (int a = 0; a < 3; ++a) {
-    const double t0 = (double(b[size_t(a)]) - o[a]) * inv[a];
-    const double t1 = (double(b[size_t(a) + 3]) - o[a]) * inv[a];
-    lo = std::max(lo, std::min(t0, t1));
-    hi = std::min(hi, std::max(t0, t1));
+    b[size_t(a)] = round_down(box.lo[a] - pad);
+    b[size_t(a) + 3] = round_up(box.hi[a] + pad);
   }
-  return lo <= hi ? lo : std::numeric_limits<double>::infinity();
+  return b;
 }
+
+/// The traversal stack: a wide node pushes at most four children for the one it pops.
+constexpr int kStackSize = 512;
 
 }  // namespace
 
 void FrameBoxes::prepare(const BvhTopology& topology, const TreeMeshes& meshes,
                          const TreeFrame& frame) {
-  const auto& nodes = topology.nodes;
-  if (m_topology != &topology || m_slot.size() != nodes.size()) {
-    m_topology = &topology;
-    m_slot.assign(nodes.size(), kNoNode);
-    std::vector<uint32_t> compact(nodes.size(), kNoNode);
-    uint32_t inner = 0;
-    for (uint32_t i = 0; i < nodes.size(); ++i)
-      if (!nodes[i].leaf()) compact[i] = inner++;
-    m_nodes.assign(inner, Node{});
-    auto link = [&](uint32_t i) {
-      return nodes[i].leaf() ? kLeaf | nodes[i].triangle : compact[i];
-    };
-    for (uint32_t i = 0; i < nodes.size(); ++i) {
-      if (nodes[i].leaf()) continue;
-      Node& n = m_nodes[compact[i]];
-      n.link = {link(nodes[i].left), link(nodes[i].right)};
-      m_slot[nodes[i].left] = compact[i] * 2;
-      m_slot[nodes[i].right] = compact[i] * 2 + 1;
-    }
-    m_root_link = nodes.empty() ? kNoNode : link(0);
-  }
   m_meshes = &meshes;
   m_frame = &frame;
+  m_stamp += 2;
+  const auto& nodes = topology.nodes;
+  if (m_topology == &topology && m_slot.size() == nodes.size()) return;
+  m_topology = &topology;
+  m_slot.assign(nodes.size(), kNoLink);
+  m_nodes.clear();
+  m_children.clear();
+  m_root_link = nodes.empty() ? kNoLink : nodes[0].leaf() ? kLeaf | nodes[0].triangle : 0;
+  if (nodes.empty() || nodes[0].leaf()) return;
+  // Leaves below each node (children have larger indices): the collapse opens the largest inner
+  // child first, which keeps the wide tree balanced.
+  std::vector<uint32_t> leaves(nodes.size(), 1);
+  for (uint32_t i = uint32_t(nodes.size()); i-- > 0;)
+    if (!nodes[i].leaf()) leaves[i] = leaves[nodes[i].left] + leaves[nodes[i].right];
+  struct Pending {
+    uint32_t binary, wide;
+  };
+  std::vector<Pending> pending{{0, 0}};
+  m_nodes.emplace_back();
+  m_children.emplace_back();
+  while (!pending.empty()) {
+    const Pending p = pending.back();
+    pending.pop_back();
+    std::array<uint32_t, 4> child{nodes[p.binary].left, nodes[p.binary].right, kNoNode, kNoNode};
+    int count = 2;
+    while (count < 4) {
+      int largest = -1;
+      for (int k = 0; k < count; ++k)
+        if (!nodes[child[size_t(k)]].leaf() &&
+            (largest < 0 || leaves[child[size_t(k)]] > leaves[child[size_t(largest)]]))
+          largest = k;
+      if (largest < 0) break;
+      const BvhNode& opened = nodes[child[size_t(largest)]];
+      child[size_t(largest)] = opened.left;
+      child[size_t(count++)] = opened.right;
+    }
+    Node n;
+    for (int r = 0; r < 6; ++r)
+      for (int k = 0; k < 4; ++k) n.bound[r][k] = kEmpty[size_t(r)];
+    n.link.fill(kNoLink);
+    n.binary = p.binary;
+    for (int k = 0; k < count; ++k) {
+      const uint32_t c = child[size_t(k)];
+      m_slot[c] = p.wide * 4 + uint32_t(k);
+      n.used |= 1u << k;
+      if (nodes[c].leaf()) {
+        n.link[size_t(k)] = kLeaf | nodes[c].triangle;
+      } else {
+        n.link[size_t(k)] = uint32_t(m_nodes.size());
+        pending.push_back({c, uint32_t(m_nodes.size())});
+        m_nodes.emplace_back();
+        m_children.emplace_back();
+      }
+    }
+    m_nodes[p.wide] = n;
+    m_children[p.wide] = child;
+  }
+}
+
+std::array<float, 6> FrameBoxes::box(uint32_t i, const std::array<float, 6>& parent) const {
+  if (m_bottom_up != nullptr) return rounded(m_bottom_up->box(i), m_frame->pad);
+  const KineticBvh& tree = *m_kinetic;
+  if (!tree.active(i)) return kEmpty;
+  // The AABB tree tracks every side of an active node: its box is its own six sides. The
+  // BoxTree cuts it out of its parent's.
+  std::array<float, 6> b = tree.shape() == TreeShape::boxtree || i == 0 ? parent : kEverywhere;
+  for (int s = 0; s < 6; ++s) {
+    const uint32_t r = tree.realizer(i, s);
+    if (r == kNoVertex) continue;
+    const int a = side_axis(s);
+    const VertexBox& v = m_vertex_box[r];
+    if (side_sign(s) > 0)
+      b[size_t(a) + 3] = std::min(b[size_t(a) + 3], v.hi[a]);
+    else
+      b[size_t(a)] = std::max(b[size_t(a)], v.lo[a]);
+  }
+  return b;
+}
+
+void FrameBoxes::evaluate(uint32_t k) const {
+  Node& n = m_nodes[k];
+  std::atomic_ref<uint32_t> stamp(n.stamp);
+  uint32_t seen = stamp.load(std::memory_order_acquire);
+  while (seen != m_stamp) {
+    if (seen == m_stamp + 1) {  // another query fills it
+      _mm_pause();
+      seen = stamp.load(std::memory_order_acquire);
+      continue;
+    }
+    if (!stamp.compare_exchange_weak(seen, m_stamp + 1, std::memory_order_acquire)) continue;
+    // The BoxTree cuts each box out of its parent's: this node's own box, the root's or the slot
+    // its parent holds it in (the parent first).
+    const bool cuts = m_kinetic != nullptr && m_kinetic->shape() == TreeShape::boxtree;
+    std::array<float, 6> own = m_root_box;
+    if (cuts && n.binary != 0) {
+      const uint32_t slot = m_slot[n.binary];
+      const Node& parent = node(slot >> 2);
+      for (int r = 0; r < 6; ++r) own[size_t(r)] = parent.bound[r][slot & 3];
+    }
+    const auto& nodes = m_topology->nodes;
+    for (int c = 0; c < 4; ++c) {
+      if (((n.used >> c) & 1) == 0) continue;
+      std::array<float, 6> b;
+      if (cuts) {
+        // The binary nodes from below this one down to the child (the collapse opened at most
+        // two), each cut out of the one above.
+        std::array<uint32_t, 4> path;
+        int depth = 0;
+        for (uint32_t i = m_children[k][size_t(c)]; i != n.binary; i = nodes[i].parent)
+          path[size_t(depth++)] = i;
+        b = own;
+        while (depth > 0) b = box(path[size_t(--depth)], b);
+      } else {
+        b = box(m_children[k][size_t(c)], kEverywhere);
+      }
+      for (int r = 0; r < 6; ++r) n.bound[r][c] = b[size_t(r)];
+    }
+    stamp.store(m_stamp, std::memory_order_release);
+    return;
+  }
+}
+
+std::optional<std::array<float, 6>> FrameBoxes::box_of(uint32_t i) const {
+  if (i >= m_slot.size() || m_slot[i] == kNoLink) return std::nullopt;
+  const Node& n = node(m_slot[i] >> 2);
+  std::array<float, 6> b;
+  for (int r = 0; r < 6; ++r) b[size_t(r)] = n.bound[r][m_slot[i] & 3];
+  return b;
 }
 
 void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
+  m_kinetic = &tree;
+  m_bottom_up = nullptr;
+  prepare(tree.topology(), tree.meshes(), frame);
   const TreeMeshes& meshes = tree.meshes();
-  prepare(tree.topology(), meshes, frame);
-  m_coordinates.resize(size_t(meshes.vertex_count()) * 3);
-  for (uint32_t v = 0; v < meshes.vertex_count(); ++v)
-    for (int a = 0; a < 3; ++a)
-      m_coordinates[size_t(v) * 3 + size_t(a)] = meshes.coordinate(v, a, frame.t);
-  const auto& nodes = tree.topology().nodes;
-  if (nodes.empty()) return;
-  // Pre-order: a parent's box is in place before its children's. The AABB tree tracks every side
-  // of an active node, so the cut below is its own box; the BoxTree's root tracks none (the box of
-  // the shot).
-  const Aabb root = tree.root_box(frame);
-  for (uint32_t i = 0; i < nodes.size(); ++i) {
-    std::array<float, 6>& b = slot(i);
-    if (!tree.active(i)) {
-      b = kEmpty;
-      continue;
-    }
-    if (i == 0) {
-      for (int a = 0; a < 3; ++a) {
-        b[size_t(a)] = round_down(root.lo[a]);
-        b[size_t(a) + 3] = round_up(root.hi[a]);
-      }
-    } else {
-      b = slot(nodes[i].parent);
-    }
-    for (int s = 0; s < 6; ++s) {
-      const uint32_t r = tree.realizer(i, s);
-      if (r == kNoVertex) continue;
-      const int a = side_axis(s);
-      const double v = m_coordinates[size_t(r) * 3 + size_t(a)];
-      if (side_sign(s) > 0)
-        b[size_t(a) + 3] = std::min(b[size_t(a) + 3], round_up(v + frame.pad));
-      else
-        b[size_t(a)] = std::max(b[size_t(a)], round_down(v - frame.pad));
-    }
+  m_vertex_box.resize(meshes.vertex_count());
+  // round_down and round_up of the padded coordinates, four lanes at a time (the same operations,
+  // so the same floats): a frame's pass over every vertex.
+  const __m128 sign = _mm_set1_ps(-0.0f), ulps = _mm_set1_ps(0x1p-22f), tiny = _mm_set1_ps(1e-30f);
+  const __m128d pad = _mm_set1_pd(frame.pad);
+  for (uint32_t v = 0; v < meshes.vertex_count(); ++v) {
+    const __m128d xy =
+        _mm_set_pd(meshes.coordinate(v, 1, frame.t), meshes.coordinate(v, 0, frame.t));
+    const __m128d z = _mm_set1_pd(meshes.coordinate(v, 2, frame.t));
+    const __m128 lo =
+        _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(xy, pad)), _mm_cvtpd_ps(_mm_sub_pd(z, pad)));
+    const __m128 hi =
+        _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(xy, pad)), _mm_cvtpd_ps(_mm_add_pd(z, pad)));
+    _mm_store_ps(m_vertex_box[v].lo,
+                 _mm_sub_ps(lo, _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, lo), ulps), tiny)));
+    _mm_store_ps(m_vertex_box[v].hi,
+                 _mm_add_ps(hi, _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, hi), ulps), tiny)));
   }
+  if (!tree.topology().nodes.empty()) m_root_box = box(0, rounded(tree.root_box(frame), 0));
 }
 
 void FrameBoxes::fill(const BottomUpBvh& tree, const TreeFrame& frame) {
+  m_kinetic = nullptr;
+  m_bottom_up = &tree;
   prepare(tree.topology(), tree.meshes(), frame);
-  for (uint32_t i = 0; i < tree.topology().nodes.size(); ++i) {
-    const Aabb& box = tree.box(i);
-    std::array<float, 6>& b = slot(i);
-    if (!(box.lo[0] <= box.hi[0])) {
-      b = kEmpty;
-      continue;
-    }
-    for (int a = 0; a < 3; ++a) {
-      b[size_t(a)] = round_down(box.lo[a] - frame.pad);
-      b[size_t(a) + 3] = round_up(box.hi[a] + frame.pad);
-    }
-  }
+  if (!tree.topology().nodes.empty()) m_root_box = box(0, kEverywhere);
 }
 
 std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ray, bool any) {
-  if (boxes.root_link() == kNoNode) return std::nullopt;
+  if (boxes.root_link() == FrameBoxes::kNoLink) return std::nullopt;
   const TreeMeshes& meshes = boxes.meshes();
-  const Eigen::Vector3d inv = ray.direction.cwiseInverse();
-  const bool finite = inv.allFinite();
-  auto entry = [&](const std::array<float, 6>& b, double s_max) {
-    return finite ? slab_entry_finite(b, ray.origin, inv, ray.s_min, s_max)
-                  : detail::slab_entry(&b[0], &b[3], ray.origin, inv, ray.s_min, s_max);
-  };
+  WideRay wide(ray.origin, ray.direction, ray.s_min, ray.s_max);
   struct Entry {
     uint32_t link;
-    double entry;
+    float entry;
   };
-  Entry stack[128];
+  Entry stack[kStackSize];
   int top = 0;
+  {  // the root's box, as the one used column of a wide node
+    alignas(16) float bound[6][4];
+    for (int r = 0; r < 6; ++r) {
+      bound[r][0] = boxes.root_box()[size_t(r)];
+      bound[r][1] = bound[r][2] = bound[r][3] = kEmpty[size_t(r)];
+    }
+    float entry[4];
+    if ((wide.test(bound, entry) & 1) == 0) return std::nullopt;
+    stack[top++] = Entry{boxes.root_link(), entry[0]};
+  }
   std::optional<TreeHit> best;
   double s_max = ray.s_max;
-  const double e = entry(boxes.root_box(), s_max);
-  if (!(e < s_max)) return std::nullopt;
-  stack[top++] = Entry{boxes.root_link(), e};
+  float s_high = wide.scaled_up(s_max);
   while (top > 0) {
     const Entry cur = stack[--top];
-    if (!(cur.entry < s_max)) continue;
+    if (!(cur.entry <= s_high)) continue;  // a hit nearer than this box was found meanwhile
     if ((cur.link & FrameBoxes::kLeaf) != 0) {
       const uint32_t tri = cur.link & ~FrameBoxes::kLeaf;
       if (tri == ray.skip) continue;
@@ -155,14 +247,27 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
         best = TreeHit{tri, *s};
         if (any) return best;
         s_max = *s;
+        wide.set_s_max(s_max);
+        s_high = wide.scaled_up(s_max);
       }
       continue;
     }
     const FrameBoxes::Node& n = boxes.node(cur.link);
-    for (uint32_t link : n.link)  // the next nodes' lines load while this one is tested
-      if ((link & FrameBoxes::kLeaf) == 0) __builtin_prefetch(&boxes.node(link));
-    const double el = entry(n.box[0], s_max), er = entry(n.box[1], s_max);
-    detail::push_children(stack, top, Entry{n.link[0], el}, Entry{n.link[1], er}, s_max);
+    float entry[4];
+    unsigned mask = unsigned(wide.test(n.bound, entry)) & n.used;
+    KINRAY_CHECK_MSG(top + 4 <= kStackSize,
+                     "tree query: the tree is deeper than the traversal stack");
+    const int first = top;
+    for (; mask != 0; mask &= mask - 1) {
+      const int k = std::countr_zero(mask);
+      const uint32_t link = n.link[size_t(k)];
+      if ((link & FrameBoxes::kLeaf) == 0) boxes.prefetch(link);  // loads while the rest is tested
+      // A closest-hit query pops the nearest child first (insertion, at most four).
+      int j = top++;
+      if (!any)
+        for (; j > first && stack[j - 1].entry < entry[k]; --j) stack[j] = stack[j - 1];
+      stack[j] = Entry{link, entry[k]};
+    }
   }
   return best;
 }

@@ -1,13 +1,20 @@
 #pragma once
-// The boxes of one frame, evaluated once for every query of that frame, in a compact layout: one
-// 64-byte node per inner node of the tree holding both children's float boxes (rounded outward
-// from the padded double boxes, so each contains the box the lazy traversal of tree_query.h
-// evaluates and no hit is lost) and the children's links; the triangles are placed exactly as
-// TreeMeshes::position places them (the exact double triangle test, hence the same hits). A
-// traversal step reads one cache line and tests both children, instead of evaluating twelve
-// realizers' motions. Filled from the kinetic AABB tree, the kinetic BoxTree (a child is its
-// parent's box cut by the sides it tracks) or the bottom-up tree's stored boxes.
+// The boxes of one frame for every query of that frame, in a 4-wide layout: the binary tree is
+// collapsed once (each wide node holds up to four binary nodes, opening the largest inner child
+// first), and a wide node's four children's float boxes (rounded outward from the padded double
+// boxes, so each contains the box the lazy traversal of tree_query.h evaluates) lie side by side
+// for one SSE slab test of all four (wide_slab_test.h, conservative: no hit is lost). The
+// triangles are placed exactly as TreeMeshes::position places them (the exact double triangle
+// test, hence the same hits). The boxes come from the kinetic AABB tree, the kinetic BoxTree (a
+// child is its parent's box cut by the sides it tracks) or the bottom-up tree's stored boxes.
+//
+// A wide node's boxes are evaluated when a query of the frame first reaches it: a frame's
+// shadow rays meet a fraction of the nodes (they start on the surface and most leave it), and
+// evaluating every node was most of a frame's shadow time at 128x128. Queries run on several
+// threads: the first to reach a node fills it and publishes it with a release store of the
+// frame's stamp; the others wait for that stamp.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -20,24 +27,45 @@ namespace kinray {
 
 class FrameBoxes {
  public:
-  /// An inner node: child c's box is lo = box[c][0..2], hi = box[c][3..5] (lo > hi: absent), its
-  /// link an inner node's index here or kLeaf | triangle.
+  /// A wide node: child k's box is rows bound[0..2][k] (low x, y, z) and bound[3..5][k] (high);
+  /// an empty or unused child has low +inf and high -inf. link[k] is a wide node's index,
+  /// kLeaf | triangle, or kNoLink for an unused slot.
   struct alignas(64) Node {
-    std::array<std::array<float, 6>, 2> box;
-    std::array<uint32_t, 2> link;
-    uint32_t padding[2];
+    float bound[6][4];
+    std::array<uint32_t, 4> link;
+    uint32_t used = 0;    ///< bit k set when slot k holds a child
+    uint32_t binary = 0;  ///< the binary node it stands for
+    uint32_t stamp = 0;   ///< the frame whose boxes it holds (atomic_ref), or that frame + 1
+    uint32_t padding = 0;
   };
   static constexpr uint32_t kLeaf = 1u << 31;
+  static constexpr uint32_t kNoLink = ~0u;
 
-  /// The kinetic tree's boxes at frame.t (its realizers' coordinates, padded by frame.pad).
+  /// The kinetic tree's boxes at frame.t (its realizers' coordinates, padded by frame.pad). The
+  /// tree and the frame must stay unchanged while the frame's queries run.
   void fill(const KineticBvh& tree, const TreeFrame& frame);
   /// The bottom-up tree's stored boxes (its last update), padded by frame.pad.
   void fill(const BottomUpBvh& tree, const TreeFrame& frame);
 
-  /// The root's box and link (kNoNode when the tree is empty).
+  /// The root's box (low x, y, z, high x, y, z) and link (kNoLink when the tree is empty).
   [[nodiscard]] const std::array<float, 6>& root_box() const { return m_root_box; }
   [[nodiscard]] uint32_t root_link() const { return m_root_link; }
-  [[nodiscard]] const Node& node(uint32_t k) const { return m_nodes[k]; }
+  /// Wide node k with its children's boxes of this frame (evaluated on first use; thread-safe).
+  [[nodiscard]] const Node& node(uint32_t k) const {
+    Node& n = m_nodes[k];  // mutable: evaluated on first use
+    if (std::atomic_ref<uint32_t>(n.stamp).load(std::memory_order_acquire) != m_stamp) [[unlikely]]
+      evaluate(k);
+    return n;
+  }
+  /// Starts loading wide node k's lines (a query about to visit it; not evaluated here).
+  void prefetch(uint32_t k) const {
+    const char* line = reinterpret_cast<const char*>(&m_nodes[k]);
+    __builtin_prefetch(line);
+    __builtin_prefetch(line + 64);
+  }
+  /// The float box of binary node i when a wide node holds it (every node but the root and the
+  /// inner nodes the collapse opened); nullopt otherwise.
+  [[nodiscard]] std::optional<std::array<float, 6>> box_of(uint32_t i) const;
   /// Vertex v at the frame's time, as TreeMeshes::position places it (evaluated when tested: a
   /// frame's shadow rays test far fewer vertices than the meshes have).
   [[nodiscard]] Eigen::Vector3d position(uint32_t v) const {
@@ -46,25 +74,38 @@ class FrameBoxes {
   [[nodiscard]] const TreeMeshes& meshes() const { return *m_meshes; }
   [[nodiscard]] size_t memory_bytes() const {
     return m_nodes.capacity() * sizeof(Node) + m_slot.capacity() * sizeof(uint32_t) +
-           m_coordinates.capacity() * sizeof(double);
+           m_children.capacity() * sizeof(m_children[0]) +
+           m_vertex_box.capacity() * sizeof(m_vertex_box[0]);
   }
 
  private:
-  /// The links (once per topology).
+  /// The collapse (once per topology).
   void prepare(const BvhTopology& topology, const TreeMeshes& meshes, const TreeFrame& frame);
-  /// Where node i's box goes: its parent's compact node * 2 + side (the root: kNoNode).
-  [[nodiscard]] std::array<float, 6>& slot(uint32_t i) {
-    return m_slot[i] == kNoNode ? m_root_box : m_nodes[m_slot[i] >> 1].box[m_slot[i] & 1];
-  }
+  /// Fills wide node k's boxes for this frame (its parent's first), or waits for the thread
+  /// that does.
+  void evaluate(uint32_t k) const;
+  /// Binary node i's box this frame, given its parent's (the BoxTree's cut; the AABB tree's and
+  /// the bottom-up tree's own box).
+  [[nodiscard]] std::array<float, 6> box(uint32_t i, const std::array<float, 6>& parent) const;
 
   const TreeMeshes* m_meshes = nullptr;
   const BvhTopology* m_topology = nullptr;
-  std::vector<Node> m_nodes;
-  std::vector<uint32_t> m_slot;
+  const KineticBvh* m_kinetic = nullptr;  ///< the source of this frame's boxes, or
+  const BottomUpBvh* m_bottom_up = nullptr;
+  mutable std::vector<Node> m_nodes;
+  std::vector<uint32_t> m_slot;  ///< per binary node: wide node * 4 + slot, or kNoLink
+  std::vector<std::array<uint32_t, 4>> m_children;  ///< per wide node: its slots' binary nodes
   std::array<float, 6> m_root_box{};
-  uint32_t m_root_link = kNoNode;
+  uint32_t m_root_link = kNoLink;
+  uint32_t m_stamp = 0;  ///< even, one per fill: the nodes evaluated for this frame hold it
   const TreeFrame* m_frame = nullptr;  ///< the frame filled (it must outlive the queries)
-  std::vector<double> m_coordinates;  ///< per vertex and axis: a + b (t - o), the realizers' values
+  /// Kinetic trees: per vertex, its coordinates a + b (t - o) this frame, padded and rounded
+  /// down (lo) and up (hi): a realizer's side is one load. Evaluated for every vertex
+  /// in one sequential pass, as the realizers of the nodes a frame visits are spread over all.
+  struct alignas(32) VertexBox {
+    float lo[4], hi[4];  ///< x, y, z and one unused lane each
+  };
+  std::vector<VertexBox> m_vertex_box;
 };
 
 /// Closest hit (any = false) or any hit through the frame's boxes; the same answers as
