@@ -236,7 +236,16 @@ void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
     rebuild_record(rec, triangle_now(r.triangle), true);
     return;
   }
-  set_coverage(rec, lo, hi);
+  // One column joins or leaves at an end: what set_coverage(rec, lo, hi) would do, without its
+  // walk over the old and the new interval.
+  const uint32_t tri = r.triangle;
+  const int row = r.row;
+  if (covered)
+    pixel_insert(tri, column, row);
+  else
+    pixel_erase(tri, column, row);
+  m_records[rec].lo = lo;
+  m_records[rec].hi = hi;
 }
 
 void FrustumBand::update_triangle_row(uint32_t tri, int row) {
