@@ -80,9 +80,10 @@ bool range_clear(const double* c, double a, double b, double big_s) {
 using detail::Quadratic;
 
 /// first_failure_low_degree's closed-form path (c2 != 0) step for step, on Quadratic's
-/// operations.
-std::optional<double> first_failure_quadratic(const Quadratic& q, double s_now, double s_end) {
-  if (q.sign_after(s_now) < 0) return s_now;
+/// operations; at_now = q(s_now).
+std::optional<double> first_failure_quadratic(const Quadratic& q, double at_now, double s_now,
+                                              double s_end) {
+  if (q.sign_after(s_now, at_now) < 0) return s_now;
   if (!(s_end > s_now)) return std::nullopt;
   auto negative = [&](double s) { return q.sign_after(s) < 0; };
   const double c0 = q.c0, c1 = q.c1, c2 = q.c2;
@@ -131,11 +132,11 @@ double absolute_failure_time(std::optional<double> r, Negative&& negative,
 
 // Out of line (quadratic_failure_time, inline, runs the filter): the same arithmetic as the
 // general path, so the same time (test CertificateTime.*).
-double detail::undecided_quadratic_failure_time(const Quadratic& q, double origin, double now,
-                                                double end) {
+double detail::undecided_quadratic_failure_time(const Quadratic& q, double at_now, double origin,
+                                                double now, double end) {
   const double s_now = now - origin, s_end = end - origin;
   const std::optional<double> r = q.c2 != 0
-                                      ? first_failure_quadratic(q, s_now, s_end)
+                                      ? first_failure_quadratic(q, at_now, s_now, s_end)
                                       : first_failure_low_degree(q.polynomial(), s_now, s_end);
   return absolute_failure_time(
       r, [&](double s) { return q.sign_after(s) < 0; }, [&] { return q.polynomial(); }, origin, now,

@@ -61,20 +61,21 @@ struct Quadratic {
   [[nodiscard]] double operator()(double s) const { return (c2 * s + c1) * s + c0; }
   /// sign_after(f, s): the value's sign; at an exact 0 that of shifted(f, s).c[1], computed as
   /// shifted computes it, (c1 + s c2) + s c2, and then of c2.
-  [[nodiscard]] int sign_after(double s) const {
-    const double v = (*this)(s);
+  [[nodiscard]] int sign_after(double s) const { return sign_after(s, (*this)(s)); }
+  /// sign_after(s) for v = (*this)(s), already evaluated.
+  [[nodiscard]] int sign_after(double s, double v) const {
     if (v > 0) return 1;
     if (v < 0) return -1;
     const double d = (c1 + s * c2) + s * c2;
     return d != 0 ? (d > 0) - (d < 0) : (c2 > 0) - (c2 < 0);
   }
   /// holds_through for a stored degree 2 (clear_through<2>, operation for operation), for a
-  /// window already checked finite and ordered.
-  [[nodiscard]] bool holds_through(double a, double b, double big_s) const {
+  /// window already checked finite and ordered; value_a = (*this)(a), already evaluated.
+  [[nodiscard]] bool holds_through(double a, double b, double big_s, double value_a) const {
     constexpr double kEps = std::numeric_limits<double>::epsilon();
     const double margin =
         32 * kEps * ((std::fabs(c2) * big_s + std::fabs(c1)) * big_s + std::fabs(c0));
-    if (!(std::isfinite(margin) && (*this)(a) > margin && (*this)(b) > margin)) return false;
+    if (!(std::isfinite(margin) && value_a > margin && (*this)(b) > margin)) return false;
     if (c2 < 0) return true;
     // The slope c1 + 2 c2 s clears its own margin at both ends with one sign.
     const double slope_margin = 16 * kEps * (std::fabs(2 * c2) * big_s + std::fabs(c1));
@@ -86,25 +87,36 @@ struct Quadratic {
 };
 
 /// certificate_failure_time of a stored quadratic that the filter did not decide: the closed-form
-/// search of first_failure_low_degree, step for step on Quadratic's operations.
-[[nodiscard]] double undecided_quadratic_failure_time(const Quadratic& q, double origin, double now,
-                                                      double end);
+/// search of first_failure_low_degree, step for step on Quadratic's operations; at_now =
+/// q(now - origin), already evaluated.
+[[nodiscard]] double undecided_quadratic_failure_time(const Quadratic& q, double at_now,
+                                                      double origin, double now, double end);
 
 }  // namespace detail
 
 /// certificate_failure_time of sign (c0 + c1 s + c2 s^2), a quadratic stored with degree 2
-/// (sign +1 or -1), without building the polynomial: the same time. Inline: the filter decides
-/// most boundary certificates, two per boundary event.
+/// (sign +1 or -1), without building the polynomial: the same time. `value_now` is its Horner
+/// value (c2 s + c1) s + c0 at s = now - origin, which the caller has (a boundary event's
+/// EdgeOnRay) and which the filter and the search would otherwise evaluate again. Inline: the
+/// filter decides most boundary certificates, two per boundary event.
 [[nodiscard]] inline double quadratic_failure_time(int sign, double c0, double c1, double c2,
-                                                   double origin, double now, double end) {
-  // -f negates each coefficient exactly, so this is the quadratic -f holds.
+                                                   double value_now, double origin, double now,
+                                                   double end) {
+  // -f negates each coefficient exactly, and so Horner's value: this is the quadratic -f holds.
   const detail::Quadratic q =
       sign > 0 ? detail::Quadratic{c0, c1, c2} : detail::Quadratic{-c0, -c1, -c2};
+  const double at_now = sign > 0 ? value_now : -value_now;
   const double s_now = now - origin, s_end = end - origin;
   if (std::isfinite(s_now) && std::isfinite(s_end) && s_end >= s_now &&
-      q.holds_through(s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end))))
+      q.holds_through(s_now, s_end, std::max(std::fabs(s_now), std::fabs(s_end)), at_now))
     return std::numeric_limits<double>::infinity();
-  return detail::undecided_quadratic_failure_time(q, origin, now, end);
+  return detail::undecided_quadratic_failure_time(q, at_now, origin, now, end);
+}
+/// The same, Horner's value at now evaluated here.
+[[nodiscard]] inline double quadratic_failure_time(int sign, double c0, double c1, double c2,
+                                                   double origin, double now, double end) {
+  const double s_now = now - origin;
+  return quadratic_failure_time(sign, c0, c1, c2, (c2 * s_now + c1) * s_now + c0, origin, now, end);
 }
 
 /// certificate_failure_time of sign f (sign +1 or -1) without building -f: the same time, as

@@ -186,7 +186,11 @@ bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t bounda
   const int o = m_triangles[r.triangle].orientation;
   if (o == 0) return false;
   const double x = m_scene.column_x(column), y = m_scene.row_y(r.row);
-  for (size_t k = 0; k < 2; ++k) {
+  // The given boundary's edge first: of the two records it bounds, the one that loses the column
+  // is then answered without its other edge (the signs have no side effects, so the order does
+  // not change the answer).
+  const size_t first = own != nullptr && r.boundary[1] == boundary ? 1 : 0;
+  for (const size_t k : {first, 1 - first}) {
     const int e = r.edge[k];
     const bool forward = edge_direction(r.triangle, e) > 0;
     int sign;
@@ -232,7 +236,16 @@ void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
     rebuild_record(rec, triangle_now(r.triangle), true);
     return;
   }
-  set_coverage(rec, lo, hi);
+  // One column joins or leaves at an end: what set_coverage(rec, lo, hi) would do, without its
+  // walk over the old and the new interval.
+  const uint32_t tri = r.triangle;
+  const int row = r.row;
+  if (covered)
+    pixel_insert(tri, column, row);
+  else
+    pixel_erase(tri, column, row);
+  m_records[rec].lo = lo;
+  m_records[rec].hi = hi;
 }
 
 void FrustumBand::update_triangle_row(uint32_t tri, int row) {

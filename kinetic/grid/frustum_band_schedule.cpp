@@ -36,7 +36,8 @@ double FrustumBand::edge_failure_time(int sign, const EdgeNormal& n, const EdgeO
   // polynomial, stored with degree 2 and not zero, which failure_time hands on as it is.
   if (r.c0 == 0 && r.c1 == 0 && r.c2 == 0) return failure_time(sign, n.perturbed(r.x, y), seg);
   if (sign == 0) return m_sim.now();
-  return quadratic_failure_time(sign, r.c0, r.c1, r.c2, seg.origin, m_sim.now(), seg.end);
+  // r.v is Horner's value at r's s, the segment's local time of now.
+  return quadratic_failure_time(sign, r.c0, r.c1, r.c2, r.v, seg.origin, m_sim.now(), seg.end);
 }
 
 void FrustumBand::schedule_boundary(uint32_t id, const EdgeNow& en, const EdgeNormal* known,

@@ -35,6 +35,11 @@ class KineticSortedList {
   void insert(uint32_t id, double now) {
     KINRAY_DCHECK(!contains(id));
     const size_t n = m_entries.size();
+    if (n == 0) {  // no neighbour, no certificate: most inserts of a grid's pixels
+      m_entries.push_back(Entry{id, kNoEvent});
+      if (m_core.audit_on()) audit(now);
+      return;
+    }
     OrderCertificate with_front, with_back;  // of (entry lo - 1, id) and (entry lo, id)
     size_t lo = 0, hi = n;
     while (lo < hi) {
