@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "kinetic/grid/band_motion.h"
+#include "kinetic/grid/fold_certificate.h"
 #include "kinetic/grid/grid_scene.h"
 #include "kinetic/motion/triangle_motion.h"
 #include "kinetic/sort/kinetic_sort.h"
@@ -90,6 +91,10 @@ class PixelDepthKeys {
     OrderCertificate c;
     c.origin = std::max(sa.origin, sb.origin);
     c.end = std::min(sa.end, sb.end);
+    const GridScene& scene = m_source->scene();
+    if (const std::optional<SharedEdge> edge =
+            shared_edge(scene.triangle_vertices(a), scene.triangle_vertices(b)))
+      return fold_certificate(a, b, *edge, now, c);
     // Copies: the memo may recycle the first entry while computing the second.
     const DepthPolynomials pa = m_source->depth(a, m_column, m_row, c.origin);
     const DepthPolynomials pb = m_source->depth(b, m_column, m_row, c.origin);
@@ -122,6 +127,52 @@ class PixelDepthKeys {
         c.exact = exact_product_difference(nb, da, na, db, sigma);
     }
     return c;
+  }
+
+  /// Two triangles of one mesh sharing an edge (fold_certificate.h): sign(D_b) kappa times the
+  /// volume of their four vertices, built for the lower id first and negated for the other
+  /// order, so that it is exactly antisymmetric.
+  [[nodiscard]] OrderCertificate fold_certificate(uint32_t a, uint32_t b, const SharedEdge& edge,
+                                                  double now, OrderCertificate c) const {
+    const GridScene& scene = m_source->scene();
+    if (a > b) {
+      const std::optional<SharedEdge> back =
+          shared_edge(scene.triangle_vertices(b), scene.triangle_vertices(a));
+      OrderCertificate swapped = fold_certificate(b, a, *back, now, c);
+      swapped.f = -swapped.f;
+      return swapped;
+    }
+    // One mesh, so one segment: the vertices' motions are in the certificate's local time.
+    const DepthPolynomials& pb = m_source->depth(b, m_column, m_row, c.origin);
+    const int sign_b = sign_after(pb.denominator, now - c.origin);
+    if (sign_b == 0) return c;  // D vanishes only for a triangle that covers nothing: by id
+    const auto& va = scene.triangle_vertices(a);
+    const auto& vb = scene.triangle_vertices(b);
+    const Polynomial volume = fold_volume(m_source->vertex(va[size_t(edge.first)]),
+                                          m_source->vertex(va[size_t((edge.first + 1) % 3)]),
+                                          m_source->vertex(va[size_t((edge.first + 2) % 3)]),
+                                          m_source->vertex(vb[size_t(edge.b_other)]));
+    c.f = sign_b * edge.kappa > 0 ? volume : -volume;
+    return c;
+  }
+
+  /// Two triangles sharing an edge have one depth where the pixel's ray meets that edge (their
+  /// planes meet along it), and there their fold certificate orders them while their coverage
+  /// events, a few ulps away, are still pending: tied when the edge function along the ray is
+  /// within its rounding of zero at t (the audit).
+  [[nodiscard]] bool tied(uint32_t a, uint32_t b, double t) const {
+    const GridScene& scene = m_source->scene();
+    const auto& va = scene.triangle_vertices(a);
+    const std::optional<SharedEdge> edge = shared_edge(va, scene.triangle_vertices(b));
+    if (!edge) return false;
+    const EdgeNormal n = edge_normal(m_source->vertex(va[size_t(edge->first)]),
+                                     m_source->vertex(va[size_t((edge->first + 1) % 3)]));
+    const Polynomial e = n.along(scene.column_x(m_column), scene.row_y(m_row));
+    const double s = t - m_source->segment_of(a).origin;
+    double magnitude = 0;
+    for (int k = e.degree; k >= 0; --k)
+      magnitude = magnitude * std::abs(s) + std::abs(e.c[size_t(k)]);
+    return std::abs(e(s)) <= 0x1p-40 * magnitude;
   }
 
   /// Camera-space depth of triangle a along this pixel's ray at t (for audits); at an instant

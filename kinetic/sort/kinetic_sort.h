@@ -46,6 +46,17 @@ concept KineticKeys = requires(const K& k, uint32_t a, uint32_t b, double t) {
   { k.value(a, t) } -> std::convertible_to<double>;  // the key at time t, for audit / brute force
 };
 
+/// Keys may also say that two keys are equal at t although their values, evaluated in double,
+/// differ beyond the audit's tolerance (`bool tied(a, b, t) const`): the audit then accepts
+/// either order of that pair at t.
+template <class K>
+[[nodiscard]] bool keys_tied(const K& keys, uint32_t a, uint32_t b, double t) {
+  if constexpr (requires { keys.tied(a, b, t); })
+    return keys.tied(a, b, t);
+  else
+    return false;
+}
+
 struct KineticSortStats;
 
 struct KineticSortConfig {
@@ -248,7 +259,7 @@ class SortCore {
       // Holds and nothing pending now: values in order, failure not scheduled too late.
       const double va = m_keys->value(a, t), vb = m_keys->value(b, t);
       s = schedule_certificate(c, t, a, b);
-      if (!(va <= vb + value_tolerance(va, vb)))
+      if (!(va <= vb + value_tolerance(va, vb)) && !keys_tied(*m_keys, a, b, t))
         problem = "key values out of order";
       else if (s.failure && !(at <= s.time + 1e-7 * (1 + std::abs(s.time))))
         problem = "certificate failure scheduled too late";
