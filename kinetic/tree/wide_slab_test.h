@@ -38,13 +38,21 @@ namespace kinray {
   return -float_step_down(-f);
 }
 
+/// x rounded to the nearest float, beyond the float range +-inf (a plain conversion of such a
+/// double is undefined behaviour), NaN kept.
+[[nodiscard]] inline float to_float(double x) {
+  constexpr double kMax = 3.4028235677973366e38;  // FLT_MAX rounded up: beyond it, inf
+  if (x > kMax) return INFINITY;
+  if (x < -kMax) return -INFINITY;
+  return static_cast<float>(x);
+}
 /// Rounds to a float <= x (or >= x).
 [[nodiscard]] inline float float_down(double x) {
-  const float f = static_cast<float>(x);
+  const float f = to_float(x);
   return double(f) > x ? float_step_down(f) : f;
 }
 [[nodiscard]] inline float float_up(double x) {
-  const float f = static_cast<float>(x);
+  const float f = to_float(x);
   return double(f) < x ? float_step_up(f) : f;
 }
 
