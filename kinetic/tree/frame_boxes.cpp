@@ -234,22 +234,25 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
   std::optional<TreeHit> best;
   double s_max = ray.s_max;
   float s_high = wide.scaled_up(s_max);
+  // The triangle of a leaf link: true when it is hit before s_max (which then shrinks to it).
+  auto hits = [&](uint32_t link) {
+    const uint32_t tri = link & ~FrameBoxes::kLeaf;
+    if (tri == ray.skip) return false;
+    const auto& v = meshes.triangle(tri);
+    const std::optional<double> s = ray_triangle(ray.origin, ray.direction, boxes.position(v[0]),
+                                                 boxes.position(v[1]), boxes.position(v[2]));
+    if (!(s && *s > ray.s_min && *s < s_max)) return false;
+    best = TreeHit{tri, *s};
+    s_max = *s;
+    wide.set_s_max(s_max);
+    s_high = wide.scaled_up(s_max);
+    return true;
+  };
   while (top > 0) {
     const Entry cur = stack[--top];
     if (!(cur.entry <= s_high)) continue;  // a hit nearer than this box was found meanwhile
     if ((cur.link & FrameBoxes::kLeaf) != 0) {
-      const uint32_t tri = cur.link & ~FrameBoxes::kLeaf;
-      if (tri == ray.skip) continue;
-      const auto& v = meshes.triangle(tri);
-      const std::optional<double> s = ray_triangle(ray.origin, ray.direction, boxes.position(v[0]),
-                                                   boxes.position(v[1]), boxes.position(v[2]));
-      if (s && *s > ray.s_min && *s < s_max) {
-        best = TreeHit{tri, *s};
-        if (any) return best;
-        s_max = *s;
-        wide.set_s_max(s_max);
-        s_high = wide.scaled_up(s_max);
-      }
+      if (hits(cur.link) && any) return best;
       continue;
     }
     const FrameBoxes::Node& n = boxes.node(cur.link);
@@ -261,7 +264,16 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
     for (; mask != 0; mask &= mask - 1) {
       const int k = std::countr_zero(mask);
       const uint32_t link = n.link[size_t(k)];
-      if ((link & FrameBoxes::kLeaf) == 0) boxes.prefetch(link);  // loads while the rest is tested
+      if ((link & FrameBoxes::kLeaf) != 0) {
+        // Any hit: a leaf met is tested at once, not pushed (any hit ends the query, so the
+        // order does not matter).
+        if (any) {
+          if (hits(link)) return best;
+          continue;
+        }
+      } else {
+        boxes.prefetch(link);  // loads while the rest is tested
+      }
       // A closest-hit query pops the nearest child first (insertion, at most four).
       int j = top++;
       if (!any)
