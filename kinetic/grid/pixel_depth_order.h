@@ -54,14 +54,15 @@ struct QuadraticRoots {
   return out;
 }
 
-/// Does f vanish at r, up to the rounding of r and of f's evaluation?
-[[nodiscard]] inline bool vanishes_at(const Polynomial& f, double r) {
+/// Does f vanish at r, up to the rounding of r and of f's evaluation: |f(r)| within `relative`
+/// of the magnitude of its terms there?
+[[nodiscard]] inline bool vanishes_at(const Polynomial& f, double r, double relative = 1e-9) {
   double value = 0, scale = 0;
   for (int i = f.degree; i >= 0; --i) {
     value = value * r + f.c[size_t(i)];
     scale = scale * std::abs(r) + std::abs(f.c[size_t(i)]);
   }
-  return std::abs(value) <= 1e-9 * scale;
+  return std::abs(value) <= relative * scale;
 }
 
 /// f / (s - r) by synthetic division, the remainder (f(r), zero up to rounding) dropped.
@@ -91,10 +92,16 @@ class PixelDepthKeys {
     OrderCertificate c;
     c.origin = std::max(sa.origin, sb.origin);
     c.end = std::min(sa.end, sb.end);
+    // A fold's certificate is built for the lower id first and negated for the other order, so
+    // that it is exactly antisymmetric.
     const GridScene& scene = m_source->scene();
+    const uint32_t first = std::min(a, b), second = std::max(a, b);
     if (const std::optional<SharedEdge> edge =
-            shared_edge(scene.triangle_vertices(a), scene.triangle_vertices(b)))
-      return fold_certificate(a, b, *edge, now, c);
+            shared_edge(scene.triangle_vertices(first), scene.triangle_vertices(second))) {
+      c = fold_certificate(first, second, *edge, now, c);
+      if (a > b) c.f = -c.f;
+      return c;
+    }
     // Copies: the memo may recycle the first entry while computing the second.
     const DepthPolynomials pa = m_source->depth(a, m_column, m_row, c.origin);
     const DepthPolynomials pb = m_source->depth(b, m_column, m_row, c.origin);
@@ -130,18 +137,10 @@ class PixelDepthKeys {
   }
 
   /// Two triangles of one mesh sharing an edge (fold_certificate.h): sign(D_b) kappa times the
-  /// volume of their four vertices, built for the lower id first and negated for the other
-  /// order, so that it is exactly antisymmetric.
+  /// volume of their four vertices.
   [[nodiscard]] OrderCertificate fold_certificate(uint32_t a, uint32_t b, const SharedEdge& edge,
                                                   double now, OrderCertificate c) const {
     const GridScene& scene = m_source->scene();
-    if (a > b) {
-      const std::optional<SharedEdge> back =
-          shared_edge(scene.triangle_vertices(b), scene.triangle_vertices(a));
-      OrderCertificate swapped = fold_certificate(b, a, *back, now, c);
-      swapped.f = -swapped.f;
-      return swapped;
-    }
     // One mesh, so one segment: the vertices' motions are in the certificate's local time.
     const DepthPolynomials& pb = m_source->depth(b, m_column, m_row, c.origin);
     const int sign_b = sign_after(pb.denominator, now - c.origin);
@@ -167,12 +166,8 @@ class PixelDepthKeys {
     if (!edge) return false;
     const EdgeNormal n = edge_normal(m_source->vertex(va[size_t(edge->first)]),
                                      m_source->vertex(va[size_t((edge->first + 1) % 3)]));
-    const Polynomial e = n.along(scene.column_x(m_column), scene.row_y(m_row));
-    const double s = t - m_source->segment_of(a).origin;
-    double magnitude = 0;
-    for (int k = e.degree; k >= 0; --k)
-      magnitude = magnitude * std::abs(s) + std::abs(e.c[size_t(k)]);
-    return std::abs(e(s)) <= 0x1p-40 * magnitude;
+    return detail::vanishes_at(n.along(scene.column_x(m_column), scene.row_y(m_row)),
+                               t - m_source->segment_of(a).origin, 0x1p-40);
   }
 
   /// Camera-space depth of triangle a along this pixel's ray at t (for audits); at an instant
