@@ -141,7 +141,7 @@ void FrameBoxes::evaluate(uint32_t k) const {
     // The BoxTree cuts each box out of its parent's: this node's own box, the root's or the slot
     // its parent holds it in (the parent first).
     const bool cuts = m_kinetic != nullptr && m_kinetic->shape() == TreeShape::boxtree;
-    std::array<float, 6> own = m_root_box;
+    std::array<float, 6> own = root_box();
     if (cuts && n.binary != 0) {
       const uint32_t slot = m_slot[n.binary];
       const Node& parent = node(slot >> 2);
@@ -167,6 +167,13 @@ void FrameBoxes::evaluate(uint32_t k) const {
     }
     stamp.store(m_stamp, std::memory_order_release);
     return;
+  }
+}
+
+void FrameBoxes::set_root_box(const std::array<float, 6>& box) {
+  for (int r = 0; r < 6; ++r) {
+    m_root_bound[r][0] = box[size_t(r)];
+    m_root_bound[r][1] = m_root_bound[r][2] = m_root_bound[r][3] = kEmpty[size_t(r)];
   }
 }
 
@@ -201,14 +208,14 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
     _mm_store_ps(m_vertex_box[v].hi,
                  _mm_add_ps(hi, _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, hi), ulps), tiny)));
   }
-  if (!tree.topology().nodes.empty()) m_root_box = box(0, rounded(tree.root_box(frame), 0));
+  if (!tree.topology().nodes.empty()) set_root_box(box(0, rounded(tree.root_box(frame), 0)));
 }
 
 void FrameBoxes::fill(const BottomUpBvh& tree, const TreeFrame& frame) {
   m_kinetic = nullptr;
   m_bottom_up = &tree;
   prepare(tree.topology(), tree.meshes(), frame);
-  if (!tree.topology().nodes.empty()) m_root_box = box(0, kEverywhere);
+  if (!tree.topology().nodes.empty()) set_root_box(box(0, kEverywhere));
 }
 
 std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ray, bool any) {
@@ -221,14 +228,9 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
   };
   Entry stack[kStackSize];
   int top = 0;
-  {  // the root's box, as the one used column of a wide node
-    alignas(16) float bound[6][4];
-    for (int r = 0; r < 6; ++r) {
-      bound[r][0] = boxes.root_box()[size_t(r)];
-      bound[r][1] = bound[r][2] = bound[r][3] = kEmpty[size_t(r)];
-    }
+  {  // the root's box, the one used column of its rows
     float entry[4];
-    if ((wide.test(bound, entry) & 1) == 0) return std::nullopt;
+    if ((wide.test(boxes.root_bound(), entry) & 1) == 0) return std::nullopt;
     stack[top++] = Entry{boxes.root_link(), entry[0]};
   }
   std::optional<TreeHit> best;

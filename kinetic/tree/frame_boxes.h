@@ -48,7 +48,14 @@ class FrameBoxes {
   void fill(const BottomUpBvh& tree, const TreeFrame& frame);
 
   /// The root's box (low x, y, z, high x, y, z) and link (kNoLink when the tree is empty).
-  [[nodiscard]] const std::array<float, 6>& root_box() const { return m_root_box; }
+  [[nodiscard]] std::array<float, 6> root_box() const {
+    std::array<float, 6> b;
+    for (int r = 0; r < 6; ++r) b[size_t(r)] = m_root_bound[r][0];
+    return b;
+  }
+  /// The root's box as column 0 of a wide node's rows (the other columns empty): what a query
+  /// tests first, laid out once per frame.
+  [[nodiscard]] const float (&root_bound() const)[6][4] { return m_root_bound; }
   [[nodiscard]] uint32_t root_link() const { return m_root_link; }
   /// Wide node k with its children's boxes of this frame (evaluated on first use; thread-safe).
   [[nodiscard]] const Node& node(uint32_t k) const {
@@ -95,7 +102,9 @@ class FrameBoxes {
   mutable std::vector<Node> m_nodes;
   std::vector<uint32_t> m_slot;  ///< per binary node: wide node * 4 + slot, or kNoLink
   std::vector<std::array<uint32_t, 4>> m_children;  ///< per wide node: its slots' binary nodes
-  std::array<float, 6> m_root_box{};
+  alignas(16) float m_root_bound[6][4] = {};
+  /// Sets m_root_bound from the root's box.
+  void set_root_box(const std::array<float, 6>& box);
   uint32_t m_root_link = kNoLink;
   uint32_t m_stamp = 0;  ///< even, one per fill: the nodes evaluated for this frame hold it
   const TreeFrame* m_frame = nullptr;  ///< the frame filled (it must outlive the queries)
