@@ -17,26 +17,26 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::array<float, 6> kEmpty = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
 constexpr std::array<float, 6> kEverywhere = {-kInf, -kInf, -kInf, kInf, kInf, kInf};
 
-/// A float <= x and a float >= x, without branches: the nearest float f is within half an ulp of
-/// x, and |f| 2^-22 is at least an ulp of f (1e-30 covers the values that round to 0), so the
-/// float box contains the double one; the boxes grow by about 2e-7 of their coordinates.
-float round_down(double x) {
-  const float f = float(x);
-  return f - (std::fabs(f) * 0x1p-22f + 1e-30f);
-}
-float round_up(double x) {
-  const float f = float(x);
-  return f + (std::fabs(f) * 0x1p-22f + 1e-30f);
+/// Floats >= (x, y, z) + pad (kUp) or <= (x, y, z) - pad, lanes x, y, z and one unused,
+/// without branches: the nearest float f is within half an ulp of its double, and |f| 2^-22 is
+/// at least an ulp of f (1e-30 covers the values that round to 0), so a float box contains the
+/// double one; the boxes grow by about 2e-7 of their coordinates.
+template <bool kUp>
+__m128 round_outward(double x, double y, double z, double pad) {
+  const __m128d p = _mm_set1_pd(kUp ? pad : -pad);  // x - pad is exactly x + (-pad)
+  const __m128 f = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(_mm_set_pd(y, x), p)),
+                                 _mm_cvtpd_ps(_mm_add_pd(_mm_set1_pd(z), p)));
+  const __m128 ulp = _mm_add_ps(
+      _mm_mul_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), f), _mm_set1_ps(0x1p-22f)), _mm_set1_ps(1e-30f));
+  return kUp ? _mm_add_ps(f, ulp) : _mm_sub_ps(f, ulp);
 }
 
 std::array<float, 6> rounded(const Aabb& box, double pad) {
   if (!(box.lo[0] <= box.hi[0])) return kEmpty;
-  std::array<float, 6> b;
-  for (int a = 0; a < 3; ++a) {
-    b[size_t(a)] = round_down(box.lo[a] - pad);
-    b[size_t(a) + 3] = round_up(box.hi[a] + pad);
-  }
-  return b;
+  alignas(16) float lo[4], hi[4];
+  _mm_store_ps(lo, round_outward<false>(box.lo.x(), box.lo.y(), box.lo.z(), pad));
+  _mm_store_ps(hi, round_outward<true>(box.hi.x(), box.hi.y(), box.hi.z(), pad));
+  return {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
 }
 
 /// The traversal stack: a wide node pushes at most four children for the one it pops.
@@ -191,22 +191,12 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   prepare(tree.topology(), tree.meshes(), frame);
   const TreeMeshes& meshes = tree.meshes();
   m_vertex_box.resize(meshes.vertex_count());
-  // round_down and round_up of the padded coordinates, four lanes at a time (the same operations,
-  // so the same floats): a frame's pass over every vertex.
-  const __m128 sign = _mm_set1_ps(-0.0f), ulps = _mm_set1_ps(0x1p-22f), tiny = _mm_set1_ps(1e-30f);
-  const __m128d pad = _mm_set1_pd(frame.pad);
+  // Every vertex's padded coordinates rounded outward, in one pass per frame.
   for (uint32_t v = 0; v < meshes.vertex_count(); ++v) {
-    const __m128d xy =
-        _mm_set_pd(meshes.coordinate(v, 1, frame.t), meshes.coordinate(v, 0, frame.t));
-    const __m128d z = _mm_set1_pd(meshes.coordinate(v, 2, frame.t));
-    const __m128 lo =
-        _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(xy, pad)), _mm_cvtpd_ps(_mm_sub_pd(z, pad)));
-    const __m128 hi =
-        _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(xy, pad)), _mm_cvtpd_ps(_mm_add_pd(z, pad)));
-    _mm_store_ps(m_vertex_box[v].lo,
-                 _mm_sub_ps(lo, _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, lo), ulps), tiny)));
-    _mm_store_ps(m_vertex_box[v].hi,
-                 _mm_add_ps(hi, _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, hi), ulps), tiny)));
+    const double x = meshes.coordinate(v, 0, frame.t), y = meshes.coordinate(v, 1, frame.t),
+                 z = meshes.coordinate(v, 2, frame.t);
+    _mm_store_ps(m_vertex_box[v].lo, round_outward<false>(x, y, z, frame.pad));
+    _mm_store_ps(m_vertex_box[v].hi, round_outward<true>(x, y, z, frame.pad));
   }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, rounded(tree.root_box(frame), 0)));
 }
