@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "kinetic/collision/exact_ccd.h"
 #include "kinetic/core/interval_arithmetic.h"
@@ -149,51 +150,77 @@ bool classify(const PairMotion& pair, Interval t, int depth, int& budget,
          classify(pair, {mid, t.hi}, depth + 1, budget, contacts);
 }
 
-/// The sign of the cubic at local time g in long double intervals (64-bit significands on
-/// x86-64): near a root, where the double enclosure holds zero, these 11 more bits usually
-/// still decide; 0 when they do not either.
-int extended_cubic_sign(const PrimitiveMotion& m, double g) {
-  using L = long double;
-  using LInterval = detail::BasicInterval<L>;
-  detail::BasicIntervalVec<L> d[3];
+/// The coplanarity cubic's monomial coefficients in plain doubles, constant term first: no
+/// bound on their error, only a guide to where the root lies.
+std::array<double, 4> approximate_cubic(const PrimitiveMotion& m) {
+  Eigen::Vector3d a[3], b[3];
   for (int q = 1; q <= 3; ++q) {
-    LInterval* out[3] = {&d[q - 1].x, &d[q - 1].y, &d[q - 1].z};
-    for (int k = 0; k < 3; ++k) {
-      const LInterval a = LInterval::around(L(m.start[q][k]) - L(m.start[0][k]));
-      const LInterval b = LInterval::around(L(m.end[q][k]) - L(m.end[0][k])) - a;
-      *out[k] = a + LInterval::point(g) * b;
-    }
+    a[q - 1] = m.start[q] - m.start[0];
+    b[q - 1] = (m.end[q] - m.end[0]) - a[q - 1];
   }
-  return det(d[0], d[1], d[2]).certain_sign();
+  const auto det = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y,
+                      const Eigen::Vector3d& z) { return x.dot(y.cross(z)); };
+  return {
+      det(a[0], a[1], a[2]), det(b[0], a[1], a[2]) + det(a[0], b[1], a[2]) + det(a[0], a[1], b[2]),
+      det(a[0], b[1], b[2]) + det(b[0], a[1], b[2]) + det(b[0], b[1], a[2]), det(b[0], b[1], b[2])};
 }
 
-/// floor(t* / e) e for the only root t* of the cubic inside (t.lo, t.hi), by bisection over
-/// the grid points k e: each is signed in doubles when its enclosure allows, else exactly.
+/// Newton's method kept inside the bracket (t.lo, t.hi), whose ends' signs are known: a guess
+/// of the root, usually within a grid cell or two of it, never a certificate.
+double guess_root(const std::array<double, 4>& c, Interval t, int sign_lo) {
+  double lo = t.lo, hi = t.hi, x = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 60 && hi - lo > kContactTimeEarliness; ++iteration) {
+    const double value = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
+    const double slope = (3 * c[3] * x + 2 * c[2]) * x + c[1];
+    if (value == 0) return x;
+    ((value > 0) == (sign_lo > 0) ? lo : hi) = x;
+    const double step = value / slope;
+    const double next = x - step;
+    x = next > lo && next < hi ? next : 0.5 * (lo + hi);
+    if (std::fabs(step) < 0.25 * kContactTimeEarliness) break;
+  }
+  return x;
+}
+
+/// floor(t* / e) e for the only root t* of the cubic inside (t.lo, t.hi): a bisection over the
+/// grid points k e, each signed in doubles when its enclosure allows, else in long doubles, else
+/// exactly. It starts at the grid points around a Newton guess of the root, which usually
+/// bracket it at once: two signs instead of some forty.
 double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion, Interval t,
                           IntervalCcdCounters& counters) {
   constexpr double e = kContactTimeEarliness;
   const int sign_lo = pair.cubic(Interval::point(t.lo)).certain_sign();
   double a = std::floor(t.lo / e), b = std::ceil(t.hi / e);  // a e <= lo < t* < hi <= b e
   std::optional<RationalPolynomial> cubic;
-  while (b - a > 1) {
-    const double m = std::floor(0.5 * (a + b)), g = m * e;
-    if (g <= t.lo) {
-      a = m;
-      continue;
-    }
-    if (g >= t.hi) {
-      b = m;
-      continue;
-    }
+  // Which side of the root grid point m e lies on: -1 below, 1 above, 0 exactly on it.
+  const auto side = [&](double m) {
+    const double g = m * e;
+    if (g <= t.lo) return -1;
+    if (g >= t.hi) return 1;
     int s = pair.cubic(Interval::point(g)).certain_sign();
-    if (s == 0) s = extended_cubic_sign(motion, g);
+    if (s == 0) s = detail::extended_cubic_sign(motion, g);
     if (s == 0) {
       ++counters.exact_signs;
       if (!cubic) cubic = coplanarity_polynomial(to_rational(motion));
       s = sign((*cubic)(mpq_class(g)));
-      if (s == 0) return g;
+      if (s == 0) return 0;
     }
-    (s == sign_lo ? a : b) = m;
+    return s == sign_lo ? -1 : 1;
+  };
+  // from the guess's cell, steps doubling towards the root until it is bracketed; then bisection
+  double m = std::floor(guess_root(approximate_cubic(motion), t, sign_lo) / e), step = 1;
+  while (b - a > 1 && m > a && m < b) {
+    const int s = side(m);
+    if (s == 0) return m * e;
+    (s < 0 ? a : b) = m;
+    m += s < 0 ? step : -step;
+    step *= 2;
+  }
+  while (b - a > 1) {
+    const double middle = std::floor(0.5 * (a + b));
+    const int s = side(middle);
+    if (s == 0) return middle * e;
+    (s < 0 ? a : b) = middle;
   }
   return a * e;
 }
@@ -202,6 +229,47 @@ double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion,
 constexpr double kMaxCoordinate = 0x1p150;
 
 }  // namespace
+
+// Long double has 64-bit significands on x86-64: next to a root, where the double enclosure
+// holds zero, these 11 more bits usually still decide. The bound, in the manner of
+// Shewchuk's orient3d: each difference d = a + g b (a = s_q - s_0, b = e_q - e_0 - a, g in
+// [0, 1]), after its five roundings, is off by at most u (2 |a| + |e_q - e_0| + 2 |b| + |d|)
+// (to first order; 3 u times the sum of the four covers it); a product
+// x' y' z' of perturbed factors is off by at most ex By Bz + Bx ey Bz + Bx By ez (B bounding
+// both the exact and the computed factor); the cross and dot products add at most 6 roundings
+// of each term. Products of three differences of doubles cannot underflow in long double.
+int detail::extended_cubic_sign(const PrimitiveMotion& m, double g) {
+  using L = long double;
+  static_assert(
+      std::numeric_limits<L>::max_exponent > 3 * std::numeric_limits<double>::max_exponent &&
+          -std::numeric_limits<L>::min_exponent > 3 * 1074,
+      "products of three differences of doubles must not overflow or underflow");
+  constexpr L u = std::numeric_limits<L>::epsilon() / 2;
+  L d[3][3], error[3][3], magnitude[3][3];
+  for (int q = 1; q <= 3; ++q)
+    for (int k = 0; k < 3; ++k) {
+      const L a = L(m.start[q][k]) - L(m.start[0][k]);
+      const L moved = L(m.end[q][k]) - L(m.end[0][k]);
+      const L b = moved - a;
+      d[q - 1][k] = a + L(g) * b;
+      error[q - 1][k] =
+          3 * u * (std::fabs(a) + std::fabs(moved) + std::fabs(b) + std::fabs(d[q - 1][k]));
+      magnitude[q - 1][k] = std::fabs(d[q - 1][k]) + error[q - 1][k];
+    }
+  // det = sum over the six permutations (i, j, l) of sign d0[i] d1[j] d2[l]
+  constexpr int perm[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
+  L value = 0, bound = 0;
+  for (int p = 0; p < 6; ++p) {
+    const int i = perm[p][0], j = perm[p][1], l = perm[p][2];
+    const L term = d[0][i] * d[1][j] * d[2][l];
+    value += p < 3 ? term : -term;
+    const L bx = magnitude[0][i], by = magnitude[1][j], bz = magnitude[2][l];
+    bound += error[0][i] * by * bz + bx * error[1][j] * bz + bx * by * error[2][l] +
+             8 * u * bx * by * bz;
+  }
+  bound *= 1 + 64 * u;  // the bound's own roundings
+  return value > bound ? 1 : value < -bound ? -1 : 0;
+}
 
 std::optional<std::vector<double>> interval_contact_times(ContactType type,
                                                           const PrimitiveMotion& motion,

@@ -28,4 +28,11 @@ struct IntervalCcdCounters {
     ContactType type, const PrimitiveMotion& motion, IntervalCcdCounters& counters,
     LocalWindow window = {});
 
+namespace detail {
+/// The sign of the coplanarity cubic det(p1 - p0, p2 - p0, p3 - p0) at local time g, computed
+/// in long double with a static bound on its error: -1 or 1 when certain, 0 when the bound
+/// cannot decide. Used next to a root, where the double enclosures hold zero (exposed for tests).
+[[nodiscard]] int extended_cubic_sign(const PrimitiveMotion& motion, double g);
+}  // namespace detail
+
 }  // namespace kinray

@@ -66,6 +66,76 @@ TEST(IntervalCcd, DecidesMostPairsNearContactAndAgreesWithTheRationalDecision) {
   EXPECT_GT(contacts, kTrials / 4);          // and it does decide contacts, not only misses
 }
 
+TEST(IntervalCcd, AgreesWithTheRationalDecisionFarFromTheOrigin) {
+  // Far from the origin the differences of coordinates lose their low bits: the grid points
+  // next to a root are signed with the most cancellation, where a too small error bound would
+  // give a wrong time.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> offset(-1e6, 1e6);
+  int contacts = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    PrimitiveMotion m = random_near_contact(rng);
+    const V shift(offset(rng), offset(rng), offset(rng));
+    for (int i = 0; i < 4; ++i) {
+      m.start[i] += shift;
+      m.end[i] += shift;
+    }
+    for (ContactType type : {ContactType::vertex_face, ContactType::edge_edge}) {
+      IntervalCcdCounters counters;
+      const std::optional<std::vector<double>> times = interval_contact_times(type, m, counters);
+      if (!times) continue;
+      contacts += !times->empty();
+      ASSERT_EQ(*times, exact_contact_times(type, to_rational(m))) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(contacts, 50);
+}
+
+TEST(IntervalCcd, ExtendedCubicSignIsRightOrUndecidedNextToARoot) {
+  // A vertex creeping through a face (1e-4 of the face's size over the segment): the cubic's
+  // slope is tiny against its terms, so next to its root rounding decides the computed sign
+  // unless the error bound holds it back. The grid points are the doubles next to the root.
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> unit(-1, 1), inside(0.1, 0.3), when(0.05, 0.95);
+  int decided = 0, undecided = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    PrimitiveMotion m;
+    for (int i = 1; i < 4; ++i) {
+      m.start[i] = V(unit(rng), unit(rng), unit(rng)) * 1e3 + V(1e5, -2e4, 3e3);
+      m.end[i] = m.start[i] + V(unit(rng), unit(rng), unit(rng)) * 1e-2;
+    }
+    const V normal = (m.start[2] - m.start[1]).cross(m.start[3] - m.start[1]).normalized();
+    const V point = m.start[1] + inside(rng) * (m.start[2] - m.start[1]) +
+                    inside(rng) * (m.start[3] - m.start[1]);
+    const double t = when(rng);
+    m.start[0] = point + 0.1 * t * normal;
+    m.end[0] = point - 0.1 * (1 - t) * normal;
+    const RationalPolynomial cubic = coplanarity_polynomial(to_rational(m));
+    const auto exact_sign = [&](double g) { return sign(cubic(mpq_class(g))); };
+    // the double where the exact sign changes, by bisection over doubles
+    double lo = 0, hi = 1;
+    const int sign_lo = exact_sign(lo);
+    if (sign_lo == 0 || exact_sign(hi) != -sign_lo) continue;
+    while (std::nextafter(lo, 2.0) < hi) {
+      const double mid = 0.5 * (lo + hi);
+      (exact_sign(mid) == sign_lo ? lo : hi) = mid;
+    }
+    double g = lo;
+    for (int i = 0; i < 3; ++i) g = std::nextafter(g, -1.0);
+    for (int i = 0; i < 8; ++i, g = std::nextafter(g, 2.0)) {
+      const int computed = detail::extended_cubic_sign(m, g);
+      if (computed == 0) {
+        ++undecided;
+        continue;
+      }
+      ++decided;
+      ASSERT_EQ(computed, exact_sign(g)) << "trial " << trial << ", g = " << g;
+    }
+  }
+  EXPECT_GT(decided, 0);
+  EXPECT_GT(undecided, 0);  // the bound does hold some back: these are the hard cases
+}
+
 TEST(IntervalCcd, SameTimesForEveryOrderOfThePairsPoints) {
   // One primitive pair meets several triangle pairs with its points in other orders; the
   // contact lists deduplicate it only if every order reports the same times.
