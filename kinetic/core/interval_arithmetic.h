@@ -47,11 +47,15 @@ template <class S>
 BasicInterval<S> operator-(BasicInterval<S> a, BasicInterval<S> b) {
   return {round_down_bound(a.lo - b.hi), round_up_bound(a.hi - b.lo)};
 }
+/// The four end products, their least and greatest taken pairwise: branch-free min and max
+/// instructions (an initializer-list std::min made this a loop and a call, a third of the
+/// primitive CCD's time).
 template <class S>
-BasicInterval<S> operator*(BasicInterval<S> a, BasicInterval<S> b) {
-  const S p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
-  return {round_down_bound(std::min({p[0], p[1], p[2], p[3]})),
-          round_up_bound(std::max({p[0], p[1], p[2], p[3]}))};
+inline BasicInterval<S> operator*(BasicInterval<S> a, BasicInterval<S> b) {
+  const S p0 = a.lo * b.lo, p1 = a.lo * b.hi, p2 = a.hi * b.lo, p3 = a.hi * b.hi;
+  const S lo = std::min(std::min(p0, p1), std::min(p2, p3));
+  const S hi = std::max(std::max(p0, p1), std::max(p2, p3));
+  return {round_down_bound(lo), round_up_bound(hi)};
 }
 
 template <class S>
