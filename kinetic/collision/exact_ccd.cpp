@@ -187,6 +187,32 @@ double on_grid(const IsolatedRoot& root) {
   return mpq_class(mpq_class(a) * e).get_d();  // k e with k <= 2^48: exactly a double
 }
 
+/// The sign of g on a small open interval beside the root (side -1: before it, 1: after it),
+/// where no polynomial changes sign: that of its first derivative not vanishing at the root,
+/// g(t* + h) having the sign of g^(k)(t*) h^k; 0 for the zero polynomial.
+int one_sided_sign(const RationalPolynomial& g, IsolatedRoot& root, int side) {
+  RationalPolynomial d = g;
+  for (int k = 0; !d.is_zero(); ++k, d = d.derivative())
+    if (const int s = sign_at(d, root); s != 0) return side < 0 && k % 2 == 1 ? -s : s;
+  return 0;
+}
+
+/// In coplanar motion the pair may touch over whole intervals of time; true when the root lies
+/// strictly inside one, the test holding just before and just after it. Such a time is where
+/// some other polynomial of the test changes sign, and which polynomials the test has depends on
+/// the order of the pair's points (on which triangle pair met it): only the intervals' ends are
+/// the pair's own.
+bool inside_contact_interval(const ContactCondition& condition, IsolatedRoot& root) {
+  if (root.is_rational() && (sgn(root.lo) == 0 || root.lo == 1)) return false;
+  for (int side : {-1, 1}) {
+    const SignOracle beside = [&root, side](const RationalPolynomial& g) {
+      return one_sided_sign(g, root, side);
+    };
+    if (!condition.holds(beside)) return false;
+  }
+  return true;
+}
+
 RationalPolynomial coplanarity_of(const std::array<PolyVec, 4>& p) {
   return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
 }
@@ -240,6 +266,7 @@ std::vector<double> exact_contact_times(ContactType type, const RationalMotion& 
   for (IsolatedRoot& root : candidates) {
     const SignOracle sign_of = [&root](const RationalPolynomial& g) { return sign_at(g, root); };
     if (!condition.holds(sign_of)) continue;
+    if (coplanarity.is_zero() && inside_contact_interval(condition, root)) continue;
     times.push_back(on_grid(root));
   }
   std::ranges::sort(times);

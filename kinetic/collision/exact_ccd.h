@@ -37,8 +37,9 @@ inline constexpr double kContactTimeEarliness = 0x1p-48;
 /// Every time of contact in [0, 1], sorted, decided exactly: the roots of the coplanarity cubic
 /// at which the vertex lies in the closed triangle (or the closed edges meet). When the cubic
 /// vanishes identically (coplanar motion) the contact set may be a whole interval: then every
-/// interval of contact is reported by its first and last times (and any critical time inside),
-/// found among 0, 1 and the roots of the polynomials whose signs decide the 2-D test.
+/// interval of contact is reported by its first and last times alone (the same for every order
+/// of the points), found among 0, 1 and the roots of the polynomials whose signs decide the 2-D
+/// test.
 /// Each time is rounded down to the grid of kContactTimeEarliness. With a window: exactly those
 /// of these times whose exact time lies in it.
 [[nodiscard]] std::vector<double> exact_contact_times(ContactType type,

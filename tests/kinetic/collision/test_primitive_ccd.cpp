@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <random>
 
 #include "kinetic/collision/exact_ccd.h"
@@ -72,6 +73,35 @@ TEST(PrimitiveCcd, CoplanarMotionEntersAndLeaves) {
       {0.5, 0.875});
   EXPECT_TRUE(contact_times(ContactType::vertex_face, vertex_onto_triangle(V(-1, 2, 0), V(2, 2, 0)))
                   .empty());
+}
+
+TEST(PrimitiveCcd, CoplanarContactIntervalIsReportedByItsEndsInEveryOrder) {
+  // Two edges of crossing's equators (z = 0) slide over each other from t = 0.0741 to 0.0815.
+  // Inside, an end of one edge passes the other edge's line four times, at times that are roots
+  // of the 2-D test's polynomials for some orders of the points only: reporting them made the
+  // contacts depend on which triangle pair met the edges.
+  const auto h = [](const char* hex) { return std::strtod(hex, nullptr); };
+  const std::array<V, 4> start = {V(h("-0x1.8fa1c63f0b98p-5"), h("-0x1.8ec6c728841f8p-6"), 0),
+                                  V(h("-0x1.ae8cc0f92178p-5"), h("-0x1.2f99614d5557ap-4"), 0),
+                                  V(h("0x1.8378b7de1f34p-5"), h("-0x1.921686dba6808p-6"), 0),
+                                  V(h("0x1.b80226fb8177p-5"), h("-0x1.2b4c9dc037c6ep-4"), 0)};
+  const std::array<V, 4> end = {V(h("0x1.2911f81a36f03p-1"), h("-0x1.3c2af37abdef8p-6"), 0),
+                                V(h("0x1.28ea895f92498p-1"), h("-0x1.18457198d7256p-4"), 0),
+                                V(h("-0x1.3dd215ad54a86p-1"), h("-0x1.6344db2d2f034p-6"), 0),
+                                V(h("-0x1.3c376d2ac7342p-1"), h("-0x1.246cff1e6dcb6p-4"), 0)};
+  const std::vector<double> expected = {0.0740977, 0.0814688};
+  for (const std::array<int, 4>& order :
+       {std::array{0, 1, 2, 3}, std::array{0, 1, 3, 2}, std::array{1, 0, 2, 3},
+        std::array{1, 0, 3, 2}, std::array{2, 3, 0, 1}, std::array{3, 2, 1, 0}}) {
+    PrimitiveMotion m;
+    for (int i = 0; i < 4; ++i) {
+      m.start[i] = start[order[i]];
+      m.end[i] = end[order[i]];
+    }
+    const std::vector<double> times = contact_times(ContactType::edge_edge, m);
+    ASSERT_EQ(times.size(), 2u) << order[0] << order[1] << order[2] << order[3];
+    for (int k = 0; k < 2; ++k) EXPECT_NEAR(times[k], expected[k], 1e-7);
+  }
 }
 
 TEST(PrimitiveCcd, RotatingTriangleSweepsAVertexInItsPlaneAtAllTimes) {
