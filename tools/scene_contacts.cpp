@@ -32,6 +32,7 @@ void positions_at(const Object& object, double t, std::vector<Vec3>& out) {
 /// these), and the object pairs to test, as indices into the selection.
 struct SegmentMeshes {
   std::vector<std::vector<Vec3>> start, finish;
+  std::vector<VertexTriangles> around;  ///< per selected object, built once
   std::vector<MeshSegment> meshes;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
 };
@@ -92,13 +93,18 @@ void walk_segments(const Scene& scene, std::span<const std::uint32_t> objects,
   s.start.resize(n);
   s.finish.resize(n);
   s.meshes.resize(n);
-  for (std::size_t i = 0; i < n; ++i) positions_at(scene.objects[objects[i]], times[0], s.finish[i]);
+  s.around.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Object& object = scene.objects[objects[i]];
+    positions_at(object, times[0], s.finish[i]);
+    s.around.emplace_back(object.triangles, std::uint32_t(object.vertex_count()));
+  }
   for (std::size_t k = 0; k + 1 < times.size(); ++k) {
     for (std::size_t i = 0; i < n; ++i) {
       const Object& object = scene.objects[objects[i]];
       std::swap(s.start[i], s.finish[i]);
       positions_at(object, times[k + 1], s.finish[i]);
-      s.meshes[i] = {objects[i], object.triangles, s.start[i], s.finish[i]};
+      s.meshes[i] = {objects[i], object.triangles, s.start[i], s.finish[i], &s.around[i]};
     }
     visit(times[k], times[k + 1]);
   }

@@ -101,17 +101,23 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
                             LocalWindow window) {
   const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
   const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
+  const bool owners = a.around && b.around, self = a.object == b.object;
+  const OwnerSide side_a{a.triangles, a.around}, side_b{b.triangles, b.around};
   for (int i = 0; i < 3; ++i) {
-    test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end, out,
-              counters, window);
-    test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
-              counters, window);
+    if (!owners || owns_vertex_face(side_a, ta, fa[i], side_b, tb, self))
+      test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end, out,
+                counters, window);
+    if (!owners || owns_vertex_face(side_b, tb, fb[i], side_a, ta, self))
+      test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
+                counters, window);
   }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const std::array<std::uint32_t, 2> ea = {fa[i], fa[(i + 1) % 3]};
       const std::array<std::uint32_t, 2> eb = {fb[j], fb[(j + 1) % 3]};
-      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters, window);
+      if (!owners || owns_edge_edge(side_a, ta, ea, side_b, tb, eb, self))
+        test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters,
+                  window);
     }
 }
 

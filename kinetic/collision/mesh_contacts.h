@@ -11,15 +11,20 @@
 
 #include "kinetic/collision/contact_pair.h"
 #include "kinetic/collision/primitive_ccd.h"
+#include "kinetic/collision/primitive_owners.h"
 
 namespace kinray {
 
 /// One object over one segment [time_begin, time_end]: its triangles (vertex indices in the
-/// object's own numbering) and every vertex's position at both ends.
+/// object's own numbering) and every vertex's position at both ends. With the triangles around
+/// each vertex, a primitive pair is tested by its owner triangle pair alone (primitive_owners.h);
+/// without, by every triangle pair that meets it. Two sides with the same `object` are the
+/// object against itself.
 struct MeshSegment {
   std::uint32_t object = 0;
   std::span<const std::array<std::uint32_t, 3>> triangles;
   std::span<const Eigen::Vector3d> start, end;
+  const VertexTriangles* around = nullptr;
 };
 
 /// A time of contact between two primitives.

@@ -19,6 +19,7 @@ struct RandomScene {
   std::vector<double> times;
   std::vector<std::vector<V>> positions;  ///< per object: [key * vertices + v]
   std::vector<std::vector<std::array<uint32_t, 3>>> triangles;
+  std::vector<VertexTriangles> around;  ///< per object: each primitive pair tested by its owner
   uint32_t vertices = 0;
 
   RandomScene(unsigned seed, int objects, int strip, int keys) {
@@ -32,6 +33,7 @@ struct RandomScene {
         triangles.back().push_back({2 * q, 2 * q + 1, 2 * q + 2});
         triangles.back().push_back({2 * q + 1, 2 * q + 3, 2 * q + 2});
       }
+      around.emplace_back(triangles.back(), vertices);
       positions.emplace_back();
       for (int k = 0; k < keys; ++k) {
         const V centre(0.6 * u(rng), 0.6 * u(rng), 0.6 * u(rng));
@@ -57,7 +59,7 @@ struct RandomScene {
   [[nodiscard]] MeshSegment segment(uint32_t o, size_t k) const {
     const std::span<const V> all = positions[o];
     return {o, triangles[o], all.subspan(k * vertices, vertices),
-            all.subspan((k + 1) * vertices, vertices)};
+            all.subspan((k + 1) * vertices, vertices), &around[o]};
   }
 };
 

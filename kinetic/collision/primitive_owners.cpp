@@ -1,0 +1,75 @@
+#include "kinetic/collision/primitive_owners.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "kinetic/collision/mesh_contacts.h"
+
+namespace kinray {
+namespace {
+
+bool may_pair(const OwnerSide& a, std::uint32_t ta, std::uint32_t tb, bool self) {
+  return !self || (ta != tb && !triangles_adjacent(a.triangles[ta], a.triangles[tb]));
+}
+
+/// The triangles around both ends of an edge: those having it as an edge.
+template <class Visit>
+void around_edge(const VertexTriangles& around, std::array<std::uint32_t, 2> edge, Visit&& visit) {
+  const std::span<const std::uint32_t> x = around.around(edge[0]), y = around.around(edge[1]);
+  for (std::size_t i = 0, j = 0; i < x.size() && j < y.size();) {
+    if (x[i] < y[j]) {
+      ++i;
+    } else if (y[j] < x[i]) {
+      ++j;
+    } else {
+      visit(x[i]);
+      ++i;
+      ++j;
+    }
+  }
+}
+
+}  // namespace
+
+VertexTriangles::VertexTriangles(std::span<const std::array<std::uint32_t, 3>> triangles,
+                                 std::uint32_t vertex_count)
+    : m_offsets(std::size_t(vertex_count) + 1, 0) {
+  // a vertex repeated in a degenerate triangle counts once
+  const auto distinct = [](const std::array<std::uint32_t, 3>& t, int i) {
+    return i == 0 || (i == 1 ? t[1] != t[0] : t[2] != t[0] && t[2] != t[1]);
+  };
+  for (const std::array<std::uint32_t, 3>& t : triangles)
+    for (int i = 0; i < 3; ++i)
+      if (distinct(t, i)) ++m_offsets[t[i] + 1];
+  for (std::uint32_t v = 0; v < vertex_count; ++v) m_offsets[v + 1] += m_offsets[v];
+  m_triangles.resize(m_offsets.back());
+  std::vector<std::uint32_t> next(m_offsets.begin(), m_offsets.end() - 1);
+  for (std::uint32_t k = 0; k < triangles.size(); ++k)  // increasing k: rows come out sorted
+    for (int i = 0; i < 3; ++i)
+      if (distinct(triangles[k], i)) m_triangles[next[triangles[k][i]]++] = k;
+}
+
+bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v, const OwnerSide& b,
+                      std::uint32_t tb, bool self) {
+  for (std::uint32_t t : a.around->around(v))
+    if (may_pair(a, t, tb, self)) return t == ta;
+  return false;  // unreachable for a pair that may be paired: ta itself is around v
+}
+
+bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta, std::array<std::uint32_t, 2> ea,
+                    const OwnerSide& b, std::uint32_t tb, std::array<std::uint32_t, 2> eb,
+                    bool self) {
+  const auto key = [self](std::uint32_t x, std::uint32_t y) {
+    return self ? std::pair(std::min(x, y), std::max(x, y)) : std::pair(x, y);
+  };
+  const std::pair<std::uint32_t, std::uint32_t> mine = key(ta, tb);
+  bool owned = true;
+  around_edge(*a.around, ea, [&](std::uint32_t x) {
+    around_edge(*b.around, eb, [&](std::uint32_t y) {
+      if (owned && may_pair(a, x, y, self) && key(x, y) < mine) owned = false;
+    });
+  });
+  return owned;
+}
+
+}  // namespace kinray

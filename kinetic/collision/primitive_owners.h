@@ -1,0 +1,48 @@
+#pragma once
+// Which triangle pair tests a primitive pair. A vertex belongs to several triangles and an edge
+// to two, so one vertex-face pair is met by up to six triangle pairs, one edge-edge pair by four
+// (as many as there are triangles around the vertex, or around each edge), and every one of
+// them overlaps whenever the primitives touch: the primitive's triangle contains it. Testing the
+// primitive pair in one of them, its owner, finds the same contacts with a quarter of the
+// primitive tests, for every contact finder alike (brute force, swept volumes, the list).
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace kinray {
+
+/// The triangles around each vertex of one mesh, in increasing order (compressed rows).
+class VertexTriangles {
+ public:
+  VertexTriangles(std::span<const std::array<std::uint32_t, 3>> triangles,
+                  std::uint32_t vertex_count);
+
+  [[nodiscard]] std::span<const std::uint32_t> around(std::uint32_t vertex) const {
+    return {m_triangles.data() + m_offsets[vertex], m_triangles.data() + m_offsets[vertex + 1]};
+  }
+
+ private:
+  std::vector<std::uint32_t> m_offsets, m_triangles;
+};
+
+/// One side of a triangle pair: a mesh's triangles and the triangles around its vertices.
+struct OwnerSide {
+  std::span<const std::array<std::uint32_t, 3>> triangles;
+  const VertexTriangles* around;
+};
+
+/// Whether triangle ta of `a` owns the test of its vertex v against face tb of `b`: ta is the
+/// lowest-numbered triangle around v that may be paired with tb (with itself, `self`: shares
+/// no vertex with it).
+[[nodiscard]] bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v,
+                                    const OwnerSide& b, std::uint32_t tb, bool self);
+
+/// Whether triangle pair (ta, tb) owns the test of edge ea of ta against edge eb of tb: of the
+/// pairs of a triangle around ea and one around eb that may be paired, it is the lowest (as an
+/// unordered pair, with itself).
+[[nodiscard]] bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta,
+                                  std::array<std::uint32_t, 2> ea, const OwnerSide& b,
+                                  std::uint32_t tb, std::array<std::uint32_t, 2> eb, bool self);
+
+}  // namespace kinray
