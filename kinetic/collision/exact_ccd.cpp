@@ -10,30 +10,86 @@
 #include <algorithm>
 #include <functional>
 #include <memory>
+#include <utility>
 
 #include "kinetic/core/rational_polynomial.h"
 
 namespace kinray {
 namespace {
 
-using PolyVec = std::array<RationalPolynomial, 3>;
+/// A polynomial with integer coefficients (trailing zeros allowed): the test's polynomials are
+/// built in these, from the coordinates scaled to integers (integer_coordinates), because GMP's
+/// integer products and sums skip the gcds that every rational one costs; each is converted to
+/// a RationalPolynomial once built. The tests are homogeneous in the coordinates, so the scaling
+/// keeps every sign and every root.
+struct IntegerPolynomial {
+  std::vector<mpz_class> c;
+};
 
-PolyVec motion_of(const RationalPoint& start, const RationalPoint& end) {
-  PolyVec p;
-  for (int i = 0; i < 3; ++i) p[i] = RationalPolynomial::linear(start[i], end[i] - start[i]);
+IntegerPolynomial operator+(const IntegerPolynomial& f, const IntegerPolynomial& g) {
+  IntegerPolynomial s{std::vector<mpz_class>(std::max(f.c.size(), g.c.size()))};
+  for (std::size_t i = 0; i < f.c.size(); ++i) s.c[i] += f.c[i];
+  for (std::size_t i = 0; i < g.c.size(); ++i) s.c[i] += g.c[i];
+  return s;
+}
+
+IntegerPolynomial operator-(const IntegerPolynomial& f, const IntegerPolynomial& g) {
+  IntegerPolynomial s{std::vector<mpz_class>(std::max(f.c.size(), g.c.size()))};
+  for (std::size_t i = 0; i < f.c.size(); ++i) s.c[i] += f.c[i];
+  for (std::size_t i = 0; i < g.c.size(); ++i) s.c[i] -= g.c[i];
+  return s;
+}
+
+IntegerPolynomial operator*(const IntegerPolynomial& f, const IntegerPolynomial& g) {
+  if (f.c.empty() || g.c.empty()) return {};
+  IntegerPolynomial p{std::vector<mpz_class>(f.c.size() + g.c.size() - 1)};
+  for (std::size_t i = 0; i < f.c.size(); ++i)
+    for (std::size_t j = 0; j < g.c.size(); ++j)
+      mpz_addmul(p.c[i + j].get_mpz_t(), f.c[i].get_mpz_t(), g.c[j].get_mpz_t());
   return p;
 }
 
-PolyVec operator-(const PolyVec& a, const PolyVec& b) {
+RationalPolynomial rational(const IntegerPolynomial& f) {
+  return RationalPolynomial(std::vector<mpq_class>(f.c.begin(), f.c.end()));
+}
+
+using IntegerVec = std::array<IntegerPolynomial, 3>;
+using PolyVec = std::array<RationalPolynomial, 3>;
+
+PolyVec rational(const IntegerVec& v) {
+  return {rational(v[0]), rational(v[1]), rational(v[2])};
+}
+
+IntegerVec operator-(const IntegerVec& a, const IntegerVec& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
 
-PolyVec cross(const PolyVec& a, const PolyVec& b) {
+IntegerVec cross(const IntegerVec& a, const IntegerVec& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-RationalPolynomial dot(const PolyVec& a, const PolyVec& b) {
+IntegerPolynomial dot(const IntegerVec& a, const IntegerVec& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// The four points' motions with every coordinate multiplied by the least common multiple of
+/// the coordinates' denominators (a power of two for doubles), and that multiple.
+std::pair<std::array<IntegerVec, 4>, mpz_class> integer_motions(const RationalMotion& motion) {
+  mpz_class scale = 1;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      for (const mpq_class* x : {&motion.start[i][k], &motion.end[i][k]})
+        mpz_lcm(scale.get_mpz_t(), scale.get_mpz_t(), x->get_den_mpz_t());
+  std::array<IntegerVec, 4> p;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const auto integer = [&](const mpq_class& x) -> mpz_class {
+        return x.get_num() * (scale / x.get_den());
+      };
+      const mpz_class start = integer(motion.start[i][k]);
+      p[i][k].c = {start, integer(motion.end[i][k]) - start};
+    }
+  return {std::move(p), std::move(scale)};
 }
 
 /// Signs of polynomials at one candidate time.
@@ -48,8 +104,14 @@ struct PointOnSegment {
   PolyVec w, r, w_cross_r;            // w = b - a, r = p - a
   RationalPolynomial from_a, from_b;  // (p - a).(b - a), (p - b).(a - b)
 
-  PointOnSegment(const PolyVec& p, const PolyVec& a, const PolyVec& b)
-      : w(b - a), r(p - a), w_cross_r(cross(w, r)), from_a(dot(r, w)), from_b(dot(p - b, a - b)) {}
+  PointOnSegment(const IntegerVec& p, const IntegerVec& a, const IntegerVec& b) {
+    const IntegerVec wi = b - a, ri = p - a;
+    w = rational(wi);
+    r = rational(ri);
+    w_cross_r = rational(cross(wi, ri));
+    from_a = rational(dot(ri, wi));
+    from_b = rational(dot(p - b, a - b));
+  }
 
   [[nodiscard]] bool holds(const SignOracle& sign_of) const {
     if (is_zero_at(w, sign_of)) return is_zero_at(r, sign_of);
@@ -75,12 +137,13 @@ class ContactCondition {
 /// area, else v on one of its (possibly degenerate) edges.
 class VertexInTriangle final : public ContactCondition {
  public:
-  explicit VertexInTriangle(const std::array<PolyVec, 4>& p)
-      : m_points(p), m_normal(cross(p[2] - p[1], p[3] - p[1])) {
+  explicit VertexInTriangle(const std::array<IntegerVec, 4>& p) : m_points(p) {
+    const IntegerVec normal = cross(p[2] - p[1], p[3] - p[1]);
+    m_normal = rational(normal);
     for (int i = 0; i < 3; ++i) {
-      const PolyVec& a = p[1 + i];
-      const PolyVec& b = p[1 + (i + 1) % 3];
-      m_barycentric[i] = dot(m_normal, cross(b - a, p[0] - a));
+      const IntegerVec& a = p[1 + i];
+      const IntegerVec& b = p[1 + (i + 1) % 3];
+      m_barycentric[i] = rational(dot(normal, cross(b - a, p[0] - a)));
     }
   }
   [[nodiscard]] bool holds(const SignOracle& sign_of) const override {
@@ -104,7 +167,7 @@ class VertexInTriangle final : public ContactCondition {
     return m_edges;
   }
 
-  std::array<PolyVec, 4> m_points;
+  std::array<IntegerVec, 4> m_points;
   PolyVec m_normal;
   std::array<RationalPolynomial, 3> m_barycentric;
   mutable std::vector<PointOnSegment> m_edges;
@@ -114,15 +177,19 @@ class VertexInTriangle final : public ContactCondition {
 /// are not parallel, else an end point of one lies on the other.
 class EdgesMeet final : public ContactCondition {
  public:
-  explicit EdgesMeet(const std::array<PolyVec, 4>& p)
-      : m_points(p), m_normal(cross(p[1] - p[0], p[3] - p[2])) {
-    const PolyVec d = p[2] - p[0];
-    m_norm2 = dot(m_normal, m_normal);
+  explicit EdgesMeet(const std::array<IntegerVec, 4>& p) : m_points(p) {
+    const IntegerVec normal = cross(p[1] - p[0], p[3] - p[2]);
+    const IntegerVec d = p[2] - p[0];
+    const IntegerPolynomial norm2 = dot(normal, normal);
     // a0 + s (a1 - a0) = b0 + u (b1 - b0) with s = m_s / m_norm2, u = m_u / m_norm2
-    m_s = dot(cross(d, p[3] - p[2]), m_normal);
-    m_u = dot(cross(d, p[1] - p[0]), m_normal);
-    m_s_rest = m_norm2 - m_s;
-    m_u_rest = m_norm2 - m_u;
+    const IntegerPolynomial s = dot(cross(d, p[3] - p[2]), normal);
+    const IntegerPolynomial u = dot(cross(d, p[1] - p[0]), normal);
+    m_normal = rational(normal);
+    m_norm2 = rational(norm2);
+    m_s = rational(s);
+    m_u = rational(u);
+    m_s_rest = rational(norm2 - s);
+    m_u_rest = rational(norm2 - u);
   }
   [[nodiscard]] bool holds(const SignOracle& sign_of) const override {
     if (!is_zero_at(m_normal, sign_of))
@@ -141,14 +208,14 @@ class EdgesMeet final : public ContactCondition {
   /// Only parallel edges need them: built on first use.
   const std::vector<PointOnSegment>& ends() const {
     if (m_ends.empty()) {
-      const std::array<PolyVec, 4>& p = m_points;
+      const std::array<IntegerVec, 4>& p = m_points;
       m_ends = {PointOnSegment(p[0], p[2], p[3]), PointOnSegment(p[1], p[2], p[3]),
                 PointOnSegment(p[2], p[0], p[1]), PointOnSegment(p[3], p[0], p[1])};
     }
     return m_ends;
   }
 
-  std::array<PolyVec, 4> m_points;
+  std::array<IntegerVec, 4> m_points;
   PolyVec m_normal;
   RationalPolynomial m_norm2, m_s, m_u, m_s_rest, m_u_rest;
   mutable std::vector<PointOnSegment> m_ends;
@@ -213,7 +280,7 @@ bool inside_contact_interval(const ContactCondition& condition, IsolatedRoot& ro
   return true;
 }
 
-RationalPolynomial coplanarity_of(const std::array<PolyVec, 4>& p) {
+IntegerPolynomial coplanarity_of(const std::array<IntegerVec, 4>& p) {
   return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]);
 }
 
@@ -230,16 +297,17 @@ RationalMotion to_rational(const PrimitiveMotion& motion) {
 }
 
 RationalPolynomial coplanarity_polynomial(const RationalMotion& motion) {
-  std::array<PolyVec, 4> p;
-  for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  return coplanarity_of(p);
+  const auto [p, scale] = integer_motions(motion);
+  RationalPolynomial cubic = rational(coplanarity_of(p));
+  const mpq_class volume_scale = mpq_class(scale * scale * scale);  // undoes the scaling
+  for (mpq_class& x : cubic.c) x /= volume_scale;
+  return cubic;
 }
 
 std::vector<double> exact_contact_times(ContactType type, const RationalMotion& motion,
                                         LocalWindow window) {
-  std::array<PolyVec, 4> p;
-  for (int i = 0; i < 4; ++i) p[i] = motion_of(motion.start[i], motion.end[i]);
-  const RationalPolynomial coplanarity = coplanarity_of(p);
+  const std::array<IntegerVec, 4> p = integer_motions(motion).first;
+  const RationalPolynomial coplanarity = rational(coplanarity_of(p));
   std::unique_ptr<const ContactCondition> owned;
   if (type == ContactType::vertex_face)
     owned = std::make_unique<VertexInTriangle>(p);
