@@ -1,23 +1,28 @@
-// Interval enclosures over a time interval T of the coplanarity cubic, its derivative and the
-// 2-D test's polynomials. A contact at t needs the cubic to vanish at t and, the triangle
-// having an area (or the edges not being parallel), every polynomial below to be >= 0 at t;
-// each is a dot product with the normal, so one certainly negative proves the normal non-zero
-// and the degenerate branch of the rational test (exact_ccd.cpp) out of reach, and all of them
-// certainly positive prove the contact. A cubic certainly monotone on T with certain, opposite
-// signs at T's ends has exactly one root, inside T.
+// The floating-point decision of primitive CCD over the window, bisected into pieces. A contact
+// at t needs the coplanarity cubic to vanish at t and, the triangle having an area (or the
+// edges not being parallel), every polynomial of the 2-D test to be >= 0 at t; each is a dot
+// product with the normal, so one certainly negative proves the normal non-zero and the
+// degenerate branch of the rational test (exact_ccd.cpp) out of reach, and all of them
+// certainly positive prove the contact. A cubic certainly monotone on a piece with certain,
+// opposite signs at its ends has exactly one root, inside it. The polynomials are enclosed in
+// Bernstein form on the window once per pair (interval arithmetic on the positions at the
+// window's ends), and halved with the pieces (bernstein_bound.h).
 #include "kinetic/collision/interval_ccd.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
+#include "kinetic/collision/bernstein_bound.h"
 #include "kinetic/collision/exact_ccd.h"
 #include "kinetic/core/interval_arithmetic.h"
 
 namespace kinray {
 namespace {
 
+using detail::BernsteinBound;
 using detail::Interval;
 using detail::IntervalVec;
 
@@ -83,38 +88,85 @@ class PairMotion {
   [[nodiscard]] Interval cubic(Interval t) const {
     return det(at(0, 1, t), at(0, 2, t), at(0, 3, t));
   }
-  /// d/dt det(X, Y, Z) = det(X', Y, Z) + det(X, Y', Z) + det(X, Y, Z')
-  [[nodiscard]] Interval cubic_derivative(Interval t) const {
-    const IntervalVec x = at(0, 1, t), y = at(0, 2, t), z = at(0, 3, t);
-    return det(m_rel[0][1]->b, y, z) + det(x, m_rel[0][2]->b, z) + det(x, y, m_rel[0][3]->b);
+  /// The relative position q - p at local time t in doubles, with the magnitude |a| + |b| of
+  /// its motion a + t b: off by at most 6 u of it (five roundings from the coordinates).
+  [[nodiscard]] detail::TrackedVec tracked_at(int p, int q, double t) const {
+    detail::Tracked out[3];
+    for (int k = 0; k < 3; ++k) {
+      const double a = m_motion.start[q][k] - m_motion.start[p][k];
+      const double b = (m_motion.end[q][k] - m_motion.end[p][k]) - a;
+      out[k] = {a + t * b, std::fabs(a) + std::fabs(b)};
+    }
+    return {out[0], out[1], out[2]};
   }
 
-  /// Signs of the 2-D test's polynomials over t: -1 when one is certainly negative (no
-  /// contact), 1 when all are certainly positive (contact wherever coplanar), else 0.
-  [[nodiscard]] int condition(Interval t) const {
-    Interval q[4];
-    int count = 0;
+  /// Error bound of the Bernstein coefficients below, relative to their magnitudes: their
+  /// inputs are off by 6 u each (three or four per term: 24 u), and no path from them takes more
+  /// than 10 roundings; twice that.
+  static constexpr double kRelativeError = 68 * std::numeric_limits<double>::epsilon() / 2;
+
+  /// The cubic's Bernstein coefficients on [lo, hi] (times 3, a positive factor): it is
+  /// trilinear in the three differences X, Y, Z, so b_k = sum_{i+j+l=k} det(X_i, Y_j, Z_l) /
+  /// C(3, k), X_0 and X_1 the values at lo and hi.
+  [[nodiscard]] BernsteinBound<3> cubic_on(double lo, double hi) const {
+    detail::TrackedVec d[3][2];
+    for (int q = 0; q < 3; ++q) {
+      d[q][0] = tracked_at(0, q + 1, lo);
+      d[q][1] = tracked_at(0, q + 1, hi);
+    }
+    std::array<detail::Tracked, 4> b{};
+    for (int j = 0; j < 2; ++j)
+      for (int l = 0; l < 2; ++l) {
+        const detail::TrackedVec yz = cross(d[1][j], d[2][l]);
+        for (int i = 0; i < 2; ++i) b[i + j + l] = b[i + j + l] + dot(d[0][i], yz);
+      }
+    const detail::Tracked three{3, 3};
+    b[0] = three * b[0];
+    b[3] = three * b[3];
+    return BernsteinBound<3>::tracking(b, kRelativeError);
+  }
+
+  /// The 2-D test's polynomials on [lo, hi] in Bernstein form (each times a positive factor);
+  /// returns how many (3 for vertex-face, 4 for edge-edge).
+  int conditions_on(double lo, double hi, std::array<BernsteinBound<4>, 4>& out) const {
+    using detail::Tracked;
+    using detail::TrackedVec;
+    // a linear vector's ends; a quadratic one's Bernstein coefficients (times 2: (u x v)_1 is
+    // the mean of the two cross terms)
+    using Linear = std::array<TrackedVec, 2>;
+    using Quadratic = std::array<TrackedVec, 3>;
+    const auto linear = [&](int p, int q) -> Linear {
+      return {tracked_at(p, q, lo), tracked_at(p, q, hi)};
+    };
+    const auto crossed = [](const Linear& u, const Linear& v) -> Quadratic {
+      return {2 * cross(u[0], v[0]), cross(u[0], v[1]) + cross(u[1], v[0]), 2 * cross(u[1], v[1])};
+    };
+    // n . m of two quadratics, times 12: 12 n0m0, 6 (n0m1 + n1m0), 2 (n0m2 + 4 n1m1 + n2m0), ...
+    const auto product = [](const Quadratic& n, const Quadratic& m) {
+      const auto w = [](double x) { return Tracked{x, x}; };
+      const std::array<Tracked, 5> b = {
+          w(12) * dot(n[0], m[0]), w(6) * (dot(n[0], m[1]) + dot(n[1], m[0])),
+          w(2) * (dot(n[0], m[2]) + w(4) * dot(n[1], m[1]) + dot(n[2], m[0])),
+          w(6) * (dot(n[1], m[2]) + dot(n[2], m[1])), w(12) * dot(n[2], m[2])};
+      return BernsteinBound<4>::tracking(b, kRelativeError);
+    };
     if (m_type == ContactType::vertex_face) {
       // vertex p0, triangle (p1, p2, p3): barycentric numerators n . ((b - a) x (p0 - a))
-      const IntervalVec n = cross(at(1, 2, t), at(1, 3, t));
+      const Quadratic n = crossed(linear(1, 2), linear(1, 3));
       constexpr int corner[3][2] = {{1, 2}, {2, 3}, {3, 1}};
-      for (const auto& [a, b] : corner) q[count++] = dot(n, cross(at(a, b, t), at(a, 0, t)));
-    } else {
-      // edges (p0, p1), (p2, p3), n = (p1 - p0) x (p3 - p2): s |n|^2, (1 - s) |n|^2, u |n|^2,
-      // (1 - u) |n|^2, each one triple product with n so that no enclosure is subtracted
-      const IntervalVec ea = at(0, 1, t), eb = at(2, 3, t), d = at(0, 2, t);
-      const IntervalVec n = cross(ea, eb);
-      q[count++] = dot(cross(d, eb), n);
-      q[count++] = dot(cross(at(2, 1, t), eb), n);
-      q[count++] = dot(cross(d, ea), n);
-      q[count++] = dot(cross(ea, at(0, 3, t)), n);
+      for (int i = 0; i < 3; ++i)
+        out[i] = product(n, crossed(linear(corner[i][0], corner[i][1]), linear(corner[i][0], 0)));
+      return 3;
     }
-    bool all_positive = true;
-    for (int i = 0; i < count; ++i) {
-      if (q[i].certainly_negative()) return -1;
-      all_positive = all_positive && q[i].certainly_positive();
-    }
-    return all_positive ? 1 : 0;
+    // edges (p0, p1), (p2, p3), n = (p1 - p0) x (p3 - p2): s |n|^2, (1 - s) |n|^2, u |n|^2,
+    // (1 - u) |n|^2, each one triple product with n so that no enclosure is subtracted
+    const Linear ea = linear(0, 1), eb = linear(2, 3), d = linear(0, 2);
+    const Quadratic n = crossed(ea, eb);
+    out[0] = product(crossed(d, eb), n);
+    out[1] = product(crossed(linear(2, 1), eb), n);
+    out[2] = product(crossed(d, ea), n);
+    out[3] = product(crossed(ea, linear(0, 3)), n);
+    return 4;
   }
 
  private:
@@ -127,28 +179,87 @@ class PairMotion {
 constexpr int kMaxDepth = 10;
 constexpr int kMaxIntervals = 96;
 
-/// Splits the window until every piece is free of contact or holds exactly one certified contact
-/// (appended to `contacts`, in time order); false when the budget runs out first.
-bool classify(const PairMotion& pair, Interval t, int depth, int& budget,
-              std::vector<Interval>& contacts) {
-  if (--budget < 0) return false;
-  if (pair.cubic(t).certainly_nonzero()) return true;
-  const int condition = pair.condition(t);
-  if (condition < 0) return true;
-  if (condition == 0 && pair.separated(t)) return true;
-  if (condition > 0 && pair.cubic_derivative(t).certainly_nonzero()) {
-    const int at_lo = pair.cubic(Interval::point(t.lo)).certain_sign();
-    const int at_hi = pair.cubic(Interval::point(t.hi)).certain_sign();
-    if (at_lo != 0 && at_hi != 0) {
-      if (at_lo != at_hi) contacts.push_back(t);
-      return true;
-    }
+/// A piece of the window: k-th of 2^depth equal parts, with the polynomials on it.
+struct Piece {
+  int depth = 0;
+  double index = 0;
+  BernsteinBound<3> cubic;
+  std::array<BernsteinBound<4>, 4> conditions;
+};
+
+/// A contact piece's times: an interval of doubles around it, and the cubic's sign at its start.
+struct ContactPiece {
+  Interval time;
+  int sign_lo = 0;
+};
+
+/// The bisection of one pair's window.
+class Bisection {
+ public:
+  Bisection(const PairMotion& pair, LocalWindow window) : m_pair(pair), m_window(window) {}
+
+  /// Splits the window until every piece is free of contact or holds exactly one certified
+  /// contact (appended to `contacts`, in time order); false when the budget runs out first.
+  bool classify(const BernsteinBound<3>& cubic, std::vector<ContactPiece>& contacts) {
+    Piece whole{0, 0, cubic, {}};
+    if (cubic.certainly_nonzero()) return true;
+    m_conditions = m_pair.conditions_on(m_window.lo, m_window.hi, whole.conditions);
+    return classify(whole, contacts);
   }
-  if (depth == kMaxDepth) return false;
-  const double mid = 0.5 * (t.lo + t.hi);  // inside [lo, hi] however it rounds
-  return classify(pair, {t.lo, mid}, depth + 1, budget, contacts) &&
-         classify(pair, {mid, t.hi}, depth + 1, budget, contacts);
-}
+
+ private:
+  /// The time where a piece starts (index k) or ends (k + 1): an exact double at the window's
+  /// ends and on the dyadic grid of a whole segment, else lo + (hi - lo) k / 2^depth rounded
+  /// (off by at most 3 u of itself, lo >= 0) and widened by more than that.
+  [[nodiscard]] Interval boundary(double k, int depth) const {
+    if (k == 0) return Interval::point(m_window.lo);
+    if (k == std::ldexp(1.0, depth)) return Interval::point(m_window.hi);
+    const double at = m_window.lo + (m_window.hi - m_window.lo) * std::ldexp(k, -depth);
+    if (m_window.whole()) return Interval::point(at);
+    return {std::max(m_window.lo, detail::round_down_bound(at)),
+            std::min(m_window.hi, detail::round_up_bound(at))};
+  }
+
+  bool classify(const Piece& piece, std::vector<ContactPiece>& contacts) {
+    if (--m_budget < 0) return false;
+    if (piece.cubic.certainly_nonzero()) return true;
+    bool all_positive = true;
+    for (int i = 0; i < m_conditions; ++i) {
+      if (piece.conditions[i].certainly_negative()) return true;
+      all_positive = all_positive && piece.conditions[i].certainly_positive();
+    }
+    const Interval start = boundary(piece.index, piece.depth),
+                   end = boundary(piece.index + 1, piece.depth);
+    if (!all_positive && m_pair.separated({start.lo, end.hi})) return true;
+    if (all_positive && piece.cubic.certainly_monotone()) {
+      const int at_start = piece.cubic.start_sign(), at_end = piece.cubic.end_sign();
+      if (at_start != 0 && at_end != 0) {
+        if (at_start == at_end) return true;
+        // The root lies strictly inside the piece; where an end is not a double, the few ulps
+        // between it and the double outside it must hold no root either.
+        const auto clear = [&](Interval sliver, int sign) {
+          return sliver.lo == sliver.hi || m_pair.cubic(sliver).certain_sign() == sign;
+        };
+        if (clear(start, at_start) && clear(end, at_end)) {
+          contacts.push_back({{start.lo, end.hi}, at_start});
+          return true;
+        }
+      }
+    }
+    if (piece.depth == kMaxDepth) return false;
+    Piece left{piece.depth + 1, 2 * piece.index, {}, {}};
+    Piece right{piece.depth + 1, 2 * piece.index + 1, {}, {}};
+    std::tie(left.cubic, right.cubic) = piece.cubic.halves();
+    for (int i = 0; i < m_conditions; ++i)
+      std::tie(left.conditions[i], right.conditions[i]) = piece.conditions[i].halves();
+    return classify(left, contacts) && classify(right, contacts);
+  }
+
+  const PairMotion& m_pair;
+  LocalWindow m_window;
+  int m_conditions = 0;
+  int m_budget = kMaxIntervals;
+};
 
 /// The coplanarity cubic's monomial coefficients in plain doubles, constant term first: no
 /// bound on their error, only a guide to where the root lies.
@@ -187,9 +298,8 @@ double guess_root(const std::array<double, 4>& c, Interval t, int sign_lo) {
 /// exactly. It starts at the grid points around a Newton guess of the root, which usually
 /// bracket it at once: two signs instead of some forty.
 double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion, Interval t,
-                          IntervalCcdCounters& counters) {
+                          int sign_lo, IntervalCcdCounters& counters) {
   constexpr double e = kContactTimeEarliness;
-  const int sign_lo = pair.cubic(Interval::point(t.lo)).certain_sign();
   double a = std::floor(t.lo / e), b = std::ceil(t.hi / e);  // a e <= lo < t* < hi <= b e
   std::optional<RationalPolynomial> cubic;
   // Which side of the root grid point m e lies on: -1 below, 1 above, 0 exactly on it.
@@ -280,11 +390,12 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
         motion.end[i].cwiseAbs().maxCoeff() >= kMaxCoordinate)
       return std::nullopt;
   const PairMotion pair(type, motion);
-  std::vector<Interval> contacts;
-  int budget = kMaxIntervals;
-  if (!classify(pair, {window.lo, window.hi}, 0, budget, contacts)) return std::nullopt;
+  std::vector<ContactPiece> contacts;
+  if (!Bisection(pair, window).classify(pair.cubic_on(window.lo, window.hi), contacts))
+    return std::nullopt;
   std::vector<double> times;
-  for (const Interval& t : contacts) times.push_back(grid_floor_of_root(pair, motion, t, counters));
+  for (const ContactPiece& c : contacts)
+    times.push_back(grid_floor_of_root(pair, motion, c.time, c.sign_lo, counters));
   times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one grid cell
   if (times.empty())
     ++counters.rejections;
