@@ -111,11 +111,17 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
       test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
                 counters, window);
   }
+  std::array<EdgeTriangles, 3> around_a, around_b;  // the triangles of each edge, once
+  if (owners)
+    for (int i = 0; i < 3; ++i) {
+      around_a[i] = edge_triangles(*a.around, {fa[i], fa[(i + 1) % 3]});
+      around_b[i] = edge_triangles(*b.around, {fb[i], fb[(i + 1) % 3]});
+    }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const std::array<std::uint32_t, 2> ea = {fa[i], fa[(i + 1) % 3]};
       const std::array<std::uint32_t, 2> eb = {fb[j], fb[(j + 1) % 3]};
-      if (!owners || owns_edge_edge(side_a, ta, ea, side_b, tb, eb, self))
+      if (!owners || owns_edge_edge(side_a, ta, around_a[i], side_b, tb, around_b[j], self))
         test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters,
                   window);
     }

@@ -12,23 +12,6 @@ bool may_pair(const OwnerSide& a, std::uint32_t ta, std::uint32_t tb, bool self)
   return !self || (ta != tb && !triangles_adjacent(a.triangles[ta], a.triangles[tb]));
 }
 
-/// The triangles around both ends of an edge: those having it as an edge.
-template <class Visit>
-void around_edge(const VertexTriangles& around, std::array<std::uint32_t, 2> edge, Visit&& visit) {
-  const std::span<const std::uint32_t> x = around.around(edge[0]), y = around.around(edge[1]);
-  for (std::size_t i = 0, j = 0; i < x.size() && j < y.size();) {
-    if (x[i] < y[j]) {
-      ++i;
-    } else if (y[j] < x[i]) {
-      ++j;
-    } else {
-      visit(x[i]);
-      ++i;
-      ++j;
-    }
-  }
-}
-
 }  // namespace
 
 VertexTriangles::VertexTriangles(std::span<const std::array<std::uint32_t, 3>> triangles,
@@ -56,20 +39,40 @@ bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v, con
   return false;  // unreachable for a pair that may be paired: ta itself is around v
 }
 
-bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta, std::array<std::uint32_t, 2> ea,
-                    const OwnerSide& b, std::uint32_t tb, std::array<std::uint32_t, 2> eb,
-                    bool self) {
+EdgeTriangles edge_triangles(const VertexTriangles& around, std::array<std::uint32_t, 2> edge) {
+  EdgeTriangles out;
+  const std::span<const std::uint32_t> x = around.around(edge[0]), y = around.around(edge[1]);
+  for (std::size_t i = 0, j = 0; i < x.size() && j < y.size();) {
+    if (x[i] < y[j]) {
+      ++i;
+    } else if (y[j] < x[i]) {
+      ++j;
+    } else {
+      if (out.count == out.triangles.size()) {
+        out.complete = false;
+        break;
+      }
+      out.triangles[out.count++] = x[i];
+      ++i;
+      ++j;
+    }
+  }
+  return out;
+}
+
+bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta, const EdgeTriangles& ea,
+                    const OwnerSide& b, std::uint32_t tb, const EdgeTriangles& eb, bool self) {
+  if (!ea.complete || !eb.complete) return true;
   const auto key = [self](std::uint32_t x, std::uint32_t y) {
     return self ? std::pair(std::min(x, y), std::max(x, y)) : std::pair(x, y);
   };
   const std::pair<std::uint32_t, std::uint32_t> mine = key(ta, tb);
-  bool owned = true;
-  around_edge(*a.around, ea, [&](std::uint32_t x) {
-    around_edge(*b.around, eb, [&](std::uint32_t y) {
-      if (owned && may_pair(a, x, y, self) && key(x, y) < mine) owned = false;
-    });
-  });
-  return owned;
+  for (std::uint32_t i = 0; i < ea.count; ++i)
+    for (std::uint32_t j = 0; j < eb.count; ++j) {
+      const std::uint32_t x = ea.triangles[i], y = eb.triangles[j];
+      if (key(x, y) < mine && may_pair(a, x, y, self)) return false;
+    }
+  return true;
 }
 
 }  // namespace kinray

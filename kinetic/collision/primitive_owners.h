@@ -38,11 +38,22 @@ struct OwnerSide {
 [[nodiscard]] bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v,
                                     const OwnerSide& b, std::uint32_t tb, bool self);
 
-/// Whether triangle pair (ta, tb) owns the test of edge ea of ta against edge eb of tb: of the
-/// pairs of a triangle around ea and one around eb that may be paired, it is the lowest (as an
-/// unordered pair, with itself).
-[[nodiscard]] bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta,
-                                  std::array<std::uint32_t, 2> ea, const OwnerSide& b,
-                                  std::uint32_t tb, std::array<std::uint32_t, 2> eb, bool self);
+/// The triangles having an edge (around both its ends), in increasing order; `complete` is
+/// false for an edge of more triangles than are kept (a non-manifold fan).
+struct EdgeTriangles {
+  std::array<std::uint32_t, 8> triangles{};
+  std::uint32_t count = 0;
+  bool complete = true;
+};
+[[nodiscard]] EdgeTriangles edge_triangles(const VertexTriangles& around,
+                                           std::array<std::uint32_t, 2> edge);
+
+/// Whether triangle pair (ta, tb) owns the test of an edge of ta (its triangles `ea`) against
+/// an edge of tb (`eb`): of the pairs of a triangle around each that may be paired, it is the
+/// lowest (as an unordered pair, with itself). True too when a list is incomplete: the pair is
+/// then tested by more than one triangle pair, and the repeated contacts are dropped.
+[[nodiscard]] bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta, const EdgeTriangles& ea,
+                                  const OwnerSide& b, std::uint32_t tb, const EdgeTriangles& eb,
+                                  bool self);
 
 }  // namespace kinray
