@@ -254,26 +254,50 @@ double on_grid(const IsolatedRoot& root) {
   return mpq_class(mpq_class(a) * e).get_d();  // k e with k <= 2^48: exactly a double
 }
 
-/// The sign of g on a small open interval beside the root (side -1: before it, 1: after it),
-/// where no polynomial changes sign: that of its first derivative not vanishing at the root,
-/// g(t* + h) having the sign of g^(k)(t*) h^k; 0 for the zero polynomial.
-int one_sided_sign(const RationalPolynomial& g, IsolatedRoot& root, int side) {
-  RationalPolynomial d = g;
-  for (int k = 0; !d.is_zero(); ++k, d = d.derivative())
-    if (const int s = sign_at(d, root); s != 0) return side < 0 && k % 2 == 1 ? -s : s;
-  return 0;
-}
+/// The signs of the test's polynomials at one root, each decided once: the test at the root and
+/// on both sides of it asks for the same polynomials (sign_at refines the root in place).
+class SignsAtRoot {
+ public:
+  explicit SignsAtRoot(IsolatedRoot& root) : m_root(root) {}
+
+  int at(const RationalPolynomial& g) {
+    for (const auto& [known, sign] : m_known)
+      if (known == &g) return sign;
+    const int sign = sign_at(g, m_root);
+    m_known.emplace_back(&g, sign);
+    return sign;
+  }
+
+  /// The sign of g on a small open interval beside the root (side -1: before it, 1: after
+  /// it), where no polynomial changes sign: that of its first derivative not vanishing at the
+  /// root, g(t* + h) having the sign of g^(k)(t*) h^k; 0 for the zero polynomial.
+  int beside(const RationalPolynomial& g, int side) {
+    if (const int s = at(g); s != 0 || g.is_zero()) return s;
+    RationalPolynomial d = g.derivative();
+    for (int k = 1; !d.is_zero(); ++k, d = d.derivative())
+      if (const int s = sign_at(d, m_root); s != 0) return side < 0 && k % 2 == 1 ? -s : s;
+    return 0;
+  }
+
+  void known(const RationalPolynomial& g, int sign) { m_known.emplace_back(&g, sign); }
+  [[nodiscard]] IsolatedRoot& root() { return m_root; }
+
+ private:
+  IsolatedRoot& m_root;
+  std::vector<std::pair<const RationalPolynomial*, int>> m_known;
+};
 
 /// In coplanar motion the pair may touch over whole intervals of time; true when the root lies
 /// strictly inside one, the test holding just before and just after it. Such a time is where
 /// some other polynomial of the test changes sign, and which polynomials the test has depends on
 /// the order of the pair's points (on which triangle pair met it): only the intervals' ends are
 /// the pair's own.
-bool inside_contact_interval(const ContactCondition& condition, IsolatedRoot& root) {
+bool inside_contact_interval(const ContactCondition& condition, SignsAtRoot& signs) {
+  const IsolatedRoot& root = signs.root();
   if (root.is_rational() && (sgn(root.lo) == 0 || root.lo == 1)) return false;
   for (int side : {-1, 1}) {
-    const SignOracle beside = [&root, side](const RationalPolynomial& g) {
-      return one_sided_sign(g, root, side);
+    const SignOracle beside = [&signs, side](const RationalPolynomial& g) {
+      return signs.beside(g, side);
     };
     if (!condition.holds(beside)) return false;
   }
@@ -318,6 +342,7 @@ std::vector<double> exact_contact_times(ContactType type, const RationalMotion& 
   // The candidates of [0, 1] that lie in the window: its ends count only where they are 0 or 1.
   const mpq_class zero = 0, one = 1, lo = window.lo, hi = window.hi;
   std::vector<IsolatedRoot> candidates;
+  std::vector<const RationalPolynomial*> sources;  // the polynomial a candidate is a root of
   if (!coplanarity.is_zero()) {
     candidates = isolate_roots(coplanarity, lo, hi);
   } else {
@@ -327,14 +352,22 @@ std::vector<double> exact_contact_times(ContactType type, const RationalMotion& 
     condition.collect(polynomials);
     for (const RationalPolynomial* q : polynomials)
       if (q->degree() >= 1)
-        for (IsolatedRoot& r : isolate_roots(*q, lo, hi)) candidates.push_back(std::move(r));
+        for (IsolatedRoot& r : isolate_roots(*q, lo, hi)) {
+          candidates.push_back(std::move(r));
+          sources.resize(candidates.size());
+          sources.back() = q;
+        }
   }
 
   std::vector<double> times;
-  for (IsolatedRoot& root : candidates) {
-    const SignOracle sign_of = [&root](const RationalPolynomial& g) { return sign_at(g, root); };
+  sources.resize(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    IsolatedRoot& root = candidates[i];
+    SignsAtRoot signs(root);
+    if (sources[i]) signs.known(*sources[i], 0);  // no gcd needed to find it zero there
+    const SignOracle sign_of = [&signs](const RationalPolynomial& g) { return signs.at(g); };
     if (!condition.holds(sign_of)) continue;
-    if (coplanarity.is_zero() && inside_contact_interval(condition, root)) continue;
+    if (coplanarity.is_zero() && inside_contact_interval(condition, signs)) continue;
     times.push_back(on_grid(root));
   }
   std::ranges::sort(times);
