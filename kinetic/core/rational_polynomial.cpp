@@ -301,6 +301,10 @@ int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
   if (g.is_zero()) return 0;
   if (const int s = interval_sign_at(g, root); s != 0) return s;
   if (root.is_rational()) return sgn(g(root.lo));
+  if (root.poly.degree() == 1) {  // the root is rational: pinned, g's sign is one evaluation
+    root.lo = root.hi = -root.poly.c[0] / root.poly.c[1];
+    return sgn(g(root.lo));
+  }
   // Doubles did not decide even on the narrowed interval: most likely g vanishes there.
   // h = gcd divides poly, so inside [lo, hi] its only possible root is the isolated one,
   // simple; the ends are not roots of poly, hence not of h.
