@@ -2,6 +2,7 @@
 // basis (Collins and Akritas 1976; Mourrain, Rouillier and Roy 2005 for the Bernstein form).
 #include "kinetic/core/rational_polynomial.h"
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -297,19 +298,9 @@ std::vector<IsolatedRoot> isolate_roots(const RationalPolynomial& f, const mpq_c
   return roots;
 }
 
-int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
-  if (g.is_zero()) return 0;
-  if (const int s = interval_sign_at(g, root); s != 0) return s;
-  if (root.is_rational()) return sgn(g(root.lo));
-  if (root.poly.degree() == 1) {  // the root is rational: pinned, g's sign is one evaluation
-    root.lo = root.hi = -root.poly.c[0] / root.poly.c[1];
-    return sgn(g(root.lo));
-  }
-  // Doubles did not decide even on the narrowed interval: most likely g vanishes there.
-  // h = gcd divides poly, so inside [lo, hi] its only possible root is the isolated one,
-  // simple; the ends are not roots of poly, hence not of h.
-  const RationalPolynomial h = gcd(root.poly, g);
-  if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
+/// The sign of g at the root, known not to be zero: refining the root until g's Bernstein
+/// coefficients on its interval agree in sign.
+int sign_apart_from_zero(const RationalPolynomial& g, IsolatedRoot& root) {
   for (;;) {
     const std::vector<mpq_class> b = bernstein_coefficients(g, root.lo, root.hi);
     bool positive = true, negative = true;
@@ -322,6 +313,47 @@ int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
     root.refine();  // g(root) != 0, so the hull shrinks onto one sign
     if (root.is_rational()) return sgn(g(root.lo));
   }
+}
+
+int sign_at(const RationalPolynomial& g, IsolatedRoot& root) {
+  if (g.is_zero()) return 0;
+  if (const int s = interval_sign_at(g, root); s != 0) return s;
+  if (root.is_rational()) return sgn(g(root.lo));
+  if (root.poly.degree() == 1) {  // the root is rational: pinned, g's sign is one evaluation
+    root.lo = root.hi = -root.poly.c[0] / root.poly.c[1];
+    return sgn(g(root.lo));
+  }
+  if (root.poly.degree() == 2) {
+    // Rational roots when the discriminant is a square: pinned. Otherwise two irrational
+    // conjugates, and g vanishes at one exactly when the quadratic divides it: the remainder,
+    // of degree below 2, would otherwise vanish at an irrational number.
+    const mpq_class& a = root.poly.c[2];
+    const mpq_class& b = root.poly.c[1];
+    const mpq_class discriminant = b * b - 4 * a * root.poly.c[0];
+    if (sgn(discriminant) >= 0 && mpz_perfect_square_p(discriminant.get_num_mpz_t()) &&
+        mpz_perfect_square_p(discriminant.get_den_mpz_t())) {
+      mpq_class square_root;
+      mpz_sqrt(square_root.get_num_mpz_t(), discriminant.get_num_mpz_t());
+      mpz_sqrt(square_root.get_den_mpz_t(), discriminant.get_den_mpz_t());
+      const std::array<mpq_class, 2> roots = {(-b - square_root) / (2 * a),
+                                              (-b + square_root) / (2 * a)};
+      for (const mpq_class& r : roots)
+        if (root.lo <= r && r <= root.hi) {
+          root.lo = root.hi = r;
+          return sgn(g(root.lo));
+        }
+    } else if (divide(g, root.poly).second.is_zero()) {
+      return 0;
+    } else {
+      return sign_apart_from_zero(g, root);
+    }
+  }
+  // Doubles did not decide even on the narrowed interval: most likely g vanishes there.
+  // h = gcd divides poly, so inside [lo, hi] its only possible root is the isolated one,
+  // simple; the ends are not roots of poly, hence not of h.
+  const RationalPolynomial h = gcd(root.poly, g);
+  if (h.degree() >= 1 && sgn(h(root.lo)) != sgn(h(root.hi))) return 0;
+  return sign_apart_from_zero(g, root);
 }
 
 }  // namespace kinray

@@ -60,6 +60,26 @@ TEST(RationalPolynomial, IrrationalRootsAndExactSignsThere) {
       0);
 }
 
+TEST(RationalPolynomial, SignsAtRootsOfQuadratics) {
+  // (t - 1/3)(t - 2/3): rational roots, which no double is; signs there decided exactly
+  std::vector<IsolatedRoot> roots =
+      isolate_roots(RationalPolynomial({mpq_class(2, 9), -1, 1}), 0, 1);
+  ASSERT_EQ(roots.size(), 2u);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(-1, 3), roots[0]), 0);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(-2, 3), roots[0]), -1);
+  EXPECT_EQ(sign_at(RationalPolynomial::linear(-2, 3), roots[1]), 0);
+  EXPECT_EQ(
+      sign_at(RationalPolynomial::linear(-1, 3) * RationalPolynomial::linear(-5, 1), roots[1]), -1);
+  // t^2 - 1/2 plus 10^-40: not zero at 1/sqrt(2), though no double interval can tell
+  std::vector<IsolatedRoot> irrational =
+      isolate_roots(RationalPolynomial({mpq_class(-1, 2), 0, 1}), 0, 1);
+  ASSERT_EQ(irrational.size(), 1u);
+  mpq_class tiny(1);
+  for (int i = 0; i < 40; ++i) tiny /= 10;
+  EXPECT_EQ(sign_at(RationalPolynomial({mpq_class(-1, 2) + tiny, 0, 1}), irrational[0]), 1);
+  EXPECT_EQ(sign_at(RationalPolynomial({mpq_class(-1, 2) - tiny, 0, 1}), irrational[0]), -1);
+}
+
 TEST(RationalPolynomial, SignsCloserToTheRootThanDoublesResolve) {
   // The doubles on either side of 1/sqrt(2): the floating-point filter narrows the root's
   // interval to a few ulps and cannot tell; the exact path must.
