@@ -53,10 +53,13 @@ int sign_variations(const std::vector<mpq_class>& b) {
   return variations;
 }
 
+int interval_sign_variations(const RationalPolynomial& f, const mpq_class& lo, const mpq_class& hi);
+
 /// Roots of p, none multiple in [a, b], in the open (a, b), whose ends are not roots, in order.
 void descartes(const RationalPolynomial& p, const mpq_class& a, const mpq_class& b,
                std::vector<IsolatedRoot>& out) {
-  const int variations = sign_variations(bernstein_coefficients(p, a, b));
+  int variations = interval_sign_variations(p, a, b);
+  if (variations < 0) variations = sign_variations(bernstein_coefficients(p, a, b));
   if (variations == 0) return;
   if (variations == 1) {
     out.push_back({p, a, b});
@@ -133,6 +136,25 @@ bool certainly_no_root(const RationalPolynomial& f, const mpq_class& lo, const m
   }
   const int count = int(q->size());
   return positive == count || negative == count;
+}
+
+/// The sign variations of f's Bernstein coefficients on [lo, hi] when double intervals give
+/// every one a certain sign (then they are the exact coefficients' signs); -1 when they do not.
+int interval_sign_variations(const RationalPolynomial& f, const mpq_class& lo,
+                             const mpq_class& hi) {
+  const double l = lo.get_d(), h = hi.get_d();
+  if (!(l < h) || mpq_class(l) != lo || mpq_class(h) != hi) return -1;
+  if (!(std::fabs(l) < kMaxFilterTime && std::fabs(h) < kMaxFilterTime)) return -1;
+  const std::optional<std::vector<Interval>> q = enclose(f);
+  if (!q) return -1;
+  int variations = 0, last = 0;
+  for (const Interval& b : scaled_interval_bernstein(*q, l, h)) {
+    const int s = b.certain_sign();
+    if (s == 0) return -1;
+    variations += last != 0 && s != last;
+    last = s;
+  }
+  return variations;
 }
 
 /// The double interval [lo, hi] around x: exact when x is a double.
