@@ -2,6 +2,7 @@
 
 #include <emmintrin.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -147,6 +148,11 @@ void FrameBoxes::evaluate(uint32_t k) const {
       const Node& parent = node(slot >> 2);
       for (int r = 0; r < 6; ++r) own[size_t(r)] = parent.bound[r][slot & 3];
     }
+    if (m_kinetic != nullptr && !cuts) {
+      aabb_children(n, k);
+      stamp.store(m_stamp, std::memory_order_release);
+      return;
+    }
     const auto& nodes = m_topology->nodes;
     for (int c = 0; c < 4; ++c) {
       if (((n.used >> c) & 1) == 0) continue;
@@ -167,6 +173,47 @@ void FrameBoxes::evaluate(uint32_t k) const {
     }
     stamp.store(m_stamp, std::memory_order_release);
     return;
+  }
+}
+
+void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
+  // Each child's low corner gathers lane x of its x-min realizer's box, y of its y-min's, z of
+  // its z-min's (the high corner alike), the four corners then transposed to rows: the same floats
+  // as box(), without a scalar load per side.
+  const __m128 x = _mm_castsi128_ps(_mm_setr_epi32(-1, 0, 0, 0));
+  const __m128 y = _mm_castsi128_ps(_mm_setr_epi32(0, -1, 0, 0));
+  const __m128 z = _mm_castsi128_ps(_mm_setr_epi32(0, 0, -1, 0));
+  auto gather = [&](uint32_t rx, uint32_t ry, uint32_t rz, bool high) {
+    const VertexBox &vx = m_vertex_box[rx], &vy = m_vertex_box[ry], &vz = m_vertex_box[rz];
+    return _mm_or_ps(_mm_or_ps(_mm_and_ps(x, _mm_load_ps(high ? vx.hi : vx.lo)),
+                               _mm_and_ps(y, _mm_load_ps(high ? vy.hi : vy.lo))),
+                     _mm_and_ps(z, _mm_load_ps(high ? vz.hi : vz.lo)));
+  };
+  const KineticBvh& tree = *m_kinetic;
+  __m128 lo[4], hi[4];
+  for (int c = 0; c < 4; ++c) {
+    lo[c] = _mm_set1_ps(kInf);
+    hi[c] = _mm_set1_ps(-kInf);
+    if (((n.used >> c) & 1) == 0) continue;
+    const uint32_t i = m_children[k][size_t(c)];
+    if (!tree.active(i)) continue;
+    // Sides 2 axis + 1 are the minima, 2 axis the maxima (side_axis, side_sign).
+    const uint32_t r[6] = {tree.realizer(i, 0), tree.realizer(i, 1), tree.realizer(i, 2),
+                           tree.realizer(i, 3), tree.realizer(i, 4), tree.realizer(i, 5)};
+    if (std::find(std::begin(r), std::end(r), kNoVertex) != std::end(r)) {
+      const std::array<float, 6> b = box(i, kEverywhere);
+      lo[c] = _mm_setr_ps(b[0], b[1], b[2], 0);
+      hi[c] = _mm_setr_ps(b[3], b[4], b[5], 0);
+      continue;
+    }
+    lo[c] = gather(r[1], r[3], r[5], false);
+    hi[c] = gather(r[0], r[2], r[4], true);
+  }
+  _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
+  _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
+  for (int a = 0; a < 3; ++a) {
+    _mm_store_ps(n.bound[a], lo[a]);
+    _mm_store_ps(n.bound[a + 3], hi[a]);
   }
 }
 

@@ -91,6 +91,9 @@ class FrameBoxes {
   /// Fills wide node k's boxes for this frame (its parent's first), or waits for the thread
   /// that does.
   void evaluate(uint32_t k) const;
+  /// The kinetic AABB tree's part of evaluate: wide node k's children's own boxes, from their
+  /// realizers' vertex boxes, in SSE.
+  void aabb_children(Node& n, uint32_t k) const;
   /// Binary node i's box this frame, given its parent's (the BoxTree's cut; the AABB tree's and
   /// the bottom-up tree's own box).
   [[nodiscard]] std::array<float, 6> box(uint32_t i, const std::array<float, 6>& parent) const;
