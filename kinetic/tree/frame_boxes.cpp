@@ -23,13 +23,17 @@ constexpr std::array<float, 6> kEverywhere = {-kInf, -kInf, -kInf, kInf, kInf, k
 /// at least an ulp of f (1e-30 covers the values that round to 0), so a float box contains the
 /// double one; the boxes grow by about 2e-7 of their coordinates.
 template <bool kUp>
-__m128 round_outward(double x, double y, double z, double pad) {
+__m128 round_outward(__m128d xy, __m128d zz, double pad) {
   const __m128d p = _mm_set1_pd(kUp ? pad : -pad);  // x - pad is exactly x + (-pad)
-  const __m128 f = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(_mm_set_pd(y, x), p)),
-                                 _mm_cvtpd_ps(_mm_add_pd(_mm_set1_pd(z), p)));
+  const __m128 f =
+      _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(xy, p)), _mm_cvtpd_ps(_mm_add_pd(zz, p)));
   const __m128 ulp = _mm_add_ps(
       _mm_mul_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), f), _mm_set1_ps(0x1p-22f)), _mm_set1_ps(1e-30f));
   return kUp ? _mm_add_ps(f, ulp) : _mm_sub_ps(f, ulp);
+}
+template <bool kUp>
+__m128 round_outward(double x, double y, double z, double pad) {
+  return round_outward<kUp>(_mm_set_pd(y, x), _mm_set1_pd(z), pad);
 }
 
 std::array<float, 6> rounded(const Aabb& box, double pad) {
@@ -238,12 +242,18 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   prepare(tree.topology(), tree.meshes(), frame);
   const TreeMeshes& meshes = tree.meshes();
   m_vertex_box.resize(meshes.vertex_count());
-  // Every vertex's padded coordinates rounded outward, in one pass per frame.
-  for (uint32_t v = 0; v < meshes.vertex_count(); ++v) {
-    const double x = meshes.coordinate(v, 0, frame.t), y = meshes.coordinate(v, 1, frame.t),
-                 z = meshes.coordinate(v, 2, frame.t);
-    _mm_store_ps(m_vertex_box[v].lo, round_outward<false>(x, y, z, frame.pad));
-    _mm_store_ps(m_vertex_box[v].hi, round_outward<true>(x, y, z, frame.pad));
+  // Every vertex's padded coordinates rounded outward, in one pass per frame: a + b (t - o) as
+  // TreeMeshes::coordinate computes it, x and y in one SSE2 pair.
+  for (uint32_t m = 0; m < meshes.mesh_count(); ++m) {
+    const double dt = frame.t - meshes.segment_origin(m);
+    const __m128d dt2 = _mm_set1_pd(dt);
+    for (uint32_t v = meshes.vertex_begin(m); v < meshes.vertex_begin(m + 1); ++v) {
+      const Eigen::Vector3d &a = meshes.key_start(v), &b = meshes.velocity(v);
+      const __m128d xy = _mm_add_pd(_mm_loadu_pd(a.data()), _mm_mul_pd(_mm_loadu_pd(b.data()), dt2));
+      const __m128d zz = _mm_set1_pd(a.z() + b.z() * dt);
+      _mm_store_ps(m_vertex_box[v].lo, round_outward<false>(xy, zz, frame.pad));
+      _mm_store_ps(m_vertex_box[v].hi, round_outward<true>(xy, zz, frame.pad));
+    }
   }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, rounded(tree.root_box(frame), 0)));
 }

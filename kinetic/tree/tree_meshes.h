@@ -91,6 +91,12 @@ class TreeMeshes {
   /// Coordinate `axis` of vertex v's velocity on its current segment (b of a + b (t - o)): the
   /// slope of a certificate between vertices of two different trees.
   [[nodiscard]] double velocity(uint32_t v, int axis) const { return m_b[v][axis]; }
+  /// Mesh m's vertices are [vertex_begin(m), vertex_begin(m + 1)), and its current segment's
+  /// motions a + b (t - o) share o = segment_origin(m): a pass over every vertex at one t
+  /// (FrameBoxes) computes t - o once per mesh, with the same arithmetic as coordinate().
+  [[nodiscard]] uint32_t vertex_begin(uint32_t m) const { return m_vertex_begin[m]; }
+  [[nodiscard]] double segment_origin(uint32_t m) const { return m_origin[m]; }
+  [[nodiscard]] const Eigen::Vector3d& velocity(uint32_t v) const { return m_b[v]; }
   /// The certificate "vertex r is beyond vertex q along axis, on side sign (+1 max, -1 min)":
   /// sign (x_r - x_q) as a linear polynomial. Built in one order (lower vertex id first) and
   /// negated exactly for the other, so the two vertices' comparison has one set of coefficients.
