@@ -142,6 +142,12 @@ void EventQueue::detach_far(int k, uint32_t i) {
 }
 
 void EventQueue::refill() {
+  // A calendar laid over far fewer events than it holds now is replaced: its buckets would be
+  // heaps of hundreds of events (rebalance() comes back here with the calendar closed).
+  if (m_far.current() < m_far.count() && m_far.stale()) {
+    rebalance();
+    return;
+  }
   // The next non-empty bucket, or a new calendar over the overflow (whose bucket 0, holding its
   // earliest event, is never empty).
   int k = m_far.advance();
@@ -165,14 +171,14 @@ void EventQueue::refill() {
 }
 
 void EventQueue::rebalance() {
-  const int overflow = m_far.overflow();
-  for (uint32_t r = 0; r < m_size; ++r) add_far(overflow, m_heap[r + kOffset]);
+  // The nodes are appended to the overflow as they are: the relay in refill() places every one
+  // of them again and writes its position then.
+  std::vector<Node>& overflow = m_far[m_far.overflow()];
+  overflow.insert(overflow.end(), m_heap + kOffset, m_heap + kOffset + m_size);
+  m_far.added(m_size);
   m_size = 0;
-  for (int k = std::max(m_far.current() + 1, 0); k < overflow; ++k) {
-    for (const Node& node : m_far[k]) {
-      m_far.removed();
-      add_far(overflow, node);
-    }
+  for (int k = std::max(m_far.current() + 1, 0); k < m_far.overflow(); ++k) {
+    overflow.insert(overflow.end(), m_far[k].begin(), m_far[k].end());
     m_far[k].clear();
   }
   m_far.close();

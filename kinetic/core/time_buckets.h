@@ -49,7 +49,7 @@ class TimeBuckets {
   /// Events in the buckets and the overflow.
   [[nodiscard]] size_t size() const { return m_size; }
   /// Bookkeeping of size() by the queue, which adds and removes the nodes itself.
-  void added() { ++m_size; }
+  void added(size_t n = 1) { m_size += n; }
   void removed(size_t n = 1) { m_size -= n; }
 
   /// The next non-empty calendar bucket becomes the current one; its index, or kHeap when the
@@ -62,6 +62,11 @@ class TimeBuckets {
   }
   /// Ends the calendar early (the queue has moved every bucket's nodes to the overflow).
   void close() { m_current = m_count; }
+  /// The calendar was laid over fewer than half the events it holds now, so its buckets hold
+  /// more than twice kTargetSize on average: the queue lays a new one (a queue filled by many
+  /// pushes after its first calendar, which a single event or an early rebalance laid).
+  /// Re-laying only after the events have doubled keeps its O(n) cost O(1) per event.
+  [[nodiscard]] bool stale() const { return m_size > 2 * m_laid_over + kStaleSlack; }
   /// A new calendar over the overflow (every calendar bucket empty): returns the overflow's old
   /// nodes, which the caller places again with which() (into the new buckets or the overflow,
   /// calling added() for each).
@@ -93,6 +98,7 @@ class TimeBuckets {
     m_buckets.resize(size_t(m_count) + 1);
     m_buckets[size_t(m_count)].clear();
     m_size -= n;
+    m_laid_over = n;
     return m_scratch;
   }
 
@@ -103,6 +109,7 @@ class TimeBuckets {
     m_count = 0;
     m_current = -1;
     m_size = 0;
+    m_laid_over = 0;
     m_base = 0;
     m_scale = 0;
     m_end = -std::numeric_limits<double>::infinity();
@@ -136,6 +143,9 @@ class TimeBuckets {
   int m_count = 0;     ///< calendar buckets; m_buckets[m_count] is the overflow
   int m_current = -1;  ///< the last bucket moved to the heap
   size_t m_size = 0;
+  size_t m_laid_over = 0;  ///< the events of the last relay
+  /// stale() ignores a calendar's growth by this many events (small queues keep theirs).
+  static constexpr size_t kStaleSlack = 1024;
   std::vector<std::vector<QueueNode>> m_buckets = std::vector<std::vector<QueueNode>>(1);
   std::vector<QueueNode> m_scratch;
 };
