@@ -258,6 +258,41 @@ TEST(EventQueue, CalendarKeepsTheOrderOverAnySpreadOfTimes) {
   q.audit();
 }
 
+TEST(EventQueue, CalendarIsLaidAgainWhenTheQueueOutgrowsIt) {
+  // A calendar laid over a few events and then filled by bursts of pushes many times their
+  // number (a band's initialisation, a keyframe) is laid again at a refill; calendars of many
+  // and of few buckets alternate, so the buckets kept from one serve the next. The order stays
+  // that of a sorted list and the positions stay consistent.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  EventQueue q;
+  std::set<std::tuple<double, uint32_t, uint32_t, uint64_t, EventHandle>> model;
+  uint64_t serial = 0;
+  double now = 0;
+  auto push = [&](double t) {
+    const EventKey k{t, 0, 0, ++serial};
+    model.insert({k.time, k.kind, k.a, k.b, q.push(k, serial)});
+  };
+  auto pop = [&] {
+    const auto& [time, kind, a, b, h] = *model.begin();
+    ASSERT_EQ(as_tuple(q.top_key()), std::make_tuple(time, kind, a, b));
+    ASSERT_EQ(q.top(), h);
+    now = time;
+    model.erase(model.begin());
+    q.pop();
+  };
+  for (int burst : {10, 40000, 300, 60000, 5, 20000}) {
+    for (int i = 0; i < burst; ++i) push(now + unit(rng));
+    for (int i = 0; i < 2 * burst / 3 + 1; ++i) {
+      pop();
+      if (i % 4 == 0) push(now + 0.01 * unit(rng));  // events near now, into the heap
+    }
+    q.audit();
+  }
+  while (!q.empty()) pop();
+  q.audit();
+}
+
 TEST(EventQueue, SimulatorAdvanceTo) {
   Simulator sim(1.0);
   EXPECT_EQ(sim.now(), 1.0);
