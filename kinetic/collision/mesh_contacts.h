@@ -1,8 +1,8 @@
 #pragma once
 // Contacts between and within deforming triangle meshes over one flightplan segment, on which
 // every vertex moves linearly: the triangle-pair level shared by every contact finder (brute
-// force, swept volumes, and later the kinetic separation list), so that all of them run the same
-// 15 primitive tests per triangle pair and report contacts the same way.
+// force, swept volumes, and the kinetic separation list), so that all of them run the same
+// primitive tests per triangle pair and report contacts the same way.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -55,7 +55,8 @@ struct ContactCounters {
                                       const std::array<std::uint32_t, 3>& b);
 
 /// The 15 primitive tests of triangle ta of `a` against triangle tb of `b` (6 vertex-face, 9
-/// edge-edge) on the segment [time_begin, time_end]; appends every contact (those in `window`
+/// edge-edge), those the pair owns when the segments carry the triangles around their vertices
+/// (primitive_owners.h), on the segment [time_begin, time_end]; appends every contact (those in `window`
 /// of the segment's local time, at the times the whole segment's tests give them), named one
 /// way (an edge-edge contact: each edge's smaller vertex id first, then the edge pair in
 /// (object, vertices) order), so that the same primitive pair met from two triangle pairs, or
