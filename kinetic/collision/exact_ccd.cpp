@@ -348,19 +348,19 @@ std::vector<double> exact_contact_times(ContactType type, const RationalMotion& 
   } else {
     if (lo == zero) candidates.push_back({RationalPolynomial::linear(0, 1), zero, zero});
     if (hi == one) candidates.push_back({RationalPolynomial::linear(-1, 1), one, one});
+    sources.assign(candidates.size(), nullptr);  // 0 and 1
     std::vector<const RationalPolynomial*> polynomials;
     condition.collect(polynomials);
     for (const RationalPolynomial* q : polynomials)
       if (q->degree() >= 1)
         for (IsolatedRoot& r : isolate_roots(*q, lo, hi)) {
           candidates.push_back(std::move(r));
-          sources.resize(candidates.size());
-          sources.back() = q;
+          sources.push_back(q);
         }
   }
 
   std::vector<double> times;
-  sources.resize(candidates.size());
+  sources.resize(candidates.size());  // the cubic's roots: none of the test's polynomials
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     IsolatedRoot& root = candidates[i];
     SignsAtRoot signs(root);

@@ -5,8 +5,8 @@
 // degenerate branch of the rational test (exact_ccd.cpp) out of reach, and all of them
 // certainly positive prove the contact. A cubic certainly monotone on a piece with certain,
 // opposite signs at its ends has exactly one root, inside it. The polynomials are enclosed in
-// Bernstein form on the window once per pair (interval arithmetic on the positions at the
-// window's ends), and halved with the pieces (bernstein_bound.h).
+// Bernstein form on the window once per pair (doubles from the positions at the window's ends,
+// with a forward error bound), and halved with the pieces (bernstein_bound.h).
 #include "kinetic/collision/interval_ccd.h"
 
 #include <algorithm>
@@ -346,8 +346,9 @@ constexpr double kMaxCoordinate = 0x1p150;
 // [0, 1]), after its five roundings, is off by at most u (2 |a| + |e_q - e_0| + 2 |b| + |d|)
 // (to first order; 3 u times the sum of the four covers it); a product
 // x' y' z' of perturbed factors is off by at most ex By Bz + Bx ey Bz + Bx By ez (B bounding
-// both the exact and the computed factor); the cross and dot products add at most 6 roundings
-// of each term. Products of three differences of doubles cannot underflow in long double.
+// both the exact and the computed factor); the six terms' two products and the sum add at most
+// 7 roundings of each term. Products of three differences of doubles cannot underflow in long
+// double.
 int detail::extended_cubic_sign(const PrimitiveMotion& m, double g) {
   using L = long double;
   static_assert(

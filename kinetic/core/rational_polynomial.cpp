@@ -53,26 +53,6 @@ int sign_variations(const std::vector<mpq_class>& b) {
   return variations;
 }
 
-int interval_sign_variations(const RationalPolynomial& f, const mpq_class& lo, const mpq_class& hi);
-
-/// Roots of p, none multiple in [a, b], in the open (a, b), whose ends are not roots, in order.
-void descartes(const RationalPolynomial& p, const mpq_class& a, const mpq_class& b,
-               std::vector<IsolatedRoot>& out) {
-  int variations = interval_sign_variations(p, a, b);
-  if (variations < 0) variations = sign_variations(bernstein_coefficients(p, a, b));
-  if (variations == 0) return;
-  if (variations == 1) {
-    out.push_back({p, a, b});
-    return;
-  }
-  // Split at a point that is not a root (one of any deg + 1 distinct points is not), so that
-  // every interval handed out has non-root ends.
-  mpq_class m = (a + b) / 2;
-  for (int k = 1; sgn(p(m)) == 0; ++k) m = a + (b - a) * mpq_class(k, p.degree() + 2);
-  descartes(p, a, m, out);
-  descartes(p, m, b, out);
-}
-
 /// Bounds that keep interval Horner evaluation far from overflow (so its ends are never NaN):
 /// coefficients below 2^300, |t| below 2^32, degree at most 16.
 constexpr double kMaxFilterCoefficient = 0x1p300, kMaxFilterTime = 0x1p32;
@@ -121,23 +101,6 @@ std::vector<Interval> scaled_interval_bernstein(std::vector<Interval> q, double 
   return out;
 }
 
-/// f certainly has no root in [lo, hi] (f non-zero): its Bernstein coefficients there, in
-/// double intervals, all certainly share one sign. False when doubles cannot tell.
-bool certainly_no_root(const RationalPolynomial& f, const mpq_class& lo, const mpq_class& hi) {
-  const double l = lo.get_d(), h = hi.get_d();
-  if (!(l < h) || mpq_class(l) != lo || mpq_class(h) != hi) return false;
-  if (!(std::fabs(l) < kMaxFilterTime && std::fabs(h) < kMaxFilterTime)) return false;
-  const std::optional<std::vector<Interval>> q = enclose(f);
-  if (!q) return false;
-  int positive = 0, negative = 0;
-  for (const Interval& b : scaled_interval_bernstein(*q, l, h)) {
-    positive += b.certainly_positive();
-    negative += b.certainly_negative();
-  }
-  const int count = int(q->size());
-  return positive == count || negative == count;
-}
-
 /// The sign variations of f's Bernstein coefficients on [lo, hi] when double intervals give
 /// every one a certain sign (then they are the exact coefficients' signs); -1 when they do not.
 int interval_sign_variations(const RationalPolynomial& f, const mpq_class& lo,
@@ -155,6 +118,30 @@ int interval_sign_variations(const RationalPolynomial& f, const mpq_class& lo,
     last = s;
   }
   return variations;
+}
+
+/// f certainly has no root in [lo, hi] (f non-zero): its Bernstein coefficients there, in
+/// double intervals, all certainly share one sign. False when doubles cannot tell.
+bool certainly_no_root(const RationalPolynomial& f, const mpq_class& lo, const mpq_class& hi) {
+  return interval_sign_variations(f, lo, hi) == 0;
+}
+
+/// Roots of p, none multiple in [a, b], in the open (a, b), whose ends are not roots, in order.
+void descartes(const RationalPolynomial& p, const mpq_class& a, const mpq_class& b,
+               std::vector<IsolatedRoot>& out) {
+  int variations = interval_sign_variations(p, a, b);
+  if (variations < 0) variations = sign_variations(bernstein_coefficients(p, a, b));
+  if (variations == 0) return;
+  if (variations == 1) {
+    out.push_back({p, a, b});
+    return;
+  }
+  // Split at a point that is not a root (one of any deg + 1 distinct points is not), so that
+  // every interval handed out has non-root ends.
+  mpq_class m = (a + b) / 2;
+  for (int k = 1; sgn(p(m)) == 0; ++k) m = a + (b - a) * mpq_class(k, p.degree() + 2);
+  descartes(p, a, m, out);
+  descartes(p, m, b, out);
 }
 
 /// The double interval [lo, hi] around x: exact when x is a double.
