@@ -14,17 +14,20 @@
 //     rounding then only widens the interval.
 //   - What is left is relative rounding: (plane - o) rounds once, the inverse twice (double, then
 //     float), the product once, so each parameter is off by at most 3.01 * 2^-24 of itself. The
-//     entry is lowered and the exit raised by 2^-20 of themselves (room for that and for the
-//     margin's own rounding) and by 2^-50 (flushed subnormals: the products and differences
-//     that underflow are below 2^-66 in these units).
-//   - +-inf stays +-inf through the margins (an infinite margin gives NaN, and min/max then keep
-//     the unmargined value), so a box entered only at infinity is kept when s_max is infinite.
+//     entry (never negative: rays start at s_min >= 0) is scaled by 1 - 2^-20 and the exit by
+//     1 + 2^-20 (room for that and for the margin's own rounding), then moved by 2^-50 (flushed
+//     subnormals: the products and differences that underflow are below 2^-66 in these units).
+//     Each rounding keeps the sign of what it rounds, so a negative exit is an exit behind the
+//     origin, which the scaling may lower without dropping a box the ray meets.
+//   - +-inf stays +-inf through the margins, so a box entered only at infinity is kept when s_max
+//     is infinite.
 #include <xmmintrin.h>
 
 #include <Eigen/Core>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 
 namespace kinray {
 
@@ -74,6 +77,7 @@ class WideRay {
       m_origin_near[a] = _mm_set1_ps(forward ? up : down);
       m_origin_far[a] = _mm_set1_ps(forward ? down : up);
     }
+    if (!(s_min >= 0)) throw std::invalid_argument("wide slab test: the ray starts at s_min < 0");
     m_s_min = _mm_set1_ps(float_down(s_min * m_scale));
     set_s_max(s_max);
   }
@@ -92,12 +96,9 @@ class WideRay {
       near = _mm_max_ps(t0, near);  // NaN t0 (an ignored axis) keeps near
       far = _mm_min_ps(t1, far);
     }
-    const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(0x1p-20f),
-                 tiny = _mm_set1_ps(0x1p-50f);
-    const __m128 near_margin = _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, near), eps), tiny);
-    const __m128 far_margin = _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, far), eps), tiny);
-    near = _mm_min_ps(_mm_sub_ps(near, near_margin), near);  // inf - inf = NaN keeps near
-    far = _mm_max_ps(_mm_add_ps(far, far_margin), far);
+    // near >= s_min >= 0 and never NaN (max keeps its accumulator): lowering it is one product.
+    near = _mm_sub_ps(_mm_mul_ps(near, _mm_set1_ps(1 - 0x1p-20f)), _mm_set1_ps(0x1p-50f));
+    far = _mm_add_ps(_mm_mul_ps(far, _mm_set1_ps(1 + 0x1p-20f)), _mm_set1_ps(0x1p-50f));
     _mm_storeu_ps(entry, near);
     return _mm_movemask_ps(_mm_cmple_ps(near, far));
   }

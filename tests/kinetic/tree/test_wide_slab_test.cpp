@@ -117,6 +117,10 @@ TEST(WideSlabTest, DropsEmptySlotsAndKeepsBoxesAlongAnAxisParallelRay) {
   // Ending before the box: s_max = 4 < 5.
   const WideRay short_ray(Eigen::Vector3d(0.5, 0.5, -5), Eigen::Vector3d(0, 0, 1), 0, 4);
   EXPECT_EQ(short_ray.test(boxes.bound, entry), 0);
+  // Its margins assume an entry that is never negative: a ray starting behind its origin is
+  // refused.
+  EXPECT_THROW(WideRay(Eigen::Vector3d(0.5, 0.5, -5), Eigen::Vector3d(0, 0, 1), -1, 4),
+               std::invalid_argument);
 }
 
 }  // namespace
