@@ -243,16 +243,24 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   const TreeMeshes& meshes = tree.meshes();
   m_vertex_box.resize(meshes.vertex_count());
   // Every vertex's padded coordinates rounded outward, in one pass per frame: a + b (t - o) as
-  // TreeMeshes::coordinate computes it, x and y in one SSE2 pair.
+  // TreeMeshes::coordinate computes it, x and y in one SSE2 pair. Everything the loop reads is
+  // in locals: its float stores could alias the vectors' pointers, the pad and the bounds, which
+  // the compiler would then load again for every vertex.
+  const double pad = frame.pad;
+  VertexBox* const out = m_vertex_box.data();
   for (uint32_t m = 0; m < meshes.mesh_count(); ++m) {
     const double dt = frame.t - meshes.segment_origin(m);
     const __m128d dt2 = _mm_set1_pd(dt);
-    for (uint32_t v = meshes.vertex_begin(m); v < meshes.vertex_begin(m + 1); ++v) {
-      const Eigen::Vector3d &a = meshes.key_start(v), &b = meshes.velocity(v);
-      const __m128d xy = _mm_add_pd(_mm_loadu_pd(a.data()), _mm_mul_pd(_mm_loadu_pd(b.data()), dt2));
-      const __m128d zz = _mm_set1_pd(a.z() + b.z() * dt);
-      _mm_store_ps(m_vertex_box[v].lo, round_outward<false>(xy, zz, frame.pad));
-      _mm_store_ps(m_vertex_box[v].hi, round_outward<true>(xy, zz, frame.pad));
+    const uint32_t begin = meshes.vertex_begin(m), end = meshes.vertex_begin(m + 1);
+    if (begin == end) continue;
+    const Eigen::Vector3d* const a = &meshes.key_start(begin);
+    const Eigen::Vector3d* const b = &meshes.velocity(begin);
+    for (uint32_t i = 0; i < end - begin; ++i) {
+      const __m128d xy =
+          _mm_add_pd(_mm_loadu_pd(a[i].data()), _mm_mul_pd(_mm_loadu_pd(b[i].data()), dt2));
+      const __m128d zz = _mm_set1_pd(a[i].z() + b[i].z() * dt);
+      _mm_store_ps(out[begin + i].lo, round_outward<false>(xy, zz, pad));
+      _mm_store_ps(out[begin + i].hi, round_outward<true>(xy, zz, pad));
     }
   }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, rounded(tree.root_box(frame), 0)));
