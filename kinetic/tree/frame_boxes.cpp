@@ -44,6 +44,20 @@ std::array<float, 6> rounded(const Aabb& box, double pad) {
   return {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
 }
 
+/// A float box side from a vertex point: c = the nearest float to a double coordinate x, moved
+/// outward by |c| 2^-22 + pad_margin (pad_margin >= (pad + 1e-30)(1 + 2^-20), rounded up), is
+/// beyond x +- pad. Why: |x - c| <= 2^-24 |c| (+ 2^-150 below the normal floats);
+/// |c| 2^-22 is exact (or within 2^-150), the sum loses at most 2^-24 of itself and the final
+/// sum or difference moves by at most 2^-24 (|c| + margin), which leaves at least
+/// (2^-23 - 2^-45) |c| of the first term and all of pad + 2^-150 covered by the second.
+/// Infinite c stays infinite on its side (a coordinate beyond the float range).
+template <bool kUp>
+__m128 outward(__m128 c, __m128 pad_margin) {
+  const __m128 margin = _mm_add_ps(
+      _mm_mul_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), c), _mm_set1_ps(0x1p-22f)), pad_margin);
+  return kUp ? _mm_add_ps(c, margin) : _mm_sub_ps(c, margin);
+}
+
 /// The traversal stack: a wide node pushes at most four children for the one it pops.
 constexpr int kStackSize = 512;
 
@@ -119,15 +133,20 @@ std::array<float, 6> FrameBoxes::box(uint32_t i, const std::array<float, 6>& par
   // The AABB tree tracks every side of an active node: its box is its own six sides. The
   // BoxTree cuts it out of its parent's.
   std::array<float, 6> b = tree.shape() == TreeShape::boxtree || i == 0 ? parent : kEverywhere;
+  const __m128 pad_margin = _mm_set1_ps(m_margin_pad);
   for (int s = 0; s < 6; ++s) {
     const uint32_t r = tree.realizer(i, s);
     if (r == kNoVertex) continue;
     const int a = side_axis(s);
-    const VertexBox& v = m_vertex_box[r];
-    if (side_sign(s) > 0)
-      b[size_t(a) + 3] = std::min(b[size_t(a) + 3], v.hi[a]);
-    else
-      b[size_t(a)] = std::max(b[size_t(a)], v.lo[a]);
+    const __m128 c = _mm_load_ps(m_vertex_point[r].c);
+    alignas(16) float side[4];
+    if (side_sign(s) > 0) {
+      _mm_store_ps(side, outward<true>(c, pad_margin));
+      b[size_t(a) + 3] = std::min(b[size_t(a) + 3], side[a]);
+    } else {
+      _mm_store_ps(side, outward<false>(c, pad_margin));
+      b[size_t(a)] = std::max(b[size_t(a)], side[a]);
+    }
   }
   return b;
 }
@@ -181,17 +200,17 @@ void FrameBoxes::evaluate(uint32_t k) const {
 }
 
 void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
-  // Each child's low corner gathers lane x of its x-min realizer's box, y of its y-min's, z of
-  // its z-min's (the high corner alike), the four corners then transposed to rows: the same floats
-  // as box(), without a scalar load per side.
+  // Each child's low corner gathers lane x of its x-min realizer's point, y of its y-min's, z of
+  // its z-min's (the high corner alike), moved outward, the four corners then transposed to
+  // rows: the same floats as box(), without a scalar load per side.
   const __m128 x = _mm_castsi128_ps(_mm_setr_epi32(-1, 0, 0, 0));
   const __m128 y = _mm_castsi128_ps(_mm_setr_epi32(0, -1, 0, 0));
   const __m128 z = _mm_castsi128_ps(_mm_setr_epi32(0, 0, -1, 0));
-  auto gather = [&](uint32_t rx, uint32_t ry, uint32_t rz, bool high) {
-    const VertexBox &vx = m_vertex_box[rx], &vy = m_vertex_box[ry], &vz = m_vertex_box[rz];
-    return _mm_or_ps(_mm_or_ps(_mm_and_ps(x, _mm_load_ps(high ? vx.hi : vx.lo)),
-                               _mm_and_ps(y, _mm_load_ps(high ? vy.hi : vy.lo))),
-                     _mm_and_ps(z, _mm_load_ps(high ? vz.hi : vz.lo)));
+  const __m128 pad_margin = _mm_set1_ps(m_margin_pad);
+  auto gather = [&](uint32_t rx, uint32_t ry, uint32_t rz) {
+    return _mm_or_ps(_mm_or_ps(_mm_and_ps(x, _mm_load_ps(m_vertex_point[rx].c)),
+                               _mm_and_ps(y, _mm_load_ps(m_vertex_point[ry].c))),
+                     _mm_and_ps(z, _mm_load_ps(m_vertex_point[rz].c)));
   };
   const KineticBvh& tree = *m_kinetic;
   __m128 lo[4], hi[4];
@@ -210,8 +229,8 @@ void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
       hi[c] = _mm_setr_ps(b[3], b[4], b[5], 0);
       continue;
     }
-    lo[c] = gather(r[1], r[3], r[5], false);
-    hi[c] = gather(r[0], r[2], r[4], true);
+    lo[c] = outward<false>(gather(r[1], r[3], r[5]), pad_margin);
+    hi[c] = outward<true>(gather(r[0], r[2], r[4]), pad_margin);
   }
   _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
   _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
@@ -241,13 +260,13 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   m_bottom_up = nullptr;
   prepare(tree.topology(), tree.meshes(), frame);
   const TreeMeshes& meshes = tree.meshes();
-  m_vertex_box.resize(meshes.vertex_count());
-  // Every vertex's padded coordinates rounded outward, in one pass per frame: a + b (t - o) as
+  m_vertex_point.resize(meshes.vertex_count());
+  m_margin_pad = float_up((frame.pad + 1e-30) * (1 + 0x1p-20));
+  // Every vertex's coordinates to the nearest floats, in one pass per frame: a + b (t - o) as
   // TreeMeshes::coordinate computes it, x and y in one SSE2 pair. Everything the loop reads is
-  // in locals: its float stores could alias the vectors' pointers, the pad and the bounds, which
-  // the compiler would then load again for every vertex.
-  const double pad = frame.pad;
-  VertexBox* const out = m_vertex_box.data();
+  // in locals: its float stores could alias the vectors' pointers and the bounds, which the
+  // compiler would then load again for every vertex.
+  VertexPoint* const out = m_vertex_point.data();
   for (uint32_t m = 0; m < meshes.mesh_count(); ++m) {
     const double dt = frame.t - meshes.segment_origin(m);
     const __m128d dt2 = _mm_set1_pd(dt);
@@ -259,8 +278,7 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
       const __m128d xy =
           _mm_add_pd(_mm_loadu_pd(a[i].data()), _mm_mul_pd(_mm_loadu_pd(b[i].data()), dt2));
       const __m128d zz = _mm_set1_pd(a[i].z() + b[i].z() * dt);
-      _mm_store_ps(out[begin + i].lo, round_outward<false>(xy, zz, pad));
-      _mm_store_ps(out[begin + i].hi, round_outward<true>(xy, zz, pad));
+      _mm_store_ps(out[begin + i].c, _mm_movelh_ps(_mm_cvtpd_ps(xy), _mm_cvtpd_ps(zz)));
     }
   }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, rounded(tree.root_box(frame), 0)));

@@ -82,7 +82,7 @@ class FrameBoxes {
   [[nodiscard]] size_t memory_bytes() const {
     return m_nodes.capacity() * sizeof(Node) + m_slot.capacity() * sizeof(uint32_t) +
            m_children.capacity() * sizeof(m_children[0]) +
-           m_vertex_box.capacity() * sizeof(m_vertex_box[0]);
+           m_vertex_point.capacity() * sizeof(m_vertex_point[0]);
   }
 
  private:
@@ -111,13 +111,18 @@ class FrameBoxes {
   uint32_t m_root_link = kNoLink;
   uint32_t m_stamp = 0;  ///< even, one per fill: the nodes evaluated for this frame hold it
   const TreeFrame* m_frame = nullptr;  ///< the frame filled (it must outlive the queries)
-  /// Kinetic trees: per vertex, its coordinates a + b (t - o) this frame, padded and rounded
-  /// down (lo) and up (hi): a realizer's side is one load. Evaluated for every vertex
-  /// in one sequential pass, as the realizers of the nodes a frame visits are spread over all.
-  struct alignas(32) VertexBox {
-    float lo[4], hi[4];  ///< x, y, z and one unused lane each
+  /// Kinetic trees: per vertex, its coordinates a + b (t - o) this frame rounded to the nearest
+  /// floats (x, y, z and one unused lane); a side is such a float moved outward by margin()
+  /// when a node is evaluated. Evaluated for every vertex in one sequential pass, as the
+  /// realizers of the nodes a frame visits are spread over all. 16 bytes a vertex, not a padded
+  /// low and high corner's 32: the pass writes half as much and more of it is still in cache
+  /// when the nodes read it.
+  struct alignas(16) VertexPoint {
+    float c[4];
   };
-  std::vector<VertexBox> m_vertex_box;
+  std::vector<VertexPoint> m_vertex_point;
+  /// The per-frame part of the margin: a float >= (pad + 1e-30) (1 + 2^-20).
+  float m_margin_pad = 0;
 };
 
 /// Closest hit (any = false) or any hit through the frame's boxes; the same answers as
