@@ -200,8 +200,8 @@ void FrameBoxes::evaluate(uint32_t k) const {
 }
 
 void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
-  // Each child's low corner gathers lane x of its x-min realizer's point, y of its y-min's, z of
-  // its z-min's (the high corner alike), moved outward, the four corners then transposed to
+  // An inner child's low corner gathers lane x of its x-min realizer's point, y of its y-min's,
+  // z of its z-min's (the high corner alike), moved outward, the four corners then transposed to
   // rows: the same floats as box(), without a scalar load per side.
   const __m128 x = _mm_castsi128_ps(_mm_setr_epi32(-1, 0, 0, 0));
   const __m128 y = _mm_castsi128_ps(_mm_setr_epi32(0, -1, 0, 0));
@@ -220,6 +220,19 @@ void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
     if (((n.used >> c) & 1) == 0) continue;
     const uint32_t i = m_children[k][size_t(c)];
     if (!tree.active(i)) continue;
+    if ((n.link[size_t(c)] & kLeaf) != 0) {
+      // A leaf's box spans its triangle's three points: the same floats as its realizers' (they
+      // are the extreme vertices, and rounding to the nearest float keeps the order), or a box
+      // around them, read through the triangle's vertex ids, which its triangle test will read
+      // again, rather than the leaf's six realizers elsewhere in the tree.
+      const auto& v = m_meshes->triangle(n.link[size_t(c)] & ~kLeaf);
+      const __m128 p0 = _mm_load_ps(m_vertex_point[v[0]].c),
+                   p1 = _mm_load_ps(m_vertex_point[v[1]].c),
+                   p2 = _mm_load_ps(m_vertex_point[v[2]].c);
+      lo[c] = outward<false>(_mm_min_ps(_mm_min_ps(p0, p1), p2), pad_margin);
+      hi[c] = outward<true>(_mm_max_ps(_mm_max_ps(p0, p1), p2), pad_margin);
+      continue;
+    }
     // Sides 2 axis + 1 are the minima, 2 axis the maxima (side_axis, side_sign).
     const uint32_t r[6] = {tree.realizer(i, 0), tree.realizer(i, 1), tree.realizer(i, 2),
                            tree.realizer(i, 3), tree.realizer(i, 4), tree.realizer(i, 5)};
