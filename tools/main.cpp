@@ -9,6 +9,7 @@
 #include <new>
 #include <string>
 
+#include "kinetic/core/rational_polynomial.h"
 #include "renderer/temporary_files.h"
 #include "tools/cli_errors.h"
 #include "tools/commands.h"
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", kinray_version());
   kinray::remove_temporaries_on_interrupt();
+  kinray::use_default_gmp_allocation();
   kinray::register_render_command(app);
   kinray::register_info_command(app);
   kinray::register_diff_command(app);

@@ -10,6 +10,10 @@
 #include "kinetic/core/interval_arithmetic.h"
 
 namespace kinray {
+
+void use_default_gmp_allocation() {
+  mp_set_memory_functions(nullptr, nullptr, nullptr);  // nullptr: GMP's default for each
+}
 namespace {
 
 using detail::Interval;

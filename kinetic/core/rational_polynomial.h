@@ -36,6 +36,13 @@ RationalPolynomial squarefree_part(const RationalPolynomial& f);
 /// Sign (-1, 0, 1) of a rational.
 int sign(const mpq_class& x);
 
+/// Gives GMP back its own allocation functions (malloc, realloc, free). A library loaded with
+/// the program may have replaced them: gnutls (under OpenCV's video I/O, through ffmpeg) zeroes
+/// every block before freeing it and reallocates by copying, to wipe its keys, which made the
+/// exact decisions' millions of small numbers several percent slower. Its blocks come from
+/// malloc, so the defaults free them too. Call once at the start of a program.
+void use_default_gmp_allocation();
+
 /// Bernstein coefficients of f on [a, b] (a < b), degree f.degree(): f lies in their convex
 /// hull on [a, b], and the number of their sign changes bounds the roots in (a, b) (Descartes).
 std::vector<mpq_class> bernstein_coefficients(const RationalPolynomial& f, const mpq_class& a,
