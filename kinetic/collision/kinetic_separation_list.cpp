@@ -50,12 +50,37 @@ LinearCertificate KineticSeparationList::gap_certificate(uint32_t a, uint32_t b,
   return c;
 }
 
-int KineticSeparationList::find_witness(const Record& r, double& failure) {
+void KineticSeparationList::gap_certificates(const Record& r, Gaps& gaps) {
+  // at[w][s], velocity[w][s]: side s of node w's box at the origin and its velocity, from its
+  // realizer with gap_certificate's arithmetic, so the coefficients are the same doubles
+  double at[2][6], velocity[2][6];
+  for (int w = 0; w < 2; ++w) {
+    const KineticBvh& t = tree(w);
+    const TreeMeshes& meshes = t.meshes();
+    const uint32_t n = node(r, w);
+    for (int s = 0; s < 6; ++s) {
+      const uint32_t v = t.realizer(n, s);
+      at[w][s] = meshes.coordinate(v, side_axis(s), m_segment_begin);
+      velocity[w][s] = meshes.velocity(v, side_axis(s));
+    }
+  }
+  for (int d = 0; d < 6; ++d) {
+    const int axis = d >> 1, lower = d & 1;
+    const int max = side_of(axis, true), min = side_of(axis, false);
+    LinearCertificate& c = gaps[size_t(d)];
+    c.origin = m_segment_begin;
+    c.end = m_segment_end;
+    c.c0 = at[1 - lower][min] - at[lower][max] - m_pad;
+    c.c1 = velocity[1 - lower][min] - velocity[lower][max];
+  }
+  m_stats.certificates_computed += 6;
+}
+
+int KineticSeparationList::find_witness(const Gaps& gaps, double& failure) const {
   const double now = m_sim.now();
   int best = -1;
   for (int d = 0; d < 6; ++d) {
-    const LinearCertificate c = gap_certificate(r, d);
-    ++m_stats.certificates_computed;
+    const LinearCertificate& c = gaps[size_t(d)];
     if (c.sign_after(now) <= 0) continue;
     const double f = c.failure_time(now);
     if (best < 0 || f > failure) {
@@ -77,21 +102,32 @@ bool KineticSeparationList::pairable(uint32_t a, uint32_t b) const {
          !triangles_adjacent(m_a.meshes().triangle(x.triangle), m_a.meshes().triangle(y.triangle));
 }
 
-void KineticSeparationList::children_of(uint32_t a, uint32_t b,
-                                        std::vector<std::pair<uint32_t, uint32_t>>& out) const {
-  out.clear();
+KineticSeparationList::Children KineticSeparationList::children_of(uint32_t a, uint32_t b) const {
+  Children out;
+  const auto add = [&](uint32_t x, uint32_t y) {
+    if (pairable(x, y)) out.pairs[size_t(out.count++)] = {x, y};
+  };
   const BvhNode& x = m_a.topology().nodes[a];
   const BvhNode& y = m_b.topology().nodes[b];
   if (m_self && a == b) {
-    out = {{x.left, x.left}, {x.left, x.right}, {x.right, x.right}};
+    add(x.left, x.left);
+    add(x.left, x.right);
+    add(x.right, x.right);
   } else if (x.leaf()) {
-    if (!y.leaf()) out = {{a, y.left}, {a, y.right}};
+    if (!y.leaf()) {
+      add(a, y.left);
+      add(a, y.right);
+    }
   } else if (y.leaf()) {
-    out = {{x.left, b}, {x.right, b}};
+    add(x.left, b);
+    add(x.right, b);
   } else {
-    out = {{x.left, y.left}, {x.left, y.right}, {x.right, y.left}, {x.right, y.right}};
+    add(x.left, y.left);
+    add(x.left, y.right);
+    add(x.right, y.left);
+    add(x.right, y.right);
   }
-  std::erase_if(out, [&](const auto& p) { return !pairable(p.first, p.second); });
+  return out;
 }
 
 uint32_t KineticSeparationList::create(uint32_t a, uint32_t b, uint32_t parent) {
@@ -179,13 +215,15 @@ void KineticSeparationList::set_state(uint32_t id, State state) {
 
 void KineticSeparationList::classify_new(uint32_t id) {
   if (m_records[id].permanent) {
-    expand(id);
+    expand(id, nullptr);
     return;
   }
+  Gaps gaps;
+  gap_certificates(m_records[id], gaps);
   double failure = kNever;
-  const int d = find_witness(m_records[id], failure);
+  const int d = find_witness(gaps, failure);
   if (d < 0) {
-    overlap(id);
+    overlap(id, gaps);
     return;
   }
   m_records[id].witness = uint8_t(d);
@@ -193,22 +231,22 @@ void KineticSeparationList::classify_new(uint32_t id) {
   schedule(id, failure);
 }
 
-void KineticSeparationList::overlap(uint32_t id) {
+void KineticSeparationList::overlap(uint32_t id, const Gaps& gaps) {
   const Record& r = m_records[id];
   if (m_a.topology().nodes[r.a].leaf() && m_b.topology().nodes[r.b].leaf()) {
     set_state(id, State::leaf);
-    (void)watch(id);  // tests the pair up to its separation event
+    (void)watch(id, gaps);  // tests the pair up to its separation event
   } else {
-    expand(id);
+    expand(id, &gaps);
   }
 }
 
-void KineticSeparationList::expand(uint32_t id) {
+void KineticSeparationList::expand(uint32_t id, const Gaps* gaps) {
   set_state(id, State::expanded);
-  std::vector<std::pair<uint32_t, uint32_t>> children;
-  children_of(m_records[id].a, m_records[id].b, children);
-  for (const auto& [x, y] : children) classify_new(create(x, y, id));
-  if (!m_records[id].permanent) (void)watch(id);
+  for (const auto& [x, y] : children_of(m_records[id].a, m_records[id].b))
+    classify_new(create(x, y, id));
+  // the gaps are the record's own: its children's classification changes no realizer
+  if (!m_records[id].permanent) (void)watch(id, *gaps);
 }
 
 void KineticSeparationList::separate(uint32_t id, int witness, double failure) {
@@ -218,15 +256,14 @@ void KineticSeparationList::separate(uint32_t id, int witness, double failure) {
   schedule(id, failure);
 }
 
-KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id) {
+KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id, const Gaps& gaps) {
   const double now = m_sim.now();
   double first = kNever;
-  for (int d = 0; d < 6; ++d) {
-    const LinearCertificate c = gap_certificate(m_records[id], d);
-    ++m_stats.certificates_computed;
+  for (const LinearCertificate& c : gaps) {
     if (c.sign_after(now) > 0) {
       double failure = kNever;
-      separate(id, find_witness(m_records[id], failure), failure);
+      const int witness = find_witness(gaps, failure);  // before `failure` is read
+      separate(id, witness, failure);
       return Outcome::separation;
     }
     first = std::min(first, c.negated().failure_time(now));  // pad - gap_d turns negative
@@ -239,7 +276,11 @@ KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id) {
 KineticSeparationList::Outcome KineticSeparationList::certify(uint32_t id) {
   Record& r = m_records[id];
   if (r.permanent) return Outcome::unchanged;
-  if (r.state != State::separated) return watch(id);
+  Gaps gaps;
+  if (r.state != State::separated) {
+    gap_certificates(r, gaps);
+    return watch(id, gaps);
+  }
   const double now = m_sim.now();
   const LinearCertificate c = gap_certificate(r, r.witness);
   ++m_stats.certificates_computed;
@@ -247,14 +288,15 @@ KineticSeparationList::Outcome KineticSeparationList::certify(uint32_t id) {
     schedule(id, c.failure_time(now));
     return Outcome::unchanged;
   }
+  gap_certificates(r, gaps);
   double failure = kNever;
-  const int d = find_witness(m_records[id], failure);
+  const int d = find_witness(gaps, failure);
   if (d >= 0) {
     m_records[id].witness = uint8_t(d);
     schedule(id, failure);
     return Outcome::witness_change;
   }
-  overlap(id);
+  overlap(id, gaps);
   return Outcome::overlap;
 }
 

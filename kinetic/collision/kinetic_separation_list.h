@@ -104,8 +104,14 @@ class KineticSeparationList {
   [[nodiscard]] LinearCertificate gap_certificate(const Record& r, int d) const;
   [[nodiscard]] LinearCertificate gap_certificate(uint32_t a, uint32_t b, int d,
                                                   double origin) const;
+  /// The six gap certificates of a record, gaps[d] == gap_certificate(r, d): each of the two
+  /// nodes' twelve realizers is met once, and an event that needs the six twice (a witness that
+  /// fails into an overlap, which is then watched; a watched pair that separates, which then
+  /// needs a witness) computes them once.
+  using Gaps = std::array<LinearCertificate, 6>;
+  void gap_certificates(const Record& r, Gaps& gaps);
   /// The separating direction that holds longest just after now (its failure time), or -1.
-  [[nodiscard]] int find_witness(const Record& r, double& failure);
+  [[nodiscard]] int find_witness(const Gaps& gaps, double& failure) const;
 
   uint32_t create(uint32_t a, uint32_t b, uint32_t parent);
   void destroy_children(uint32_t id);
@@ -114,11 +120,13 @@ class KineticSeparationList {
   void set_state(uint32_t id, State state);
   /// A new record: separated with a witness, or overlapping (expanded, or a listed leaf pair).
   void classify_new(uint32_t id);
-  void overlap(uint32_t id);
-  void expand(uint32_t id);
+  /// `gaps`: the record's, none of which separates just after now (nullptr for a permanent
+  /// record, which is never watched).
+  void overlap(uint32_t id, const Gaps& gaps);
+  void expand(uint32_t id, const Gaps* gaps);
   void separate(uint32_t id, int witness, double failure);
-  /// An overlapping record: separates now, or schedules the first separation of its six gaps.
-  Outcome watch(uint32_t id);
+  /// An overlapping record, `gaps` its six: separates now, or schedules the first separation.
+  Outcome watch(uint32_t id, const Gaps& gaps);
   /// The record's state just after now, from its current realizers; schedules its event.
   Outcome certify(uint32_t id);
   void count(Outcome outcome, Reason reason);
@@ -133,7 +141,14 @@ class KineticSeparationList {
   void on_realizer_change(int which, uint32_t node, int side);
   void recertify_dirty();
   [[nodiscard]] bool pairable(uint32_t a, uint32_t b) const;
-  void children_of(uint32_t a, uint32_t b, std::vector<std::pair<uint32_t, uint32_t>>& out) const;
+  /// A node pair's children pairs (at most four), in a fixed array: an overlap allocates none.
+  struct Children {
+    std::array<std::pair<uint32_t, uint32_t>, 4> pairs;
+    int count = 0;
+    [[nodiscard]] auto begin() const { return pairs.begin(); }
+    [[nodiscard]] auto end() const { return pairs.begin() + count; }
+  };
+  [[nodiscard]] Children children_of(uint32_t a, uint32_t b) const;
   [[nodiscard]] bool separated_at(uint32_t a, uint32_t b, double t) const;
   void traverse(uint32_t a, uint32_t b, double t, std::vector<KslPair>& out) const;
   void audit_record(uint32_t id, double t) const;

@@ -53,9 +53,7 @@ void KineticSeparationList::traverse(uint32_t a, uint32_t b, double t,
       return;
     }
   }
-  std::vector<std::pair<uint32_t, uint32_t>> children;
-  children_of(a, b, children);
-  for (const auto& [x, y] : children) traverse(x, y, t, out);
+  for (const auto& [x, y] : children_of(a, b)) traverse(x, y, t, out);
 }
 
 std::vector<KslPair> KineticSeparationList::traversal_front(double t) const {
