@@ -25,6 +25,8 @@ namespace {
 using detail::BernsteinBound;
 using detail::Interval;
 using detail::IntervalVec;
+using detail::Tracked;
+using detail::TrackedVec;
 
 /// The relative motion q(t) - p(t) = A + t B of two linearly moving points: A, and B = dA/dt.
 /// Written in this form an enclosure does not pay twice for the motion both points share.
@@ -43,6 +45,23 @@ struct RelativeMotion {
     return {a.x + t * b.x, a.y + t * b.y, a.z + t * b.z};
   }
 };
+
+/// The relative position q - p at local time t in doubles, with the magnitude |a| + |b| of its
+/// motion a + t b: off by at most 6 u of it (five roundings from the coordinates).
+detail::TrackedVec tracked_at(const PrimitiveMotion& m, int p, int q, double t) {
+  detail::Tracked out[3];
+  for (int k = 0; k < 3; ++k) {
+    const double a = m.start[q][k] - m.start[p][k];
+    const double b = (m.end[q][k] - m.end[p][k]) - a;
+    out[k] = {a + t * b, std::fabs(a) + std::fabs(b)};
+  }
+  return {out[0], out[1], out[2]};
+}
+
+/// Error bound of the Bernstein coefficients below, relative to their magnitudes: their inputs
+/// are off by 6 u each (three or four per term: 24 u), and no path from them takes more than 10
+/// roundings; twice that.
+constexpr double kRelativeError = 68 * std::numeric_limits<double>::epsilon() / 2;
 
 /// All relative motions of the four points, computed once per pair.
 class PairMotion {
@@ -88,44 +107,6 @@ class PairMotion {
   [[nodiscard]] Interval cubic(Interval t) const {
     return det(at(0, 1, t), at(0, 2, t), at(0, 3, t));
   }
-  /// The relative position q - p at local time t in doubles, with the magnitude |a| + |b| of
-  /// its motion a + t b: off by at most 6 u of it (five roundings from the coordinates).
-  [[nodiscard]] detail::TrackedVec tracked_at(int p, int q, double t) const {
-    detail::Tracked out[3];
-    for (int k = 0; k < 3; ++k) {
-      const double a = m_motion.start[q][k] - m_motion.start[p][k];
-      const double b = (m_motion.end[q][k] - m_motion.end[p][k]) - a;
-      out[k] = {a + t * b, std::fabs(a) + std::fabs(b)};
-    }
-    return {out[0], out[1], out[2]};
-  }
-
-  /// Error bound of the Bernstein coefficients below, relative to their magnitudes: their
-  /// inputs are off by 6 u each (three or four per term: 24 u), and no path from them takes more
-  /// than 10 roundings; twice that.
-  static constexpr double kRelativeError = 68 * std::numeric_limits<double>::epsilon() / 2;
-
-  /// The cubic's Bernstein coefficients on [lo, hi] (times 3, a positive factor): it is
-  /// trilinear in the three differences X, Y, Z, so b_k = sum_{i+j+l=k} det(X_i, Y_j, Z_l) /
-  /// C(3, k), X_0 and X_1 the values at lo and hi.
-  [[nodiscard]] BernsteinBound<3> cubic_on(double lo, double hi) const {
-    detail::TrackedVec d[3][2];
-    for (int q = 0; q < 3; ++q) {
-      d[q][0] = tracked_at(0, q + 1, lo);
-      d[q][1] = tracked_at(0, q + 1, hi);
-    }
-    std::array<detail::Tracked, 4> b{};
-    for (int j = 0; j < 2; ++j)
-      for (int l = 0; l < 2; ++l) {
-        const detail::TrackedVec yz = cross(d[1][j], d[2][l]);
-        for (int i = 0; i < 2; ++i) b[i + j + l] = b[i + j + l] + dot(d[0][i], yz);
-      }
-    const detail::Tracked three{3, 3};
-    b[0] = three * b[0];
-    b[3] = three * b[3];
-    return BernsteinBound<3>::tracking(b, kRelativeError);
-  }
-
   /// The 2-D test's polynomials on [lo, hi] in Bernstein form (each times a positive factor);
   /// returns how many (3 for vertex-face, 4 for edge-edge).
   int conditions_on(double lo, double hi, std::array<BernsteinBound<4>, 4>& out) const {
@@ -136,7 +117,7 @@ class PairMotion {
     using Linear = std::array<TrackedVec, 2>;
     using Quadratic = std::array<TrackedVec, 3>;
     const auto linear = [&](int p, int q) -> Linear {
-      return {tracked_at(p, q, lo), tracked_at(p, q, hi)};
+      return {tracked_at(m_motion, p, q, lo), tracked_at(m_motion, p, q, hi)};
     };
     const auto crossed = [](const Linear& u, const Linear& v) -> Quadratic {
       return {2 * cross(u[0], v[0]), cross(u[0], v[1]) + cross(u[1], v[0]), 2 * cross(u[1], v[1])};
@@ -261,43 +242,41 @@ class Bisection {
   int m_budget = kMaxIntervals;
 };
 
-/// The coplanarity cubic's monomial coefficients in plain doubles, constant term first: no
-/// bound on their error, only a guide to where the root lies.
-std::array<double, 4> approximate_cubic(const PrimitiveMotion& m) {
-  Eigen::Vector3d a[3], b[3];
-  for (int q = 1; q <= 3; ++q) {
-    a[q - 1] = m.start[q] - m.start[0];
-    b[q - 1] = (m.end[q] - m.end[0]) - a[q - 1];
-  }
-  const auto det = [](const Eigen::Vector3d& x, const Eigen::Vector3d& y,
-                      const Eigen::Vector3d& z) { return x.dot(y.cross(z)); };
-  return {
-      det(a[0], a[1], a[2]), det(b[0], a[1], a[2]) + det(a[0], b[1], a[2]) + det(a[0], a[1], b[2]),
-      det(a[0], b[1], b[2]) + det(b[0], a[1], b[2]) + det(b[0], b[1], a[2]), det(b[0], b[1], b[2])};
-}
-
-/// Newton's method kept inside the bracket (t.lo, t.hi), whose ends' signs are known: a guess
-/// of the root, usually within a grid cell or two of it, never a certificate.
-double guess_root(const std::array<double, 4>& c, Interval t, int sign_lo) {
-  double lo = t.lo, hi = t.hi, x = 0.5 * (lo + hi);
-  for (int iteration = 0; iteration < 60 && hi - lo > kContactTimeEarliness; ++iteration) {
-    const double value = ((c[3] * x + c[2]) * x + c[1]) * x + c[0];
-    const double slope = (3 * c[3] * x + 2 * c[2]) * x + c[1];
-    if (value == 0) return x;
+/// Newton's method on the cubic's Bernstein form on the window (`cubic`, the coefficients the
+/// filters computed: the pair's cubic is expanded once), kept inside the bracket (t.lo, t.hi),
+/// whose ends' signs are known: a guess of the root, usually within a grid cell or two of it,
+/// never a certificate (it only says where the search of certified signs starts). In the
+/// window's parameter s, t = lo + s (hi - lo), evaluated by de Casteljau.
+double guess_root(const BernsteinBound<3>& cubic, LocalWindow window, Interval t, int sign_lo) {
+  const double width = window.hi - window.lo;
+  if (!(width > 0)) return 0.5 * (t.lo + t.hi);
+  const auto& c = cubic.c;
+  const auto to_t = [&](double s) { return window.lo + s * width; };
+  double lo = (t.lo - window.lo) / width, hi = (t.hi - window.lo) / width, x = 0.5 * (lo + hi);
+  const double cell = kContactTimeEarliness / width;
+  for (int iteration = 0; iteration < 60 && hi - lo > cell; ++iteration) {
+    const double y = 1 - x;
+    const double p0 = y * c[0] + x * c[1], p1 = y * c[1] + x * c[2], p2 = y * c[2] + x * c[3];
+    const double q0 = y * p0 + x * p1, q1 = y * p1 + x * p2;
+    const double value = y * q0 + x * q1, slope = 3 * (q1 - q0);
+    if (value == 0) return to_t(x);
     ((value > 0) == (sign_lo > 0) ? lo : hi) = x;
     const double step = value / slope;
+    // converged: x itself, which the bracket's update may just have made one of its ends (a
+    // step too small to move x would otherwise fall back to the bracket's middle)
+    if (std::fabs(step) < 0.25 * cell) break;
     const double next = x - step;
     x = next > lo && next < hi ? next : 0.5 * (lo + hi);
-    if (std::fabs(step) < 0.25 * kContactTimeEarliness) break;
   }
-  return x;
+  return to_t(x);
 }
 
 /// floor(t* / e) e for the only root t* of the cubic inside (t.lo, t.hi): a bisection over the
 /// grid points k e, each signed in doubles when its enclosure allows, else in long doubles, else
 /// exactly. It starts at the grid points around a Newton guess of the root, which usually
 /// bracket it at once: two signs instead of some forty.
-double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion, Interval t,
+double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion,
+                          const BernsteinBound<3>& cubic_on_window, LocalWindow window, Interval t,
                           int sign_lo, IntervalCcdCounters& counters) {
   constexpr double e = kContactTimeEarliness;
   double a = std::floor(t.lo / e), b = std::ceil(t.hi / e);  // a e <= lo < t* < hi <= b e
@@ -318,7 +297,7 @@ double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion,
     return s == sign_lo ? -1 : 1;
   };
   // from the guess's cell, steps doubling towards the root until it is bracketed; then bisection
-  double m = std::floor(guess_root(approximate_cubic(motion), t, sign_lo) / e), step = 1;
+  double m = std::floor(guess_root(cubic_on_window, window, t, sign_lo) / e), step = 1;
   while (b - a > 1 && m > a && m < b) {
     const int s = side(m);
     if (s == 0) return m * e;
@@ -382,27 +361,104 @@ int detail::extended_cubic_sign(const PrimitiveMotion& m, double g) {
   return value > bound ? 1 : value < -bound ? -1 : 0;
 }
 
+detail::CoplanarityCubic::CoplanarityCubic(const PrimitiveMotion& m, double lo, double hi) {
+  // At 0 and 1 a difference is that of the end positions themselves, off by one rounding of its
+  // value; elsewhere a + t b, off by 6 u of |a| + |b| (tracked_at).
+  const auto difference = [&](int q, double t) -> TrackedVec {
+    if (t != 0 && t != 1) return tracked_at(m, 0, q, t);
+    const auto& p = t == 0 ? m.start : m.end;
+    Tracked out[3];
+    for (int k = 0; k < 3; ++k) {
+      const double d = p[q][k] - p[0][k];
+      out[k] = {d, std::fabs(d)};
+    }
+    return {out[0], out[1], out[2]};
+  };
+  // values and magnitudes apart, in plain arrays, which compile to about half the code of the
+  // same sums in Tracked pairs
+  double x[3][2][3], mag[3][2][3];  // [difference][end][axis]
+  for (int q = 0; q < 3; ++q)
+    for (int e = 0; e < 2; ++e) {
+      const TrackedVec v = difference(q + 1, e == 0 ? lo : hi);
+      const Tracked* c[3] = {&v.x, &v.y, &v.z};
+      for (int k = 0; k < 3; ++k) {
+        x[q][e][k] = c[k]->value;
+        mag[q][e][k] = c[k]->magnitude;
+      }
+    }
+  double value[4] = {0, 0, 0, 0}, magnitude[4] = {0, 0, 0, 0};
+  for (int j = 0; j < 2; ++j)
+    for (int l = 0; l < 2; ++l) {
+      const double* y = x[1][j];
+      const double* z = x[2][l];
+      const double* ym = mag[1][j];
+      const double* zm = mag[2][l];
+      const double yz[3] = {y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2],
+                            y[0] * z[1] - y[1] * z[0]};
+      const double yzm[3] = {ym[1] * zm[2] + ym[2] * zm[1], ym[2] * zm[0] + ym[0] * zm[2],
+                             ym[0] * zm[1] + ym[1] * zm[0]};
+      for (int i = 0; i < 2; ++i) {
+        value[i + j + l] += x[0][i][0] * yz[0] + x[0][i][1] * yz[1] + x[0][i][2] * yz[2];
+        magnitude[i + j + l] +=
+            mag[0][i][0] * yzm[0] + mag[0][i][1] * yzm[1] + mag[0][i][2] * yzm[2];
+      }
+    }
+  for (int k = 0; k < 4; ++k) b[k] = {value[k], magnitude[k]};
+  const Tracked three{3, 3};
+  b[0] = three * b[0];
+  b[3] = three * b[3];
+  // From differences of the end positions, each determinant is off by at most (7 + 56 u) u of
+  // its permanent, which is its magnitude here (Shewchuk's orient3d bound), and the sums of
+  // three and the products by 3 add three roundings: 16 u leaves room. Elsewhere the inputs
+  // are off by 6 u each: kRelativeError.
+  const bool ends = (lo == 0 || lo == 1) && (hi == 0 || hi == 1);
+  relative = ends ? 16 * std::numeric_limits<double>::epsilon() / 2 : kRelativeError;
+}
+
+bool detail::CoplanarityCubic::certainly_nonzero() const {
+  int positive = 0, negative = 0;
+  for (const Tracked& x : b) {
+    // `relative` has room for this product's own rounding
+    const double bound = relative * x.magnitude + 256 * std::numeric_limits<double>::denorm_min();
+    if (!std::isfinite(bound) || !std::isfinite(x.value)) return false;
+    positive += x.value > bound;
+    negative += x.value < -bound;
+  }
+  return positive == 4 || negative == 4;
+}
+
 std::optional<std::vector<double>> interval_contact_times(ContactType type,
                                                           const PrimitiveMotion& motion,
                                                           IntervalCcdCounters& counters,
                                                           LocalWindow window) {
+  return interval_contact_times(type, motion, counters, window,
+                                detail::CoplanarityCubic(motion, window.lo, window.hi).bound());
+}
+
+std::optional<std::vector<double>> interval_contact_times(ContactType type,
+                                                          const PrimitiveMotion& motion,
+                                                          IntervalCcdCounters& counters,
+                                                          LocalWindow window,
+                                                          const detail::BernsteinBound<3>& cubic) {
   for (int i = 0; i < 4; ++i)
     if (motion.start[i].cwiseAbs().maxCoeff() >= kMaxCoordinate ||
         motion.end[i].cwiseAbs().maxCoeff() >= kMaxCoordinate)
       return std::nullopt;
-  const PairMotion pair(type, motion);
   std::vector<ContactPiece> contacts;
-  if (!Bisection(pair, window).classify(pair.cubic_on(window.lo, window.hi), contacts))
-    return std::nullopt;
-  std::vector<double> times;
-  for (const ContactPiece& c : contacts)
-    times.push_back(grid_floor_of_root(pair, motion, c.time, c.sign_lo, counters));
-  times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one grid cell
-  if (times.empty())
-    ++counters.rejections;
-  else
-    ++counters.contacts;
-  return times;
+  if (!cubic.certainly_nonzero()) {
+    const PairMotion pair(type, motion);
+    if (!Bisection(pair, window).classify(cubic, contacts)) return std::nullopt;
+    std::vector<double> times;
+    for (const ContactPiece& c : contacts)
+      times.push_back(grid_floor_of_root(pair, motion, cubic, window, c.time, c.sign_lo, counters));
+    times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one cell
+    if (!times.empty()) {
+      ++counters.contacts;
+      return times;
+    }
+  }
+  ++counters.rejections;
+  return std::vector<double>{};
 }
 
 }  // namespace kinray

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "kinetic/collision/bernstein_bound.h"
 #include "kinetic/collision/contact_pair.h"
 
 namespace kinray {
@@ -27,6 +28,30 @@ struct IntervalCcdCounters {
 [[nodiscard]] std::optional<std::vector<double>> interval_contact_times(
     ContactType type, const PrimitiveMotion& motion, IntervalCcdCounters& counters,
     LocalWindow window = {});
+
+namespace detail {
+/// The coplanarity cubic det(p1 - p0, p2 - p0, p3 - p0) on [lo, hi] in Bernstein form (times
+/// 3): it is trilinear in the three differences X, Y, Z, so b_k = sum_{i+j+l=k} det(X_i, Y_j,
+/// Z_l) / C(3, k), X_0 and X_1 the values at lo and hi. Each coefficient is kept with the
+/// magnitude of its terms, and is off by at most `relative` times it. Computed once per
+/// primitive pair on [0, 1]: the filter in front of the interval decision, and (for a whole
+/// segment) that decision's first piece and the guide of its root search.
+struct CoplanarityCubic {
+  std::array<Tracked, 4> b{};
+  double relative = 0;
+
+  CoplanarityCubic(const PrimitiveMotion& motion, double lo, double hi);
+  /// Every coefficient of one sign beyond its own error: no root on [lo, hi].
+  [[nodiscard]] bool certainly_nonzero() const;
+  /// With one slack for all four coefficients, for the bisection.
+  [[nodiscard]] BernsteinBound<3> bound() const { return BernsteinBound<3>::tracking(b, relative); }
+};
+}  // namespace detail
+
+/// The same with the coplanarity cubic on the window already computed (CoplanarityCubic).
+[[nodiscard]] std::optional<std::vector<double>> interval_contact_times(
+    ContactType type, const PrimitiveMotion& motion, IntervalCcdCounters& counters,
+    LocalWindow window, const detail::BernsteinBound<3>& cubic);
 
 namespace detail {
 /// The sign of the coplanarity cubic det(p1 - p0, p2 - p0, p3 - p0) at local time g, computed

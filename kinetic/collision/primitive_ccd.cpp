@@ -61,43 +61,6 @@ bool swept_boxes_separated(ContactType type, const PrimitiveMotion& m) {
   });
 }
 
-/// The coplanarity cubic det(X, Y, Z) with X, Y, Z the differences p1 - p0, p2 - p0, p3 - p0
-/// (linear in t) is trilinear, so its Bernstein coefficients on [0, 1] are
-/// b_k = sum_{i+j+l=k} det(X_i, Y_j, Z_l) / C(3, k). Each determinant of rounded differences is
-/// off by at most ~8 eps times its permanent (Shewchuk's orient3d bound); 16 eps leaves room for
-/// the sums. The cubic has no root, hence the pair no contact, when all b_k share a sign beyond
-/// their error.
-bool coplanarity_certainly_nonzero(const PrimitiveMotion& m) {
-  Eigen::Vector3d d[2][3];
-  for (int end = 0; end < 2; ++end) {
-    const auto& p = end == 0 ? m.start : m.end;
-    for (int k = 0; k < 3; ++k) d[end][k] = p[k + 1] - p[0];
-  }
-  double b[4] = {0, 0, 0, 0}, error[4] = {0, 0, 0, 0};
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j)
-      for (int l = 0; l < 2; ++l) {
-        const Eigen::Vector3d& x = d[i][0];
-        const Eigen::Vector3d& y = d[j][1];
-        const Eigen::Vector3d& z = d[l][2];
-        b[i + j + l] += x.dot(y.cross(z));
-        // the permanent: |x| . (|y1 z2| + |y2 z1|, |y2 z0| + |y0 z2|, |y0 z1| + |y1 z0|)
-        const Eigen::Vector3d y1(y.y(), y.z(), y.x()), y2(y.z(), y.x(), y.y());
-        const Eigen::Vector3d z1(z.y(), z.z(), z.x()), z2(z.z(), z.x(), z.y());
-        error[i + j + l] +=
-            x.cwiseAbs().dot(y1.cwiseProduct(z2).cwiseAbs() + y2.cwiseProduct(z1).cwiseAbs());
-      }
-  constexpr double eps = std::numeric_limits<double>::epsilon() / 2;
-  int positive = 0, negative = 0;
-  for (int k = 0; k < 4; ++k) {
-    const double bound = 16 * eps * error[k] + 64 * std::numeric_limits<double>::denorm_min();
-    if (!std::isfinite(bound) || !std::isfinite(b[k])) return false;
-    positive += b[k] > bound;
-    negative += b[k] < -bound;
-  }
-  return positive == 4 || negative == 4;
-}
-
 }  // namespace
 
 std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motion,
@@ -115,13 +78,19 @@ std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motio
     ++count.box_rejections;
     return {};
   }
-  if (coplanarity_certainly_nonzero(motion)) {
+  // The coplanarity cubic's Bernstein coefficients on [0, 1] of one certain sign: no contact.
+  // They are the interval decision's first piece too, when the window is the whole segment.
+  const detail::CoplanarityCubic whole(motion, 0, 1);
+  if (whole.certainly_nonzero()) {
     ++count.cubic_rejections;
     return {};
   }
+  const detail::BernsteinBound<3> cubic =
+      window.whole() ? whole.bound()
+                     : detail::CoplanarityCubic(motion, window.lo, window.hi).bound();
   IntervalCcdCounters interval;
   std::optional<std::vector<double>> certified =
-      interval_contact_times(type, motion, interval, window);
+      interval_contact_times(type, motion, interval, window, cubic);
   count.interval_rejections += interval.rejections;
   count.interval_contacts += interval.contacts;
   count.exact_signs += interval.exact_signs;
