@@ -15,6 +15,7 @@
 // valid. The same perturbed sign decides coverage, slots, certificates and the audit. O must be
 // strictly non-zero, so an edge-on or degenerate triangle covers nothing.
 #include <array>
+#include <cmath>
 
 #include "kinetic/core/polynomial.h"
 #include "kinetic/core/root_finding.h"
@@ -38,6 +39,29 @@ namespace kinray {
 [[gnu::noinline]] inline int perturbed_reversed_edge_sign(const EdgeNormal& n, double x, double y,
                                                          double s) {
   return sign_plus(n.reversed().perturbed(x, y), s);
+}
+
+/// sign_plus(z, s) for z the boundary depth of edge pq on the row plane of y, oriented so that
+/// it is positive in front of the eye (boundary_depth, negated where q is on the negative side
+/// of the plane): +1 in front, -1 behind. The same value as from the polynomials: Horner's value
+/// of z from its coefficients written out (the products and differences of operator* and
+/// operator-, which add only zeros for the terms they leave out), the polynomials built only
+/// where a value is not a finite non-zero (rare). A boundary is located and placed by this sign.
+[[nodiscard]] inline int boundary_front_sign(const PointMotion& p, const PointMotion& q, double y,
+                                             double s) {
+  const double side_q0 = q.a.y() - y * q.a.z(), side_q1 = q.b.y() - y * q.b.z();
+  const double side_p0 = p.a.y() - y * p.a.z(), side_p1 = p.b.y() - y * p.b.z();
+  const double z0 = p.a.z() * side_q0 - q.a.z() * side_p0;
+  const double z1 =
+      (p.a.z() * side_q1 + p.b.z() * side_q0) - (q.a.z() * side_p1 + q.b.z() * side_p0);
+  const double z2 = p.b.z() * side_q1 - q.b.z() * side_p1;
+  const double v = (z2 * s + z1) * s + z0, side = side_q1 * s + side_q0;
+  if (!(v != 0 && side != 0 && std::isfinite(v) && std::isfinite(side))) {
+    const Polynomial z = boundary_depth(p, q, y);
+    return sign_plus(sign_plus(row_side(q, y), s) > 0 ? z : -z, s);
+  }
+  // -z's Horner value is the exact negation of z's.
+  return (v > 0) == (side > 0) ? 1 : -1;
 }
 
 /// One edge function n . d along the ray d = (x, y, 1): along(x, y)'s coefficients and Horner's

@@ -158,6 +158,8 @@ class FrustumBand {
   bool place_boundary(EdgeBoundary& b, const EdgeNow& en, const SlotTracker& hint) const;
   /// F > 0 (perturbed) iff the edge's point on row plane `row` is in front of the eye.
   [[nodiscard]] Polynomial boundary_front(const EdgeNow& en, int row) const;
+  /// sign_plus(boundary_front(en, row), en.s), without the polynomials (boundary_front_sign).
+  [[nodiscard]] int front_sign(const EdgeNow& en, int row) const;
   /// +1 if edge e of tri runs in its edge's own direction, else -1 (its edge function negated).
   [[nodiscard]] int edge_direction(uint32_t tri, int e) const {
     const auto& vs = m_scene.triangle_vertices(tri);

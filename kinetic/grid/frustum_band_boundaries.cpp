@@ -110,7 +110,7 @@ void FrustumBand::handle_boundary(uint32_t id) {
   const EdgeOnRay rl = ray(lo), rh = hi == lo ? rl : ray(hi);
   const int gl = rl.sign(edge, y, en.s), gh = hi == lo ? gl : rh.sign(edge, y, en.s);
   const bool changed_lo = gl != st.sign_lo, changed_hi = gh != st.sign_hi;
-  if (st.slot == 0 && sign_plus(boundary_front(en, b.row), en.s) < 0) {
+  if (st.slot == 0 && front_sign(en, b.row) < 0) {
     // Behind the eye through the eye plane, at infinity: nothing visible changes.
     ++m_stats.events.boundary;
     if (changed_lo || changed_hi) {
@@ -163,7 +163,7 @@ void FrustumBand::handle_boundary_behind_eye(uint32_t id, const EdgeNow& en,
   SlotTracker& st = m_boundaries[id].tracker;
   const int row = m_boundaries[id].row;
   // Back in front through the eye plane, at infinity: the off slot. Nothing visible changes.
-  if (sign_plus(boundary_front(en, row), en.s) < 0) {
+  if (front_sign(en, row) < 0) {
     ++m_stats.spurious;
     schedule_boundary(id, en, &edge);
     return;

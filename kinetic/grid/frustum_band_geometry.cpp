@@ -1,5 +1,6 @@
 // Geometry just after now: the motion of a triangle, an edge or a vertex on its mesh's current
 // segment, and where vertices and boundaries sit among the band's row planes and columns.
+#include "kinetic/grid/edge_slot.h"
 #include "kinetic/grid/frustum_band.h"
 
 namespace kinray {
@@ -50,20 +51,23 @@ Polynomial FrustumBand::boundary_front(const EdgeNow& en, int row) const {
   return sign_plus(row_side(*en.q, y), en.s) > 0 ? z : -z;
 }
 
+int FrustumBand::front_sign(const EdgeNow& en, int row) const {
+  return boundary_front_sign(*en.p, *en.q, m_scene.row_y(row), en.s);
+}
+
 void FrustumBand::locate_boundary(EdgeBoundary& b, const EdgeNow& en) const {
   SlotTracker& t = b.tracker;
-  if (sign_plus(boundary_front(en, b.row), en.s) < 0) {
+  if (front_sign(en, b.row) < 0) {
     t.slot = kBehindEye;
     t.sign_lo = t.sign_hi = 1;
     return;
   }
   const EdgeNormal& edge = m_motion.edge_normal(en.edge);
-  const double y = m_scene.row_y(b.row);
-  auto sign_at = [&](int c) { return edge_sign(edge, m_scene.column_x(c), y, en.s); };
-  t.slot = m_columns.locate(sign_at);
-  const auto [lo, hi] = m_columns.watched(t.slot);
-  t.sign_lo = int8_t(sign_at(lo));
-  t.sign_hi = int8_t(lo == hi ? t.sign_lo : sign_at(hi));
+  const EdgeSlot located = locate_edge_slot(
+      edge, m_columns, [&](int c) { return m_scene.column_x(c); }, m_scene.row_y(b.row), en.s);
+  t.slot = located.slot;
+  t.sign_lo = int8_t(located.sign_lo);
+  t.sign_hi = int8_t(located.sign_hi);
   // A sign pattern that is not monotone (rounding of a nearly constant edge function) still
   // gets a consistent slot; the audit reports such rows if they ever matter.
   if (!SlotCircle::consistent(t.slot, t.sign_lo, t.sign_hi))
@@ -74,7 +78,7 @@ bool FrustumBand::place_boundary(EdgeBoundary& b, const EdgeNow& en,
                                  const SlotTracker& hint) const {
   // The new edge's point is the same point: on the same side of the eye, in the same slot.
   SlotTracker& t = b.tracker;
-  const bool front = sign_plus(boundary_front(en, b.row), en.s) > 0;
+  const bool front = front_sign(en, b.row) > 0;
   if (hint.slot == kBehindEye) {
     if (front) return false;
     t.slot = kBehindEye;
