@@ -3,6 +3,7 @@
 // by the band's flightplan update events) and each vertex's motion p(s) = a + b s on it, computed
 // once per segment. Everything the band builds certificates from reads the motions here, so the
 // same motion gives bit-identical polynomials in initialisation, events and audits.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -64,19 +65,57 @@ class BandMotion {
     m.row = row;
     m.segment = seg.index;
     m.origin = origin;
-    m.p = depth_polynomials(triangle(tri).rebased(origin - seg.origin), m_scene->column_x(column),
-                            m_scene->row_y(row));
+    const Parts& parts = depth_parts_of(tri, origin, seg);
+    m.p.numerator = Polynomial{};
+    m.p.numerator.degree = 3;
+    std::copy(parts.numerator.begin(), parts.numerator.end(), m.p.numerator.c.begin());
+    m.p.denominator = parts.normal.along(m_scene->column_x(column), m_scene->row_y(row));
     return m.p;
   }
-  /// Forgets the memo (the motions changed).
-  void forget_depths() { m_memo = {}; }
+  /// Forgets the memo and the triangles' depth parts (the motions changed).
+  void forget_depths() {
+    m_memo = {};
+    if (++m_parts_generation == 0) {  // wrapped: no stale stamp may match
+      for (Parts& p : m_parts) p.stamp = 0;
+      m_parts_generation = 1;
+    }
+  }
 
   [[nodiscard]] size_t memory_bytes() const {
-    return m_segments.capacity() * sizeof(MeshSegment) + m_vertices.capacity() * sizeof(PointMotion) +
-           m_edges.memory_bytes();
+    return m_segments.capacity() * sizeof(MeshSegment) +
+           m_vertices.capacity() * sizeof(PointMotion) + m_edges.memory_bytes() +
+           m_parts.capacity() * sizeof(Parts);
   }
 
  private:
+  /// A triangle's depth parts in the local time of `origin`, kept until its mesh's motions change:
+  /// a pixel insert compares the new triangle with its neighbours, and the same triangles come
+  /// back pixel after pixel along a silhouette or a fold, where only D's along(x, y) differs. The
+  /// same function of the same motions, so the same bits. A fixed table indexed by the low bits of
+  /// the triangle id (neighbouring triangles have neighbouring ids), so the memory does not grow
+  /// with the scene or with what a band comes to see.
+  struct Parts {
+    uint32_t tri = ~0u;
+    uint32_t stamp = 0;  ///< the generation it was built in
+    double origin = 0;
+    std::array<double, 4> numerator{};  ///< N's coefficients (degree 3)
+    EdgeNormal normal;
+  };
+  static constexpr uint32_t kPartsSlots = 4096;
+  [[nodiscard]] const Parts& depth_parts_of(uint32_t tri, double origin,
+                                            const MeshSegment& seg) const {
+    Parts& p = m_parts[tri & (kPartsSlots - 1)];
+    if (p.tri != tri || p.stamp != m_parts_generation || p.origin != origin) {
+      const DepthParts parts = depth_parts(triangle(tri).rebased(origin - seg.origin));
+      p.tri = tri;
+      p.stamp = m_parts_generation;
+      p.origin = origin;
+      std::copy_n(parts.numerator.c.begin(), 4, p.numerator.begin());
+      p.normal = parts.normal;
+    }
+    return p;
+  }
+
   struct Memo {
     uint32_t tri = ~0u;
     int32_t column = 0, row = 0;
@@ -90,6 +129,8 @@ class BandMotion {
   mutable EdgeNormalCache m_edges;      ///< by global edge id
   mutable std::array<Memo, 4> m_memo;
   mutable unsigned m_next = 0;
+  mutable std::vector<Parts> m_parts = std::vector<Parts>(kPartsSlots);
+  uint32_t m_parts_generation = 1;
 };
 
 }  // namespace kinray

@@ -123,11 +123,16 @@ struct DepthPolynomials {
   Polynomial numerator;    ///< det(v0, v1, v2) = (v0 x v1) . v2, cubic
   Polynomial denominator;  ///< ((v1 - v0) x (v2 - v0)) . d, quadratic
 };
-[[nodiscard]] inline DepthPolynomials depth_polynomials(const TriangleMotion& m, double x,
-                                                        double y) {
+/// The part of N and D that does not depend on the ray: N itself and the normal (e1 x e2) whose
+/// along(x, y) is D.
+struct DepthParts {
+  Polynomial numerator;
+  EdgeNormal normal;
+};
+[[nodiscard]] inline DepthParts depth_parts(const TriangleMotion& m) {
   const EdgeNormal n01 = edge_normal(m.v[0], m.v[1]);
   const PointMotion& v2 = m.v[2];
-  DepthPolynomials p;
+  DepthParts p;
   p.numerator.degree = 3;
   p.numerator.c[0] = n01.c0.dot(v2.a);
   p.numerator.c[1] = n01.c0.dot(v2.b) + n01.c1.dot(v2.a);
@@ -135,8 +140,13 @@ struct DepthPolynomials {
   p.numerator.c[3] = n01.c2.dot(v2.b);
   const PointMotion e1{m.v[1].a - m.v[0].a, m.v[1].b - m.v[0].b};
   const PointMotion e2{m.v[2].a - m.v[0].a, m.v[2].b - m.v[0].b};
-  p.denominator = edge_normal(e1, e2).along(x, y);
+  p.normal = edge_normal(e1, e2);
   return p;
+}
+[[nodiscard]] inline DepthPolynomials depth_polynomials(const TriangleMotion& m, double x,
+                                                        double y) {
+  const DepthParts parts = depth_parts(m);
+  return DepthPolynomials{parts.numerator, parts.normal.along(x, y)};
 }
 
 /// Camera-space depth of the ray d = (x, y, 1) on the plane of (p0, p1, p2), exactly as the
