@@ -93,7 +93,9 @@ TEST(EdgeSlot, IsTheBisectionsSlotAndSigns) {
         }
       }
     }
-    if (w >= 96) EXPECT_GT(stepped, inside / 2) << w << "x" << h;
+    if (w >= 96) {
+      EXPECT_GT(stepped, inside / 2) << w << "x" << h;
+    }
   }
 }
 
