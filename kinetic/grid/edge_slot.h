@@ -75,6 +75,19 @@ std::optional<EdgeSlot> certified_step(const EdgeNormal& n, int count, double y,
 
 }  // namespace detail
 
+/// The slot by SlotCircle::locate's bisection over sign_at (a column's computed edge sign), and
+/// the signs at its watched columns: what locate_edge_slot falls back to, and the reference the
+/// certified step must agree with.
+template <class SignAt>
+[[nodiscard]] EdgeSlot bisected_edge_slot(const SlotCircle& columns, SignAt&& sign_at) {
+  EdgeSlot out;
+  out.slot = columns.locate(sign_at);
+  const auto [lo, hi] = columns.watched(out.slot);
+  out.sign_lo = sign_at(lo);
+  out.sign_hi = lo == hi ? out.sign_lo : sign_at(hi);
+  return out;
+}
+
 /// The slot of the edge n's boundary point among the columns of row y just after s, and its
 /// signs at the two watched columns: exactly those of columns.locate over
 /// edge_sign(n, column_x(c), y, s) and edge_sign at columns.watched(slot). column_x(c) must not
@@ -94,13 +107,7 @@ template <class ColumnX>
   if (const std::optional<EdgeSlot> step =
           detail::certified_step(n, columns.count, y, s, first_sign, first, last, ray))
     return *step;
-  auto sign_at = [&](int c) { return ray(c).sign(n, y, s); };
-  EdgeSlot out;
-  out.slot = columns.locate(sign_at);
-  const auto [lo, hi] = columns.watched(out.slot);
-  out.sign_lo = sign_at(lo);
-  out.sign_hi = lo == hi ? out.sign_lo : sign_at(hi);
-  return out;
+  return bisected_edge_slot(columns, [&](int c) { return ray(c).sign(n, y, s); });
 }
 
 }  // namespace kinray

@@ -14,13 +14,18 @@ namespace {
 // bisection of SlotCircle::locate over edge_sign, then edge_sign at the watched columns.
 EdgeSlot bisected(const EdgeNormal& n, const SlotCircle& columns, const PixelRays& rays, double y,
                   double s) {
-  auto sign_at = [&](int c) { return edge_sign(n, rays.x(c), y, s); };
-  EdgeSlot out;
-  out.slot = columns.locate(sign_at);
-  const auto [lo, hi] = columns.watched(out.slot);
-  out.sign_lo = sign_at(lo);
-  out.sign_hi = lo == hi ? out.sign_lo : sign_at(hi);
-  return out;
+  return bisected_edge_slot(columns, [&](int c) { return edge_sign(n, rays.x(c), y, s); });
+}
+
+/// locate_edge_slot finds what the bisection finds.
+void expect_located_as_bisected(const EdgeNormal& n, const SlotCircle& columns,
+                                const PixelRays& rays, double y, double s) {
+  const EdgeSlot got = locate_edge_slot(
+      n, columns, [&](int c) { return rays.x(c); }, y, s);
+  const EdgeSlot want = bisected(n, columns, rays, y, s);
+  EXPECT_EQ(got.slot, want.slot);
+  EXPECT_EQ(got.sign_lo, want.sign_lo);
+  EXPECT_EQ(got.sign_hi, want.sign_hi);
 }
 
 struct Draw {
@@ -112,12 +117,7 @@ TEST(EdgeSlot, LeavesUncertainColumnsToTheBisection) {
   const EdgeOnRay first(n, rays.x(0), y, 0.0), last(n, rays.x(7), y, 0.0);
   auto ray = [&](int c) { return EdgeOnRay(n, rays.x(c), y, 0.0); };
   EXPECT_FALSE(detail::certified_step(n, 8, y, 0.0, -1, first, last, ray));
-  const EdgeSlot got = locate_edge_slot(
-      n, columns, [&](int c) { return rays.x(c); }, y, 0.0);
-  const EdgeSlot want = bisected(n, columns, rays, y, 0.0);
-  EXPECT_EQ(got.slot, want.slot);
-  EXPECT_EQ(got.sign_lo, want.sign_lo);
-  EXPECT_EQ(got.sign_hi, want.sign_hi);
+  expect_located_as_bisected(n, columns, rays, y, 0.0);
   // E = 1e-17 (x_c - x) + 1 - s at s = 1: the slope is far below the rounding of the terms, so
   // the computed signs need not be one step.
   n = EdgeNormal{};
@@ -128,12 +128,7 @@ TEST(EdgeSlot, LeavesUncertainColumnsToTheBisection) {
     EXPECT_FALSE(detail::certified_step(n, 8, y, 1.0, f.sign(n, y, 1.0), f, l,
                                         [&](int c) { return EdgeOnRay(n, rays.x(c), y, 1.0); }));
   }
-  const EdgeSlot got2 = locate_edge_slot(
-      n, columns, [&](int c) { return rays.x(c); }, y, 1.0);
-  const EdgeSlot want2 = bisected(n, columns, rays, y, 1.0);
-  EXPECT_EQ(got2.slot, want2.slot);
-  EXPECT_EQ(got2.sign_lo, want2.sign_lo);
-  EXPECT_EQ(got2.sign_hi, want2.sign_hi);
+  expect_located_as_bisected(n, columns, rays, y, 1.0);
 }
 
 // boundary_front_sign is sign_plus of boundary_depth oriented by q's row side, as the band built
