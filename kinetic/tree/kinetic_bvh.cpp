@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 
 #include "util/check.h"
@@ -182,6 +183,7 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
 }
 
 void KineticBvh::handle_mesh(uint32_t m) {
+  const auto start = std::chrono::steady_clock::now();
   const double t = m_sim.now();
   const FlightplanMesh& mesh = m_meshes.mesh(m);
   const bool was_present = m_meshes.present(m);
@@ -198,6 +200,8 @@ void KineticBvh::handle_mesh(uint32_t m) {
   m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
   ++(m_stats.realizer_changes != changes ? m_stats.events_external : m_stats.events_internal);
   schedule_mesh(m);
+  m_mesh_event_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 uint64_t KineticBvh::live_certificates() const {

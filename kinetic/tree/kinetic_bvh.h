@@ -110,6 +110,10 @@ class KineticBvh {
     tighten(n.right, frame, right);
   }
 
+  /// Wall time spent in mesh events (keys, appearances, disappearances: the pass over every node
+  /// above the mesh's leaves), part of the time advance_to took: how an update
+  /// splits between keys and certificate failures.
+  [[nodiscard]] double mesh_event_seconds() const { return m_mesh_event_seconds; }
   /// Counters, with the live certificates counted now.
   [[nodiscard]] TreeStats stats() const;
   [[nodiscard]] size_t memory_bytes() const;
@@ -176,6 +180,7 @@ class KineticBvh {
   std::vector<uint32_t> m_mesh_node_begin, m_mesh_nodes;  ///< per mesh: its nodes, descending
   std::vector<EventHandle> m_mesh_event;
   TreeStats m_stats;
+  double m_mesh_event_seconds = 0;
   std::vector<RealizerObserver> m_observers;
 };
 

@@ -111,9 +111,10 @@ void check_scene(const Scene& scene, std::mt19937& rng, size_t min_blocked = 10)
       tracer->occluded(rays, result);
       for (size_t i = 0; i < rays.size(); ++i) {
         const Verdict v = brute_force(cs, rays[i], t, 1e-9);
-        if (v != Verdict::tie)
+        if (v != Verdict::tie) {
           EXPECT_EQ(result[i], v == Verdict::blocked ? 1 : 0)
               << tracer->name() << " ray " << i << " t " << t;
+        }
       }
     }
   }
@@ -127,6 +128,11 @@ void check_scene(const Scene& scene, std::mt19937& rng, size_t min_blocked = 10)
     EXPECT_TRUE(stats["shadow_tree"]["events"].contains(key)) << key;
   for (const char* key : {"compactness", "responsiveness", "locality", "efficiency"})
     EXPECT_TRUE(stats["shadow_tree"]["quality"].contains(key)) << key;
+  // The keys' share of the tree's time: part of its build and updates.
+  const nlohmann::json& time = stats["shadow_tree"]["time_s"];
+  EXPECT_GE(time["mesh_events"].get<double>(), 0.0);
+  EXPECT_LE(time["mesh_events"].get<double>(),
+            time["build"].get<double>() + time["update"].get<double>());
 }
 
 TEST(TreeShadowTracer, MatchesBruteForceAndEmbreeOnBuiltinScenes) {
