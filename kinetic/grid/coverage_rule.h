@@ -41,6 +41,23 @@ namespace kinray {
   return sign_plus(n.reversed().perturbed(x, y), s);
 }
 
+/// sign_plus(row_side(v, y), s) where Horner's value is not decided (an exact 0 or not a number),
+/// out of line like the edge signs' fallbacks.
+[[gnu::noinline]] inline int row_side_sign_at_root(const PointMotion& v, double y, double s) {
+  return sign_plus(row_side(v, y), s);
+}
+
+/// sign_plus(row_side(v, y), s): the side of the row plane of y that v is on just after s, +1 on
+/// it. Horner's value of row_side's two coefficients written out, the same operations; the
+/// polynomial is built only where that value is 0 or not a number (rare). A vertex-row event and
+/// a record's rows take a few of these each.
+[[nodiscard]] inline int row_side_sign(const PointMotion& v, double y, double s) {
+  const double value = (v.b.y() - y * v.b.z()) * s + (v.a.y() - y * v.a.z());
+  if (value > 0) return 1;
+  if (value < 0) return -1;
+  return row_side_sign_at_root(v, y, s);
+}
+
 /// sign_plus(z, s) for z the boundary depth of edge pq on the row plane of y, oriented so that
 /// it is positive in front of the eye (boundary_depth, negated where q is on the negative side
 /// of the plane): +1 in front, -1 behind. The same value as from the polynomials: Horner's value

@@ -34,7 +34,7 @@ PointMotion FrustumBand::vertex_now(uint32_t v, double& s) const {
 }
 
 FrustumBand::RowPattern FrustumBand::locate_vertex(const PointMotion& p, double s) const {
-  auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
+  auto sign_at = [&](int q) { return row_side_sign(p, m_scene.row_y(m_row_begin + q), s); };
   RowPattern pattern;
   pattern.slot = m_rows.locate(sign_at);
   const auto [lo, hi] = m_rows.watched(pattern.slot);
@@ -100,8 +100,8 @@ bool FrustumBand::place_boundary(EdgeBoundary& b, const EdgeNow& en,
 
 std::array<int, 3> FrustumBand::row_sides(const TriangleNow& tn, int row) const {
   const double y = m_scene.row_y(row);
-  return {sign_plus(row_side(tn.motion.v[0], y), tn.s), sign_plus(row_side(tn.motion.v[1], y), tn.s),
-          sign_plus(row_side(tn.motion.v[2], y), tn.s)};
+  return {row_side_sign(tn.motion.v[0], y, tn.s), row_side_sign(tn.motion.v[1], y, tn.s),
+          row_side_sign(tn.motion.v[2], y, tn.s)};
 }
 
 }  // namespace kinray

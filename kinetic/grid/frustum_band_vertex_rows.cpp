@@ -17,7 +17,7 @@ void FrustumBand::handle_vertex(uint32_t v) {
   st.event = kNoEvent;
   double s = 0;
   const PointMotion p = vertex_now(v, s);
-  auto sign_at = [&](int q) { return sign_plus(row_side(p, m_scene.row_y(m_row_begin + q)), s); };
+  auto sign_at = [&](int q) { return row_side_sign(p, m_scene.row_y(m_row_begin + q), s); };
   // Plain ints, not a structured binding: clang 14 (the fuzz build) cannot capture one.
   const std::pair<int, int> watched = m_rows.watched(st.slot);
   const int lo = watched.first, hi = watched.second;

@@ -138,6 +138,35 @@ TEST(CoverageRule, SignRuleAgreesWithRayTriangleIntersection) {
   EXPECT_GT(behind_lines, 100);  // lines that meet the triangle behind the eye are not hits
 }
 
+// row_side_sign is sign_plus of row_side: generic motions, and small integer motions at dyadic
+// times and rows, where the side vanishes exactly at s (the derivative decides) or for all s
+// (the zero polynomial, read as +1).
+TEST(CoverageRule, RowSideSignIsThePolynomialsSign) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-10, 10);
+  std::uniform_int_distribution<int> small(-2, 2);
+  int zeros = 0;
+  for (int i = 0; i < 100000; ++i) {
+    PointMotion p;
+    double s, y;
+    if (i % 2 == 0) {
+      p.a = Vec(u(rng), u(rng), u(rng));
+      p.b = Vec(u(rng), u(rng), u(rng));
+      s = u(rng);
+      y = u(rng) / 10;
+    } else {
+      p.a = Vec(small(rng), small(rng), small(rng));
+      p.b = Vec(small(rng), small(rng), small(rng));
+      s = std::ldexp(double(small(rng)), -1);
+      y = std::ldexp(double(small(rng)), -2);
+    }
+    const Polynomial side = row_side(p, y);
+    zeros += side(s) == 0;
+    ASSERT_EQ(row_side_sign(p, y, s), sign_plus(side, s)) << "draw " << i;
+  }
+  EXPECT_GT(zeros, 2000);  // the exact zeros, where the value alone does not decide, are tested
+}
+
 TEST(SlotCircle, LocatesAndCrossesOnTheProjectiveCircle) {
   const SlotCircle circle{5};
   EXPECT_EQ(circle.watched(0), (std::pair<int, int>{0, 4}));
