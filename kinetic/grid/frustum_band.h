@@ -167,8 +167,11 @@ class FrustumBand {
   }
   [[nodiscard]] std::array<int, 3> row_sides(const TriangleNow& tn, int row) const;
   /// Scans a record's covered interval: from its boundary slots (`full` = every column).
-  [[nodiscard]] std::pair<int, int> scan_coverage(const RowRecord& r, const CoverageRule& rule,
-                                                  bool full);
+  /// `covers(x, y)` is the sign rule in the record's row (CoverageRule::covers_in_row for its two
+  /// edges), `orientation` the sign of O it holds with.
+  template <class Covers>
+  [[nodiscard]] std::pair<int, int> scan_coverage(const RowRecord& r, int orientation,
+                                                  Covers&& covers, bool full);
 
   // Scheduling.
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, const MeshSegment& seg) const;

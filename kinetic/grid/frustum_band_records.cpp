@@ -11,9 +11,10 @@ namespace kinray {
 using detail::crossing_edges;
 using detail::sort_cuts;
 
-std::pair<int, int> FrustumBand::scan_coverage(const RowRecord& r, const CoverageRule& rule,
+template <class Covers>
+std::pair<int, int> FrustumBand::scan_coverage(const RowRecord& r, int orientation, Covers&& covers,
                                                bool full) {
-  if (rule.orientation_sign() == 0) return {0, -1};
+  if (orientation == 0) return {0, -1};
   const double y = m_scene.row_y(r.row);
   int lo = m_width, hi = -1, count = 0;
   if (!full) {
@@ -26,7 +27,7 @@ std::pair<int, int> FrustumBand::scan_coverage(const RowRecord& r, const Coverag
     for (int k = 0; k + 1 < 4; ++k) {
       const int a = cuts[k], b = cuts[k + 1];
       if (a >= b) continue;
-      if (rule.covers_in_row(m_scene.column_x(a), y, r.edge[0], r.edge[1])) {
+      if (covers(m_scene.column_x(a), y)) {
         lo = std::min(lo, a);
         hi = std::max(hi, b - 1);
         count += b - a;
@@ -37,7 +38,7 @@ std::pair<int, int> FrustumBand::scan_coverage(const RowRecord& r, const Coverag
   }
   lo = m_width, hi = -1, count = 0;
   for (int c = 0; c < m_width; ++c)
-    if (rule.covers_in_row(m_scene.column_x(c), y, r.edge[0], r.edge[1])) {
+    if (covers(m_scene.column_x(c), y)) {
       lo = std::min(lo, c);
       hi = c;
       ++count;
@@ -102,14 +103,30 @@ uint32_t FrustumBand::create_record(uint32_t tri, int row, int edge_a, int edge_
   bind_boundary(rec, 0);
   bind_boundary(rec, 1);
   ++m_stats.records_born;
-  const CoverageRule rule = first ? CoverageRule(tn.motion, tn.s)
-                                  : CoverageRule(tn.motion, tn.s, ts.orientation);
   if (first) {
-    ts.orientation = int8_t(rule.orientation_sign());
+    ts.orientation = int8_t(sign_after(tn.motion.orientation(), tn.s));
     if (tn.moving) ++m_live_orientations;
     schedule_orientation(tri, tn);
   }
-  const auto [lo, hi] = scan_coverage(m_records[rec], rule, false);
+  // The sign rule of CoverageRule::covers_in_row from the band's cached edge normals, as
+  // covers_now takes it: the same signs, without building the triangle's three normals.
+  const int o = ts.orientation;
+  std::array<const EdgeNormal*, 2> normals;
+  std::array<bool, 2> forward;
+  for (size_t k = 0; k < 2; ++k) {
+    const int e = m_records[rec].edge[k];
+    normals[k] = &m_motion.edge_normal(m_scene.edge_of_triangle(tri, e));
+    forward[k] = edge_direction(tri, e) > 0;
+  }
+  auto covers = [&](double x, double y) {
+    for (size_t k = 0; k < 2; ++k) {
+      const int sign = forward[k] ? edge_sign(*normals[k], x, y, tn.s)
+                                  : reversed_edge_sign(*normals[k], x, y, tn.s);
+      if (sign != o) return false;
+    }
+    return true;
+  };
+  const auto [lo, hi] = scan_coverage(m_records[rec], o, covers, false);
   set_coverage(rec, lo, hi);
   return rec;
 }
@@ -173,7 +190,10 @@ void FrustumBand::rebuild_record(uint32_t rec, const TriangleNow& tn, bool full)
 
 void FrustumBand::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) {
   const CoverageRule rule(tn.motion, tn.s);
-  const auto [lo, hi] = scan_coverage(m_records[rec], rule, full);
+  const RowRecord& r = m_records[rec];
+  const auto [lo, hi] = scan_coverage(
+      r, rule.orientation_sign(),
+      [&](double x, double y) { return rule.covers_in_row(x, y, r.edge[0], r.edge[1]); }, full);
   set_coverage(rec, lo, hi);
 }
 
