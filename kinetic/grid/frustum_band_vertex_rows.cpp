@@ -93,16 +93,13 @@ std::array<FrustumBand::RowPattern, 3> FrustumBand::mesh_patterns(
 bool FrustumBand::meets_rows(uint32_t tri, const std::array<RowPattern, 3>& p) const {
   const auto& vs = m_scene.triangle_vertices(tri);
   if (vs[0] == vs[1] || vs[1] == vs[2] || vs[2] == vs[0]) return false;
-  // The signs are constant between consecutive slots: one row of each run decides.
-  int cuts[5] = {0, p[0].slot, p[1].slot, p[2].slot, m_rows.count};
-  sort_cuts(cuts);
-  for (int k = 0; k + 1 < 5; ++k) {
-    const int a = cuts[k];
-    if (a >= cuts[k + 1]) continue;
-    const int s0 = p[0].sign(a);
-    if (p[1].sign(a) != s0 || p[2].sign(a) != s0) return true;
-  }
-  return false;
+  // Some row has vertices on both sides iff the three patterns differ as functions of the rows
+  // (without sorting the slots into runs and testing each).
+  auto key = [&](const RowPattern& v) {
+    return detail::row_step(v.slot, v.sign_lo, v.sign_hi, m_rows.count);
+  };
+  const detail::RowStep k0 = key(p[0]);
+  return !(key(p[1]) == k0 && key(p[2]) == k0);
 }
 
 std::array<FrustumBand::RowPattern, 3> FrustumBand::tracked_patterns(uint32_t tri) const {

@@ -20,6 +20,20 @@ inline int crossing_edges(const std::array<int, 3>& sides, int out[2]) {
   return n;
 }
 
+/// A vertex's row pattern (sign_lo on the rows before `slot`, sign_hi from it on) as a function
+/// of the rows [0, count): its first and last sign, and the row where it steps (0 if it does
+/// not). Each pattern steps at most once, at its slot, so two patterns are the same function of
+/// the rows iff their keys are equal: a triangle meets a row of the band iff its three vertices'
+/// keys are not all equal.
+struct RowStep {
+  int first = 1, last = 1, step = 0;
+  bool operator==(const RowStep&) const = default;
+};
+inline RowStep row_step(int slot, int sign_lo, int sign_hi, int count) {
+  const int first = 0 < slot ? sign_lo : sign_hi, last = count - 1 < slot ? sign_lo : sign_hi;
+  return {first, last, first != last ? slot : 0};
+}
+
 /// Sorts the 4 or 5 cuts of a row or a band in place: an insertion sort, inline (std::sort's call
 /// and introsort set-up cost more than the sort itself here; the result is the same).
 template <size_t N>
