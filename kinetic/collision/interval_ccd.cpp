@@ -15,6 +15,7 @@
 #include <limits>
 #include <tuple>
 
+#include "kinetic/collision/axis_plane.h"
 #include "kinetic/collision/bernstein_bound.h"
 #include "kinetic/collision/exact_ccd.h"
 #include "kinetic/core/interval_arithmetic.h"
@@ -66,7 +67,8 @@ constexpr double kRelativeError = 68 * std::numeric_limits<double>::epsilon() / 
 /// All relative motions of the four points, computed once per pair.
 class PairMotion {
  public:
-  PairMotion(ContactType type, const PrimitiveMotion& m) : m_type(type), m_motion(m) {
+  PairMotion(ContactType type, const PrimitiveMotion& m, std::optional<AxisPlaneTriple> plane)
+      : m_type(type), m_motion(m), m_plane(plane) {
     for (int p = 0; p < 4; ++p)
       for (int q = 0; q < 4; ++q)
         if (p != q) m_rel[p][q].emplace(m, p, q);
@@ -108,7 +110,7 @@ class PairMotion {
     return det(at(0, 1, t), at(0, 2, t), at(0, 3, t));
   }
   /// The 2-D test's polynomials on [lo, hi] in Bernstein form (each times a positive factor);
-  /// returns how many (3 for vertex-face, 4 for edge-edge).
+  /// returns how many (3 for vertex-face, 4 for edge-edge, 2 for three points on an axis plane).
   int conditions_on(double lo, double hi, std::array<BernsteinBound<4>, 4>& out) const {
     using detail::Tracked;
     using detail::TrackedVec;
@@ -131,6 +133,24 @@ class PairMotion {
           w(6) * (dot(n[1], m[2]) + dot(n[2], m[1])), w(12) * dot(n[2], m[2])};
       return BernsteinBound<4>::tracking(b, kRelativeError);
     };
+    if (m_plane) {
+      // The point on the closed segment, given that the three are collinear (at a root of the
+      // cubic): (p - s0).(s1 - s0) >= 0 and (p - s1).(s0 - s1) >= 0. Quadratics: 2 u0.v0,
+      // u0.v1 + u1.v0, 2 u1.v1, raised to degree 4 (times 6) by positive integer weights.
+      const auto along = [&](int from, int to) {
+        const Linear u = linear(from, m_plane->point), v = linear(from, to);
+        const auto w = [](double x) { return Tracked{x, x}; };
+        const Tracked b0 = w(2) * dot(u[0], v[0]), b1 = dot(u[0], v[1]) + dot(u[1], v[0]),
+                      b2 = w(2) * dot(u[1], v[1]);
+        const std::array<Tracked, 5> b = {w(6) * b0, w(3) * (b0 + b1), b0 + w(4) * b1 + b2,
+                                          w(3) * (b1 + b2), w(6) * b2};
+        return BernsteinBound<4>::tracking(b, kRelativeError);
+      };
+      const auto [s0, s1] = m_plane->segment;
+      out[0] = along(s0, s1);
+      out[1] = along(s1, s0);
+      return 2;
+    }
     if (m_type == ContactType::vertex_face) {
       // vertex p0, triangle (p1, p2, p3): barycentric numerators n . ((b - a) x (p0 - a))
       const Quadratic n = crossed(linear(1, 2), linear(1, 3));
@@ -153,6 +173,8 @@ class PairMotion {
  private:
   ContactType m_type;
   const PrimitiveMotion& m_motion;
+  /// Three points on an axis plane the fourth never meets: the contact test is theirs.
+  std::optional<AxisPlaneTriple> m_plane;
   std::optional<RelativeMotion> m_rel[4][4];
 };
 
@@ -445,8 +467,10 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
         motion.end[i].cwiseAbs().maxCoeff() >= kMaxCoordinate)
       return std::nullopt;
   std::vector<ContactPiece> contacts;
-  if (!cubic.certainly_nonzero()) {
-    const PairMotion pair(type, motion);
+  const std::optional<AxisPlaneTriple> plane =
+      cubic.certainly_nonzero() ? std::nullopt : axis_plane_triple(type, motion);
+  if (!cubic.certainly_nonzero() && !(plane && plane->apart)) {
+    const PairMotion pair(type, motion, plane);
     if (!Bisection(pair, window).classify(cubic, contacts)) return std::nullopt;
     std::vector<double> times;
     for (const ContactPiece& c : contacts)

@@ -3,9 +3,11 @@
 // refined by bisection. Certifies "no contact" (the coplanarity cubic has no root, or one of
 // the 2-D test's polynomials is certainly negative where it may) and, for a simple root at
 // which the 2-D test certainly holds, the contact and its time, rounded down to the grid of
-// kContactTimeEarliness exactly as the rational decision rounds it (exact_ccd.h). A pair it
-// cannot certify (coplanar motion, a root near a segment end, a vertex on an edge, a double
-// root) is left to the rational decision.
+// kContactTimeEarliness exactly as the rational decision rounds it (exact_ccd.h). A vertex on
+// an edge, where a condition vanishes at the contact, is certified when the three points lie on
+// an axis plane that the fourth never meets (axis_plane.h); a pair it cannot certify (coplanar
+// motion, a root near a segment end, a vertex on an edge elsewhere, a double root) is left to
+// the rational decision.
 #include <cstdint>
 #include <optional>
 #include <vector>

@@ -169,9 +169,11 @@ TEST(IntervalCcd, LeavesDegenerateMotionToTheRationalDecision) {
   const PrimitiveMotion landing = {{V(0.2, 0.2, 1), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)},
                                    {V(0.2, 0.2, 0), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}};
   EXPECT_FALSE(interval_contact_times(ContactType::vertex_face, landing, counters));
-  // the vertex hits the triangle's edge: a barycentric sign is zero at the contact
-  const PrimitiveMotion on_edge = {{V(0.5, 0, 1), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)},
-                                   {V(0.5, 0, -1), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}};
+  // the vertex hits the triangle's edge: a barycentric sign is zero at the contact (the edge
+  // along (1, 1, 1) - (0, 0, 0), so that no axis plane holds the vertex and the edge)
+  const PrimitiveMotion on_edge = {
+      {V(0.5, 0.5, 0.5) + V(0.1, -0.3, 0.2), V(0, 0, 0), V(1, 1, 1), V(1, 0, 0)},
+      {V(0.5, 0.5, 0.5) - V(0.1, -0.3, 0.2), V(0, 0, 0), V(1, 1, 1), V(1, 0, 0)}};
   EXPECT_FALSE(interval_contact_times(ContactType::vertex_face, on_edge, counters));
   // and a clear hit is decided, at the rational decision's time
   const PrimitiveMotion hit = {{V(0.25, 0.25, 1), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)},
@@ -181,6 +183,75 @@ TEST(IntervalCcd, LeavesDegenerateMotionToTheRationalDecision) {
   ASSERT_TRUE(times);
   EXPECT_EQ(*times, exact_contact_times(ContactType::vertex_face, to_rational(hit)));
   EXPECT_EQ(counters.contacts, 1u);
+}
+
+/// Three points on the plane `axis` = c for the whole segment, jittered: P crosses the line of
+/// the segment (S0, S1) inside it (or, with `miss`, beyond S1), and Q stays above the plane.
+/// Points in the order P, S0, S1, Q.
+PrimitiveMotion point_crossing_segment_in_axis_plane(std::mt19937& rng, int axis, bool miss) {
+  std::uniform_real_distribution<double> unit(-1, 1), along(0.2, 0.8), when(0.1, 0.9);
+  const double c = 0.3 + 0.1 * unit(rng);
+  const auto planar = [&](double x, double y) {
+    V p;
+    p[axis] = c;
+    p[(axis + 1) % 3] = x;
+    p[(axis + 2) % 3] = y;
+    return p;
+  };
+  PrimitiveMotion m;
+  m.start[1] = planar(unit(rng), unit(rng));
+  m.start[2] = m.start[1] + planar(1 + 0.2 * unit(rng), 0.2 * unit(rng)) - planar(0, 0);
+  for (int i = 1; i < 3; ++i)
+    m.end[i] = m.start[i] + planar(0.05 * unit(rng), 0.05 * unit(rng)) - planar(0, 0);
+  // P crosses at local time t through the point s of the way from S0 to S1 (at t), moving
+  // across the segment's direction
+  const double t = when(rng), s = miss ? 1.3 : along(rng);
+  const V s0 = m.start[1] + t * (m.end[1] - m.start[1]),
+          s1 = m.start[2] + t * (m.end[2] - m.start[2]);
+  const V hit = s0 + s * (s1 - s0);
+  const V across = planar(0.1 * unit(rng), 0.5 + 0.2 * unit(rng)) - planar(0, 0);
+  m.start[0] = hit - t * across;
+  m.end[0] = hit + (1 - t) * across;
+  m.start[3] = planar(unit(rng), unit(rng));
+  m.start[3][axis] = c + 0.5 + 0.1 * unit(rng);
+  m.end[3] = m.start[3] + 0.1 * V(unit(rng), unit(rng), unit(rng));
+  return m;
+}
+
+TEST(IntervalCcd, DecidesAPointOnASegmentInAnAxisPlane) {
+  // A vertex of a flat region crossing an edge of it, seen as vertex-face (the face's third
+  // corner off the plane) and as edge-edge (the vertex's edge leaving the plane): the general
+  // test's condition through the three planar points vanishes at the contact, the axis plane's
+  // test decides it, at the rational decision's time, in every order of the points.
+  std::mt19937 rng(15);
+  int decided = 0, contacts = 0, pairs = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const PrimitiveMotion m = point_crossing_segment_in_axis_plane(rng, trial % 3, trial % 5 == 0);
+    // vertex-face: the vertex P, the face (S0, S1, Q) in each rotation
+    PrimitiveMotion vf = m;
+    // edge-edge: (P, Q) against (S0, S1), and the edges the other way round
+    PrimitiveMotion ee = m;
+    swap_points(ee, 1, 3);  // P, Q, S1, S0
+    PrimitiveMotion ee_swapped = ee;
+    swap_points(ee_swapped, 0, 2);
+    swap_points(ee_swapped, 1, 3);  // S1, S0, P, Q
+    std::vector<std::pair<ContactType, PrimitiveMotion>> cases;
+    for (int r = 0; r < 3; ++r, rotate_face(vf)) cases.emplace_back(ContactType::vertex_face, vf);
+    cases.emplace_back(ContactType::edge_edge, ee);
+    cases.emplace_back(ContactType::edge_edge, ee_swapped);
+    for (const auto& [type, motion] : cases) {
+      ++pairs;
+      IntervalCcdCounters counters;
+      const std::optional<std::vector<double>> times =
+          interval_contact_times(type, motion, counters);
+      if (!times) continue;
+      ++decided;
+      contacts += !times->empty();
+      ASSERT_EQ(*times, exact_contact_times(type, to_rational(motion))) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(decided, pairs * 9 / 10);
+  EXPECT_GT(contacts, pairs / 2);
 }
 
 }  // namespace
