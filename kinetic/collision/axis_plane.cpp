@@ -32,4 +32,14 @@ std::optional<AxisPlaneTriple> axis_plane_triple(ContactType type, const Primiti
   return std::nullopt;
 }
 
+std::optional<int> common_axis_plane(const PrimitiveMotion& m) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const double c = m.start[0][axis];
+    bool planar = true;
+    for (size_t i = 0; i < 4 && planar; ++i) planar = m.start[i][axis] == c && m.end[i][axis] == c;
+    if (planar) return axis;
+  }
+  return std::nullopt;
+}
+
 }  // namespace kinray

@@ -31,4 +31,8 @@ struct AxisPlaneTriple {
 [[nodiscard]] std::optional<AxisPlaneTriple> axis_plane_triple(ContactType type,
                                                                const PrimitiveMotion& motion);
 
+/// The axis of a plane that holds all four points over the whole segment (coplanar motion in
+/// it: edges sliding over one another in a flat region), if any.
+[[nodiscard]] std::optional<int> common_axis_plane(const PrimitiveMotion& motion);
+
 }  // namespace kinray

@@ -178,6 +178,18 @@ class PairMotion {
   std::optional<RelativeMotion> m_rel[4][4];
 };
 
+/// The time where a piece of the window starts (index k) or ends (k + 1): an exact double at
+/// the window's ends and on the dyadic grid of a whole segment, else lo + (hi - lo) k / 2^depth
+/// rounded (off by at most 3 u of itself, lo >= 0) and widened by more than that.
+Interval piece_boundary(LocalWindow window, double k, int depth) {
+  if (k == 0) return Interval::point(window.lo);
+  if (k == std::ldexp(1.0, depth)) return Interval::point(window.hi);
+  const double at = window.lo + (window.hi - window.lo) * std::ldexp(k, -depth);
+  if (window.whole()) return Interval::point(at);
+  return {std::max(window.lo, detail::round_down_bound(at)),
+          std::min(window.hi, detail::round_up_bound(at))};
+}
+
 /// Bisection work per pair: a pair that needs more goes to the rational decision.
 constexpr int kMaxDepth = 10;
 constexpr int kMaxIntervals = 96;
@@ -211,16 +223,8 @@ class Bisection {
   }
 
  private:
-  /// The time where a piece starts (index k) or ends (k + 1): an exact double at the window's
-  /// ends and on the dyadic grid of a whole segment, else lo + (hi - lo) k / 2^depth rounded
-  /// (off by at most 3 u of itself, lo >= 0) and widened by more than that.
   [[nodiscard]] Interval boundary(double k, int depth) const {
-    if (k == 0) return Interval::point(m_window.lo);
-    if (k == std::ldexp(1.0, depth)) return Interval::point(m_window.hi);
-    const double at = m_window.lo + (m_window.hi - m_window.lo) * std::ldexp(k, -depth);
-    if (m_window.whole()) return Interval::point(at);
-    return {std::max(m_window.lo, detail::round_down_bound(at)),
-            std::min(m_window.hi, detail::round_up_bound(at))};
+    return piece_boundary(m_window, k, depth);
   }
 
   bool classify(const Piece& piece, std::vector<ContactPiece>& contacts) {
@@ -264,23 +268,24 @@ class Bisection {
   int m_budget = kMaxIntervals;
 };
 
-/// Newton's method on the cubic's Bernstein form on the window (`cubic`, the coefficients the
-/// filters computed: the pair's cubic is expanded once), kept inside the bracket (t.lo, t.hi),
-/// whose ends' signs are known: a guess of the root, usually within a grid cell or two of it,
-/// never a certificate (it only says where the search of certified signs starts). In the
-/// window's parameter s, t = lo + s (hi - lo), evaluated by de Casteljau.
-double guess_root(const BernsteinBound<3>& cubic, LocalWindow window, Interval t, int sign_lo) {
+/// Newton's method on a polynomial's Bernstein form on the window (for the cubic, the
+/// coefficients the filters computed: the pair's cubic is expanded once), kept inside the
+/// bracket (t.lo, t.hi), whose ends' signs are known: a guess of the root, usually within a grid
+/// cell or two of it, never a certificate (it only says where the search of certified signs
+/// starts). In the window's parameter s, t = lo + s (hi - lo), evaluated by de Casteljau.
+template <int N>
+double guess_root(const BernsteinBound<N>& f, LocalWindow window, Interval t, int sign_lo) {
   const double width = window.hi - window.lo;
   if (!(width > 0)) return 0.5 * (t.lo + t.hi);
-  const auto& c = cubic.c;
   const auto to_t = [&](double s) { return window.lo + s * width; };
   double lo = (t.lo - window.lo) / width, hi = (t.hi - window.lo) / width, x = 0.5 * (lo + hi);
   const double cell = kContactTimeEarliness / width;
   for (int iteration = 0; iteration < 60 && hi - lo > cell; ++iteration) {
     const double y = 1 - x;
-    const double p0 = y * c[0] + x * c[1], p1 = y * c[1] + x * c[2], p2 = y * c[2] + x * c[3];
-    const double q0 = y * p0 + x * p1, q1 = y * p1 + x * p2;
-    const double value = y * q0 + x * q1, slope = 3 * (q1 - q0);
+    std::array<double, N + 1> row = f.c;
+    for (int level = N; level > 1; --level)
+      for (int k = 0; k < level; ++k) row[k] = y * row[k] + x * row[k + 1];
+    const double value = y * row[0] + x * row[1], slope = N * (row[1] - row[0]);
     if (value == 0) return to_t(x);
     ((value > 0) == (sign_lo > 0) ? lo : hi) = x;
     const double step = value / slope;
@@ -293,33 +298,25 @@ double guess_root(const BernsteinBound<3>& cubic, LocalWindow window, Interval t
   return to_t(x);
 }
 
-/// floor(t* / e) e for the only root t* of the cubic inside (t.lo, t.hi): a bisection over the
-/// grid points k e, each signed in doubles when its enclosure allows, else in long doubles, else
-/// exactly. It starts at the grid points around a Newton guess of the root, which usually
-/// bracket it at once: two signs instead of some forty.
-double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion,
-                          const BernsteinBound<3>& cubic_on_window, LocalWindow window, Interval t,
-                          int sign_lo, IntervalCcdCounters& counters) {
+/// floor(t* / e) e for the only root t* of a polynomial inside (t.lo, t.hi), whose sign just
+/// after t.lo is sign_lo: a bisection over the grid points k e, each signed exactly by
+/// sign_at(g) (certified floating point first, the caller's business). It starts at the grid
+/// points around `guess`, which usually bracket the root at once: two signs instead of forty.
+template <class SignAt>
+double grid_floor_of_root(double guess, Interval t, int sign_lo, SignAt&& sign_at) {
   constexpr double e = kContactTimeEarliness;
   double a = std::floor(t.lo / e), b = std::ceil(t.hi / e);  // a e <= lo < t* < hi <= b e
-  std::optional<RationalPolynomial> cubic;
   // Which side of the root grid point m e lies on: -1 below, 1 above, 0 exactly on it.
   const auto side = [&](double m) {
     const double g = m * e;
     if (g <= t.lo) return -1;
     if (g >= t.hi) return 1;
-    int s = pair.cubic(Interval::point(g)).certain_sign();
-    if (s == 0) s = detail::extended_cubic_sign(motion, g);
-    if (s == 0) {
-      ++counters.exact_signs;
-      if (!cubic) cubic = coplanarity_polynomial(to_rational(motion));
-      s = sign((*cubic)(mpq_class(g)));
-      if (s == 0) return 0;
-    }
+    const int s = sign_at(g);
+    if (s == 0) return 0;
     return s == sign_lo ? -1 : 1;
   };
   // from the guess's cell, steps doubling towards the root until it is bracketed; then bisection
-  double m = std::floor(guess_root(cubic_on_window, window, t, sign_lo) / e), step = 1;
+  double m = std::floor(guess / e), step = 1;
   while (b - a > 1 && m > a && m < b) {
     const int s = side(m);
     if (s == 0) return m * e;
@@ -335,6 +332,171 @@ double grid_floor_of_root(const PairMotion& pair, const PrimitiveMotion& motion,
   }
   return a * e;
 }
+
+/// The coplanarity cubic's root on the grid: grid points signed in doubles when their
+/// enclosure allows, else in long doubles, else exactly.
+double grid_floor_of_cubic_root(const PairMotion& pair, const PrimitiveMotion& motion,
+                                const BernsteinBound<3>& cubic_on_window, LocalWindow window,
+                                Interval t, int sign_lo, IntervalCcdCounters& counters) {
+  std::optional<RationalPolynomial> cubic;
+  const auto sign_at = [&](double g) {
+    int s = pair.cubic(Interval::point(g)).certain_sign();
+    if (s == 0) s = detail::extended_cubic_sign(motion, g);
+    if (s == 0) {
+      ++counters.exact_signs;
+      if (!cubic) cubic = coplanarity_polynomial(to_rational(motion));
+      s = sign((*cubic)(mpq_class(g)));
+    }
+    return s;
+  };
+  return grid_floor_of_root(guess_root(cubic_on_window, window, t, sign_lo), t, sign_lo, sign_at);
+}
+
+/// Edges sliding in one axis plane (all four points on it over the whole segment): they touch
+/// where the closed segments meet in the plane, over whole intervals of time, which the
+/// rational decision reports by their first and last times (and by 0 and 1 where they touch
+/// then). With the four orientations f = (a0 a1 b0, a0 a1 b1, b0 b1 a0, b0 b1 a1) the segments
+/// meet exactly when f0 f1 <= 0 and f2 f3 <= 0, unless both orientations of one edge's ends
+/// vanish (the edges collinear, or one a point), which is left to the rational decision. The
+/// window is bisected until each piece holds at most one root of one orientation, certified
+/// simple; the contact set changes only there.
+class PlanarEdges {
+ public:
+  PlanarEdges(const PairMotion& pair, const PrimitiveMotion& motion, int axis, LocalWindow window)
+      : m_pair(pair), m_motion(motion), m_axis(axis), m_window(window) {}
+
+  /// The rational decision's times, or nothing when floating point cannot certify them.
+  std::optional<std::vector<double>> contact_times() {
+    Piece whole;
+    for (int i = 0; i < 4; ++i) {
+      const auto [p, q, r] = kOrientation[i];
+      const std::array<TrackedVec, 2> u = {tracked_at(m_motion, p, q, m_window.lo),
+                                           tracked_at(m_motion, p, q, m_window.hi)};
+      const std::array<TrackedVec, 2> v = {tracked_at(m_motion, p, r, m_window.lo),
+                                           tracked_at(m_motion, p, r, m_window.hi)};
+      const auto w = [](double x) { return Tracked{x, x}; };
+      const std::array<Tracked, 3> b = {w(2) * component(cross(u[0], v[0])),
+                                        component(cross(u[0], v[1])) + component(cross(u[1], v[0])),
+                                        w(2) * component(cross(u[1], v[1]))};
+      whole.f[i] = BernsteinBound<2>::tracking(b, kRelativeError);
+    }
+    m_on_window = whole.f;
+    if (!classify(whole)) return std::nullopt;
+    std::vector<double> times;
+    const auto holds = [&](const Signs& s) -> std::optional<bool> {
+      if ((s[0] == 0 && s[1] == 0) || (s[2] == 0 && s[3] == 0)) return std::nullopt;
+      return s[0] * s[1] <= 0 && s[2] * s[3] <= 0;
+    };
+    const std::optional<bool> at_start = holds(m_leaves.front().start);
+    const std::optional<bool> at_end = holds(m_leaves.back().end);
+    if (!at_start || !at_end) return std::nullopt;
+    if (m_window.lo == 0 && *at_start) times.push_back(0);
+    for (const Leaf& leaf : m_leaves) {
+      if (leaf.root < 0) continue;
+      Signs at = leaf.start;
+      at[size_t(leaf.root)] = 0;
+      const std::optional<bool> before = holds(leaf.start), now = holds(at),
+                                after = holds(leaf.end);
+      if (!before || !now || !after) return std::nullopt;
+      if (!*now || (*before && *after)) continue;  // no contact, or inside an interval of them
+      const int sign_lo = leaf.start[size_t(leaf.root)];
+      const auto sign_at = [&](double g) { return orientation_sign(leaf.root, g); };
+      const double guess = guess_root(m_on_window[size_t(leaf.root)], m_window, leaf.time, sign_lo);
+      times.push_back(grid_floor_of_root(guess, leaf.time, sign_lo, sign_at));
+    }
+    if (m_window.hi == 1 && *at_end) times.push_back(1);
+    std::ranges::sort(times);
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    return times;
+  }
+
+ private:
+  using Signs = std::array<int, 4>;
+  static constexpr int kOrientation[4][3] = {{0, 1, 2}, {0, 1, 3}, {2, 3, 0}, {2, 3, 1}};
+
+  struct Piece {
+    int depth = 0;
+    double index = 0;
+    std::array<BernsteinBound<2>, 4> f;
+  };
+  /// A piece where every orientation has a certain sign at both ends, at most one changing it.
+  struct Leaf {
+    Signs start{}, end{};
+    int root = -1;  ///< the orientation with a root inside, or -1
+    Interval time;
+  };
+
+  [[nodiscard]] Tracked component(const TrackedVec& v) const {
+    return m_axis == 0 ? v.x : m_axis == 1 ? v.y : v.z;
+  }
+  [[nodiscard]] Interval orientation(int i, Interval t) const {
+    const auto [p, q, r] = kOrientation[i];
+    const IntervalVec n = cross(m_pair.at(p, q, t), m_pair.at(p, r, t));
+    return m_axis == 0 ? n.x : m_axis == 1 ? n.y : n.z;
+  }
+  /// The exact sign of orientation i at local time g: intervals, else rationals.
+  [[nodiscard]] int orientation_sign(int i, double g) const {
+    if (const int s = orientation(i, Interval::point(g)).certain_sign(); s != 0) return s;
+    const auto [p, q, r] = kOrientation[i];
+    const mpq_class t = g;
+    const auto at = [&](int point, int k) -> mpq_class {
+      const mpq_class start = m_motion.start[size_t(point)][k];
+      return start + t * (mpq_class(m_motion.end[size_t(point)][k]) - start);
+    };
+    const int x = (m_axis + 1) % 3, y = (m_axis + 2) % 3;
+    const mpq_class n = (at(q, x) - at(p, x)) * (at(r, y) - at(p, y)) -
+                        (at(q, y) - at(p, y)) * (at(r, x) - at(p, x));
+    return sign(n);  // (axis + 1, axis + 2) cyclic: the cross product's component on the axis
+  }
+
+  bool classify(const Piece& piece) {
+    if (--m_budget < 0) return false;
+    Leaf leaf;
+    bool certain = true;
+    for (int i = 0; i < 4 && certain; ++i) {
+      const BernsteinBound<2>& f = piece.f[size_t(i)];
+      const int s = f.start_sign(), e = f.end_sign();
+      if (f.certainly_positive() || f.certainly_negative() ||
+          (s != 0 && s == e && f.certainly_monotone())) {
+        leaf.start[size_t(i)] = leaf.end[size_t(i)] = f.c[0] > 0 ? 1 : -1;
+      } else if (leaf.root < 0 && s != 0 && e == -s && f.certainly_monotone()) {
+        leaf.root = i;
+        leaf.start[size_t(i)] = s;
+        leaf.end[size_t(i)] = e;
+      } else {
+        certain = false;
+      }
+    }
+    if (certain) {
+      const Interval start = piece_boundary(m_window, piece.index, piece.depth),
+                     end = piece_boundary(m_window, piece.index + 1, piece.depth);
+      // where an end is not a double, the few ulps between it and the double outside it must
+      // hold no root of the rooted orientation either
+      const auto clear = [&](Interval sliver, int sign) {
+        return sliver.lo == sliver.hi || orientation(leaf.root, sliver).certain_sign() == sign;
+      };
+      if (leaf.root < 0 || (clear(start, leaf.start[size_t(leaf.root)]) &&
+                            clear(end, leaf.end[size_t(leaf.root)]))) {
+        leaf.time = {start.lo, end.hi};
+        m_leaves.push_back(leaf);
+        return true;
+      }
+    }
+    if (piece.depth == kMaxDepth) return false;
+    Piece left{piece.depth + 1, 2 * piece.index, {}};
+    Piece right{piece.depth + 1, 2 * piece.index + 1, {}};
+    for (size_t i = 0; i < 4; ++i) std::tie(left.f[i], right.f[i]) = piece.f[i].halves();
+    return classify(left) && classify(right);
+  }
+
+  const PairMotion& m_pair;
+  const PrimitiveMotion& m_motion;
+  int m_axis = 0;
+  LocalWindow m_window;
+  int m_budget = kMaxIntervals;
+  std::array<BernsteinBound<2>, 4> m_on_window;  ///< the orientations on the whole window
+  std::vector<Leaf> m_leaves;                    ///< in time order
+};
 
 /// Products of up to five coordinate differences stay far from overflow below this.
 constexpr double kMaxCoordinate = 0x1p150;
@@ -469,12 +631,22 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
   std::vector<ContactPiece> contacts;
   const std::optional<AxisPlaneTriple> plane =
       cubic.certainly_nonzero() ? std::nullopt : axis_plane_triple(type, motion);
+  if (!cubic.certainly_nonzero() && type == ContactType::edge_edge) {
+    if (const std::optional<int> axis = common_axis_plane(motion)) {
+      const PairMotion pair(type, motion, std::nullopt);
+      std::optional<std::vector<double>> times =
+          PlanarEdges(pair, motion, *axis, window).contact_times();
+      if (times) ++(times->empty() ? counters.rejections : counters.contacts);
+      return times;
+    }
+  }
   if (!cubic.certainly_nonzero() && !(plane && plane->apart)) {
     const PairMotion pair(type, motion, plane);
     if (!Bisection(pair, window).classify(cubic, contacts)) return std::nullopt;
     std::vector<double> times;
     for (const ContactPiece& c : contacts)
-      times.push_back(grid_floor_of_root(pair, motion, cubic, window, c.time, c.sign_lo, counters));
+      times.push_back(
+          grid_floor_of_cubic_root(pair, motion, cubic, window, c.time, c.sign_lo, counters));
     times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one cell
     if (!times.empty()) {
       ++counters.contacts;

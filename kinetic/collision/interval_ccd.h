@@ -5,9 +5,10 @@
 // which the 2-D test certainly holds, the contact and its time, rounded down to the grid of
 // kContactTimeEarliness exactly as the rational decision rounds it (exact_ccd.h). A vertex on
 // an edge, where a condition vanishes at the contact, is certified when the three points lie on
-// an axis plane that the fourth never meets (axis_plane.h); a pair it cannot certify (coplanar
-// motion, a root near a segment end, a vertex on an edge elsewhere, a double root) is left to
-// the rational decision.
+// an axis plane that the fourth never meets (axis_plane.h), and edges sliding in an axis plane
+// (coplanar motion there) by the times their contact intervals begin and end; a pair it cannot
+// certify (other coplanar motion, a root near a segment end, a vertex on an edge elsewhere, a
+// double root) is left to the rational decision.
 #include <cstdint>
 #include <optional>
 #include <vector>

@@ -47,5 +47,13 @@ TEST(AxisPlane, NoRolesWhenTheFourthPointMeetsThePlane) {
   EXPECT_FALSE(axis_plane_triple(ContactType::vertex_face, m));
 }
 
+TEST(AxisPlane, FindsThePlaneOfCoplanarMotion) {
+  PrimitiveMotion m = {{V(0.2, 0.5, 0.1), V(0, 0.5, 0), V(1, 0.5, 1), V(0, 0.5, 1)},
+                       {V(0.3, 0.5, 0.4), V(0, 0.5, 0), V(1, 0.5, 2), V(0, 0.5, 1)}};
+  EXPECT_EQ(common_axis_plane(m), 1);
+  m.end[2].y() = 0.6;  // leaves the plane
+  EXPECT_FALSE(common_axis_plane(m));
+}
+
 }  // namespace
 }  // namespace kinray

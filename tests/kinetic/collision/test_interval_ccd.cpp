@@ -254,5 +254,47 @@ TEST(IntervalCcd, DecidesAPointOnASegmentInAnAxisPlane) {
   EXPECT_GT(contacts, pairs / 2);
 }
 
+TEST(IntervalCcd, DecidesEdgesSlidingInAnAxisPlane) {
+  // Two edges of a flat region moving in its plane (coplanar motion: the cubic vanishes
+  // identically) touch over intervals of time, reported by their first and last times and by
+  // the window's ends 0 and 1: the same times as the rational decision, on whole segments and
+  // on windows, in every order of the points.
+  std::mt19937 rng(151);
+  std::uniform_real_distribution<double> unit(-1, 1), cut(0, 1);
+  int decided = 0, with_contact = 0, pairs = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int axis = trial % 3;
+    const double c = 0.25 + 0.1 * unit(rng);
+    PrimitiveMotion m;
+    for (int i = 0; i < 4; ++i) {
+      m.start[i] = V(unit(rng), unit(rng), unit(rng));
+      m.end[i] = m.start[i] + V(unit(rng), unit(rng), unit(rng));
+      m.start[i][axis] = m.end[i][axis] = c;
+    }
+    double lo = cut(rng), hi = cut(rng);
+    if (hi < lo) std::swap(lo, hi);
+    for (const LocalWindow window : {LocalWindow{}, LocalWindow{lo, hi}, LocalWindow{0, hi}}) {
+      PrimitiveMotion other = m;
+      swap_points(other, 0, 3);
+      swap_points(other, 1, 2);  // b1, b0, a1, a0
+      for (const PrimitiveMotion& motion : {m, other}) {
+        ++pairs;
+        const std::vector<double> exact =
+            exact_contact_times(ContactType::edge_edge, to_rational(motion), window);
+        with_contact += !exact.empty();
+        IntervalCcdCounters counters;
+        const std::optional<std::vector<double>> times =
+            interval_contact_times(ContactType::edge_edge, motion, counters, window);
+        if (!times) continue;
+        ++decided;
+        ASSERT_EQ(*times, exact) << "trial " << trial << ", window " << window.lo << " "
+                                 << window.hi;
+      }
+    }
+  }
+  EXPECT_GT(with_contact, pairs / 5);
+  EXPECT_GT(decided, pairs * 9 / 10);
+}
+
 }  // namespace
 }  // namespace kinray
