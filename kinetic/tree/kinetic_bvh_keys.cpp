@@ -6,6 +6,8 @@
 // pass reads each node's realizers, its children's and its triangle's key positions once and
 // counts locally: it costs a few bottom-up passes, the fallbacks (~19k of 1.2M node sides per key
 // on wavy-sphere 100k) and the events between keys the rest.
+#include <cstring>
+
 #include "kinetic/tree/kinetic_bvh.h"
 
 namespace kinray {
@@ -43,6 +45,11 @@ void KineticBvh::refresh_mesh(uint32_t m) {
 void KineticBvh::settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live) {
   uint8_t* counted = &m_live[size_t(node) * 6];
   std::array<EventHandle, 6>& events = m_event[node];
+  // The common case at a key: every side settled as it was, no event pending (kNoEvent is all
+  // ones, so the handles' AND is kNoEvent only when none is pending). Nothing to change.
+  if (sides == 0x3F && std::memcmp(counted, live.data(), 6) == 0 &&
+      (events[0] & events[1] & events[2] & events[3] & events[4] & events[5]) == kNoEvent)
+    return;
   int64_t change = 0;
   for (int s = 0; s < 6; ++s) {
     if (((sides >> s) & 1) == 0) continue;
