@@ -83,9 +83,11 @@ class TreeShadowTracer final : public ShadowTracer {
     s["kind"] = name();
     s["frames"] = m_frames;
     s["time_s"] = {{"build", m_build_s}, {"update", m_update_s}};
-    // Of the build and the updates, the kinetic tree's mesh events (its key passes).
-    if (m_kinetic) s["time_s"]["mesh_events"] = m_kinetic->mesh_event_seconds();
-    if (m_kinetic) write_kinetic_tree_stats(*m_kinetic, s);
+    if (m_kinetic) {
+      // Of the updates, the kinetic tree's mesh events (its key passes).
+      s["time_s"]["mesh_events"] = m_kinetic->mesh_event_seconds();
+      write_kinetic_tree_stats(*m_kinetic, s);
+    }
     if (m_bottom_up) write_bottom_up_stats(*m_bottom_up, s);
   }
 

@@ -165,6 +165,12 @@ class FrustumBand {
     const auto& vs = m_scene.triangle_vertices(tri);
     return vs[size_t(kEdgeStart[e])] < vs[size_t(kEdgeEnd[e])] ? 1 : -1;
   }
+  /// The sign of edge e of tri's function at (x, y) just after s, from the band's cached edge
+  /// normals: CoverageRule's edge sign of the triangle's motion, bit for bit.
+  [[nodiscard]] int cached_edge_sign(uint32_t tri, int e, double x, double y, double s) const {
+    const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(tri, e));
+    return edge_direction(tri, e) > 0 ? edge_sign(n, x, y, s) : reversed_edge_sign(n, x, y, s);
+  }
   [[nodiscard]] std::array<int, 3> row_sides(const TriangleNow& tn, int row) const;
   /// Scans a record's covered interval: from its boundary slots (`full` = every column).
   /// `covers(x, y)` is the sign rule in the record's row (CoverageRule::covers_in_row for its two

@@ -111,20 +111,9 @@ uint32_t FrustumBand::create_record(uint32_t tri, int row, int edge_a, int edge_
   // The sign rule of CoverageRule::covers_in_row from the band's cached edge normals, as
   // covers_now takes it: the same signs, without building the triangle's three normals.
   const int o = ts.orientation;
-  std::array<const EdgeNormal*, 2> normals;
-  std::array<bool, 2> forward;
-  for (size_t k = 0; k < 2; ++k) {
-    const int e = m_records[rec].edge[k];
-    normals[k] = &m_motion.edge_normal(m_scene.edge_of_triangle(tri, e));
-    forward[k] = edge_direction(tri, e) > 0;
-  }
   auto covers = [&](double x, double y) {
-    for (size_t k = 0; k < 2; ++k) {
-      const int sign = forward[k] ? edge_sign(*normals[k], x, y, tn.s)
-                                  : reversed_edge_sign(*normals[k], x, y, tn.s);
-      if (sign != o) return false;
-    }
-    return true;
+    return cached_edge_sign(tri, edge_a, x, y, tn.s) == o &&
+           cached_edge_sign(tri, edge_b, x, y, tn.s) == o;
   };
   const auto [lo, hi] = scan_coverage(m_records[rec], o, covers, false);
   set_coverage(rec, lo, hi);
@@ -212,15 +201,13 @@ bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t bounda
   const size_t first = own != nullptr && r.boundary[1] == boundary ? 1 : 0;
   for (const size_t k : {first, 1 - first}) {
     const int e = r.edge[k];
-    const bool forward = edge_direction(r.triangle, e) > 0;
     int sign;
     if (own != nullptr && r.boundary[k] == boundary && own->v != 0) {
       // The given boundary's edge function along this column, already evaluated: a Horner
       // value that is not 0 is the sign, and the reversed normal's is its exact negation.
-      sign = (own->v > 0) == forward ? 1 : -1;
+      sign = (own->v > 0) == (edge_direction(r.triangle, e) > 0) ? 1 : -1;
     } else {
-      const EdgeNormal& n = m_motion.edge_normal(m_scene.edge_of_triangle(r.triangle, e));
-      sign = forward ? edge_sign(n, x, y, s) : reversed_edge_sign(n, x, y, s);
+      sign = cached_edge_sign(r.triangle, e, x, y, s);
     }
     if (sign != o) return false;
   }

@@ -185,7 +185,6 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
 void KineticBvh::handle_mesh(uint32_t m) {
   const auto start = std::chrono::steady_clock::now();
   const double t = m_sim.now();
-  const FlightplanMesh& mesh = m_meshes.mesh(m);
   const bool was_present = m_meshes.present(m);
   m_meshes.set_time(m, t);
   if (m_meshes.present(m) && !was_present)
@@ -194,7 +193,6 @@ void KineticBvh::handle_mesh(uint32_t m) {
     ++m_stats.events.remove;
   else
     ++m_stats.events.flightplan;
-  (void)mesh;
   const uint64_t changes = m_stats.realizer_changes;
   refresh_mesh(m);
   m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
