@@ -223,10 +223,6 @@ class Bisection {
   }
 
  private:
-  [[nodiscard]] Interval boundary(double k, int depth) const {
-    return piece_boundary(m_window, k, depth);
-  }
-
   bool classify(const Piece& piece, std::vector<ContactPiece>& contacts) {
     if (--m_budget < 0) return false;
     if (piece.cubic.certainly_nonzero()) return true;
@@ -235,8 +231,8 @@ class Bisection {
       if (piece.conditions[i].certainly_negative()) return true;
       all_positive = all_positive && piece.conditions[i].certainly_positive();
     }
-    const Interval start = boundary(piece.index, piece.depth),
-                   end = boundary(piece.index + 1, piece.depth);
+    const Interval start = piece_boundary(m_window, piece.index, piece.depth),
+                   end = piece_boundary(m_window, piece.index + 1, piece.depth);
     if (!all_positive && m_pair.separated({start.lo, end.hi})) return true;
     if (all_positive && piece.cubic.certainly_monotone()) {
       const int at_start = piece.cubic.start_sign(), at_end = piece.cubic.end_sign();
