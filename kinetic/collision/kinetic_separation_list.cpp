@@ -394,7 +394,7 @@ double KineticSeparationList::episode_end(const Record& r) const {
 }
 
 void KineticSeparationList::test_leaf(uint32_t id) {
-  const Record& r = m_records[id];
+  Record& r = m_records[id];
   const uint64_t pair = triangle_pair(r);
   const double end = episode_end(r);
   const auto [it, first_test] = m_tested_until.try_emplace(pair, end);
@@ -406,9 +406,10 @@ void KineticSeparationList::test_leaf(uint32_t id) {
   ++m_stats.leaf_tests;
   ++m_counters.triangle_pairs;
   const uint32_t ta = uint32_t(pair >> 32), tb = uint32_t(pair);
+  if (r.owned == kOwnersUnknown) r.owned = tested_primitives(*m_mesh_a, ta, *m_mesh_b, tb);
   const size_t first = m_pending.size();
   triangle_pair_contacts(*m_mesh_a, ta, *m_mesh_b, tb, m_segment_begin, m_segment_end, m_pending,
-                         m_counters.primitives, window);
+                         m_counters.primitives, window, r.owned);
   size_t kept = first;
   for (size_t k = first; k < m_pending.size(); ++k) {
     if (!m_found.insert(m_pending[k]).second) continue;  // found in an earlier window

@@ -92,7 +92,11 @@ class KineticSeparationList {
     bool alive = false, dirty = false;
     EventHandle event = kNoEvent;
     std::array<uint32_t, 2> next{kNone, kNone}, prev{kNone, kNone};  ///< node lists of a, b
+    /// A leaf pair: the primitive pairs its triangle pair tests (owners depend on the topology
+    /// alone), found at its first test and kept while the pair stays listed, over segments.
+    OwnedPrimitives owned = kOwnersUnknown;
   };
+  static constexpr OwnedPrimitives kOwnersUnknown = 0xFFFF;  ///< no bit 15 among the primitives
   enum class Reason : uint8_t { event, recertification, flightplan };
   enum class Outcome : uint8_t { unchanged, witness_change, overlap, separation };
 

@@ -95,35 +95,42 @@ bool triangles_adjacent(const std::array<std::uint32_t, 3>& a,
   return false;
 }
 
+OwnedPrimitives tested_primitives(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+                                  std::uint32_t tb) {
+  if (!a.around || !b.around) return kAllPrimitives;
+  return owned_primitives({a.triangles, a.around}, ta, {b.triangles, b.around}, tb,
+                          a.object == b.object);
+}
+
 void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window) {
+  triangle_pair_contacts(a, ta, b, tb, time_begin, time_end, out, counters, window,
+                         tested_primitives(a, ta, b, tb));
+}
+
+void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+                            std::uint32_t tb, double time_begin, double time_end,
+                            std::vector<Contact>& out, PrimitiveCcdCounters& counters,
+                            LocalWindow window, OwnedPrimitives owned) {
   const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
   const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
-  const bool owners = a.around && b.around, self = a.object == b.object;
-  const OwnerSide side_a{a.triangles, a.around}, side_b{b.triangles, b.around};
+  const auto has = [owned](int bit) { return ((owned >> bit) & 1) != 0; };
   for (int i = 0; i < 3; ++i) {
-    if (!owners || owns_vertex_face(side_a, ta, fa[i], side_b, tb, self))
+    if (has(2 * i))
       test_pair(ContactType::vertex_face, a, std::span(&fa[i], 1), b, fb, time_begin, time_end, out,
                 counters, window);
-    if (!owners || owns_vertex_face(side_b, tb, fb[i], side_a, ta, self))
+    if (has(2 * i + 1))
       test_pair(ContactType::vertex_face, b, std::span(&fb[i], 1), a, fa, time_begin, time_end, out,
                 counters, window);
   }
-  std::array<EdgeTriangles, 3> around_a, around_b;  // the triangles of each edge, once
-  if (owners)
-    for (int i = 0; i < 3; ++i) {
-      around_a[i] = edge_triangles(*a.around, {fa[i], fa[(i + 1) % 3]});
-      around_b[i] = edge_triangles(*b.around, {fb[i], fb[(i + 1) % 3]});
-    }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
+      if (!has(6 + 3 * i + j)) continue;
       const std::array<std::uint32_t, 2> ea = {fa[i], fa[(i + 1) % 3]};
       const std::array<std::uint32_t, 2> eb = {fb[j], fb[(j + 1) % 3]};
-      if (!owners || owns_edge_edge(side_a, ta, around_a[i], side_b, tb, around_b[j], self))
-        test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters,
-                  window);
+      test_pair(ContactType::edge_edge, a, ea, b, eb, time_begin, time_end, out, counters, window);
     }
 }
 

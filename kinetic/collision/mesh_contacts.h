@@ -65,6 +65,16 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window = {});
+/// The same tests restricted to `owned` (owned_primitives' bits, whatever the segments carry):
+/// for a caller that keeps the pair's owners from one segment to the next.
+void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+                            std::uint32_t tb, double time_begin, double time_end,
+                            std::vector<Contact>& out, PrimitiveCcdCounters& counters,
+                            LocalWindow window, OwnedPrimitives owned);
+/// The primitive pairs triangle_pair_contacts tests for (ta, tb): the owned ones when both
+/// segments carry the triangles around their vertices, else all fifteen.
+[[nodiscard]] OwnedPrimitives tested_primitives(const MeshSegment& a, std::uint32_t ta,
+                                                const MeshSegment& b, std::uint32_t tb);
 
 /// Sorts contacts in time order and removes the repeats that arise when a vertex or an edge
 /// belongs to several tested triangle pairs.

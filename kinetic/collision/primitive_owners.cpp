@@ -75,4 +75,25 @@ bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta, const EdgeTriangles& e
   return true;
 }
 
+OwnedPrimitives owned_primitives(const OwnerSide& a, std::uint32_t ta, const OwnerSide& b,
+                                 std::uint32_t tb, bool self) {
+  const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
+  const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
+  OwnedPrimitives owned = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (owns_vertex_face(a, ta, fa[i], b, tb, self)) owned |= OwnedPrimitives(1u << (2 * i));
+    if (owns_vertex_face(b, tb, fb[i], a, ta, self)) owned |= OwnedPrimitives(1u << (2 * i + 1));
+  }
+  std::array<EdgeTriangles, 3> around_a, around_b;  // the triangles of each edge, once
+  for (int i = 0; i < 3; ++i) {
+    around_a[i] = edge_triangles(*a.around, {fa[i], fa[(i + 1) % 3]});
+    around_b[i] = edge_triangles(*b.around, {fb[i], fb[(i + 1) % 3]});
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (owns_edge_edge(a, ta, around_a[i], b, tb, around_b[j], self))
+        owned |= OwnedPrimitives(1u << (6 + 3 * i + j));
+  return owned;
+}
+
 }  // namespace kinray

@@ -56,4 +56,14 @@ struct EdgeTriangles {
                                   const OwnerSide& b, std::uint32_t tb, const EdgeTriangles& eb,
                                   bool self);
 
+/// The primitive pairs a triangle pair owns, one bit each: bit 2 i is vertex i of ta against
+/// face tb, bit 2 i + 1 vertex i of tb against face ta, bit 6 + 3 i + j edge i of ta (from its
+/// vertex i to i + 1) against edge j of tb. It depends on the meshes' topology alone, so a
+/// structure that keeps a triangle pair over several segments (the kinetic separation list)
+/// computes it once.
+using OwnedPrimitives = std::uint16_t;
+constexpr OwnedPrimitives kAllPrimitives = 0x7FFF;
+[[nodiscard]] OwnedPrimitives owned_primitives(const OwnerSide& a, std::uint32_t ta,
+                                               const OwnerSide& b, std::uint32_t tb, bool self);
+
 }  // namespace kinray
