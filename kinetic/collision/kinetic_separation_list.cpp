@@ -397,10 +397,10 @@ void KineticSeparationList::test_leaf(uint32_t id) {
   Record& r = m_records[id];
   const uint64_t pair = triangle_pair(r);
   const double end = episode_end(r);
-  const auto [it, first_test] = m_tested_until.try_emplace(pair, end);
-  if (!first_test && it->second >= end) return;
-  const double begin = first_test ? m_sim.now() : std::max(m_sim.now(), it->second);
-  it->second = end;
+  const auto [until, first_test] = m_tested_until.try_emplace(pair, end);
+  if (!first_test && *until >= end) return;
+  const double begin = first_test ? m_sim.now() : std::max(m_sim.now(), *until);
+  *until = end;
   // A wider window only meets contacts some window finds anyway: m_found drops the repeats.
   const LocalWindow window = local_window(m_segment_begin, m_segment_end, begin, end);
   ++m_stats.leaf_tests;

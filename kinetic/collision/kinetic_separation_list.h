@@ -25,11 +25,11 @@
 #include <array>
 #include <cstdint>
 #include <set>
-#include <unordered_map>
 #include <vector>
 
 #include "kinetic/collision/ksl_stats.h"
 #include "kinetic/collision/mesh_contacts.h"
+#include "kinetic/collision/tested_windows.h"
 #include "kinetic/core/simulator.h"
 #include "kinetic/tree/kinetic_bvh.h"
 
@@ -172,7 +172,7 @@ class KineticSeparationList {
   const MeshSegment* m_mesh_b = nullptr;
   double m_segment_begin = 0, m_segment_end = 0;
   /// Per triangle pair tested on this segment: the (global) time up to which it was tested.
-  std::unordered_map<uint64_t, double> m_tested_until;
+  TestedWindows m_tested_until;
   std::set<Contact> m_found;       ///< contacts found on this segment (windows share their ends)
   std::vector<Contact> m_pending;  ///< a min-heap on Contact's order
   Contact m_last_released;

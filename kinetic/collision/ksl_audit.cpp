@@ -91,10 +91,10 @@ void KineticSeparationList::audit_record(uint32_t id, double t) const {
       (scheduled && !near(m_sim.queue().key(r.event).time, failure)))
     fail("the event is not at the certificate's failure time", t, r.a, r.b);
   if (r.state == State::leaf) {
-    const auto it = m_tested_until.find(triangle_pair(r));
-    if (it == m_tested_until.end())
+    const double* until = m_tested_until.find(triangle_pair(r));
+    if (until == nullptr)
       fail("a listed triangle pair was not tested on this segment", t, r.a, r.b);
-    if (it->second < episode_end(r) || it->second < t)
+    if (*until < episode_end(r) || *until < t)
       fail("a listed triangle pair was not tested up to its separation event", t, r.a, r.b);
   }
 }
