@@ -38,6 +38,9 @@ struct LinearCertificate {
   [[nodiscard]] double failure_time(double now) const {
     if (linear_holds_through(c0, c1, now - origin, end - origin))
       return std::numeric_limits<double>::infinity();
+    // Identically zero (two vertices moving together on the axis: a flat cloth's sides): never
+    // negative, as the slow path finds at the cost of a root search.
+    if (c0 == 0 && c1 == 0) return std::numeric_limits<double>::infinity();
     return failure_time_slow(now);
   }
   [[nodiscard]] double failure_time_slow(double now) const;
