@@ -154,6 +154,11 @@ class KineticBvh {
   /// provably stays through the new segment, decided from the key positions alone and settled (no
   /// failure time, no event); the others are left to update_side.
   uint8_t settle_at_key(uint32_t node);
+  /// The sides `open` of a node (tracked, active, realized) that no margin settled, settled when
+  /// the realizer ties with each competitor at both keys and has the lower id: identically zero
+  /// certificates, whose side update_side's tie-break keeps (a flat region). Fills `live` as
+  /// settle_at_key does; out of line, after its loop, so that the common case does not pay.
+  uint8_t settle_ties(uint32_t node, uint8_t open, std::array<uint8_t, 6>& live) const;
   /// Those sides keep their realizer with `live` certificates each and no event.
   void settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live);
   void handle(const EventKey& key, uint64_t payload);

@@ -111,7 +111,40 @@ uint8_t KineticBvh::settle_at_key(uint32_t node) {
       settled |= uint8_t(1u << s);
     }
   }
+  const uint8_t open = uint8_t(tracked & ~settled);
+  if (open != 0) settled |= settle_ties(node, open, live);
   if (settled != 0) settle_sides(node, settled, live);
+  return settled;
+}
+
+uint8_t KineticBvh::settle_ties(uint32_t node, uint8_t open, std::array<uint8_t, 6>& live) const {
+  const BvhNode& n = m_topology.nodes[node];
+  const std::array<uint32_t, 6>& realizer = m_realizer[node];
+  const double margin = m_key_margin;
+  uint8_t settled = 0;
+  for (int s = 0; s < 6; ++s) {
+    const uint32_t r = realizer[size_t(s)];
+    if (((open >> s) & 1) == 0 || r == kNoVertex) continue;
+    const int axis = side_axis(s), sign = side_sign(s);
+    // each competitor q: beyond at both keys, or tied at both keys with r the lower id
+    const auto holds = [&](uint32_t q) {
+      return q == r || m_meshes.beyond_at_both_keys(r, q, axis, sign, margin) ||
+             (r < q && m_meshes.tied_at_both_keys(r, q, axis));
+    };
+    if (n.leaf()) {
+      const std::array<uint32_t, 3>& v = m_leaf_vertices[node];
+      if ((r != v[0] && r != v[1] && r != v[2]) || !holds(v[0]) || !holds(v[1]) || !holds(v[2]))
+        continue;
+      live[size_t(s)] = 2;
+    } else {
+      const uint32_t l = m_realizer[n.left][size_t(s)], rr = m_realizer[n.right][size_t(s)];
+      if (l == kNoVertex || rr == kNoVertex || l == rr || (r != l && r != rr) ||
+          !holds(r == l ? rr : l))
+        continue;
+      live[size_t(s)] = 1;
+    }
+    settled |= uint8_t(1u << s);
+  }
   return settled;
 }
 

@@ -93,6 +93,12 @@ double TreeMeshes::next_change(uint32_t m, double t) const {
   return next;
 }
 
+bool TreeMeshes::tied_at_both_keys(uint32_t r, uint32_t q, int axis) const {
+  const uint32_t m = m_vertex_mesh[r];
+  if (m_vertex_mesh[q] != m || m_still[m]) return false;
+  return m_a[r][axis] == m_a[q][axis] && m_end[r][axis] == m_end[q][axis];
+}
+
 LinearCertificate TreeMeshes::beyond(uint32_t r, uint32_t q, int axis, int sign) const {
   const bool swap = q < r;
   const uint32_t lo = swap ? q : r, hi = swap ? r : q;

@@ -120,6 +120,10 @@ class TreeMeshes {
     return sign * (m_a[r][axis] - m_a[q][axis]) > margin &&  // a is the key position at the origin
            sign * (m_end[r][axis] - m_end[q][axis]) > margin;
   }
+  /// r and q (of one moving mesh) have the same coordinate on the axis at both keys: they move
+  /// together there, their certificate is identically zero and the lower id realizes the side
+  /// (a flat region's sides, which no margin settles).
+  [[nodiscard]] bool tied_at_both_keys(uint32_t r, uint32_t q, int axis) const;
   /// Vertex v's positions at the two keys of its mesh's current segment (equal when still): what
   /// the key pass of the trees compares (kinetic_bvh_keys.cpp).
   [[nodiscard]] const Eigen::Vector3d& key_start(uint32_t v) const { return m_a[v]; }
