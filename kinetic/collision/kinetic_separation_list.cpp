@@ -258,15 +258,23 @@ void KineticSeparationList::separate(uint32_t id, int witness, double failure) {
 
 KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id, const Gaps& gaps) {
   const double now = m_sim.now();
+  // The six gaps share their origin and end, and one value per gap answers both questions: its
+  // sign just after now (sign_after), and whether pad - gap_d, the exact negation (its value is
+  // exactly -v), holds through the segment (linear_holds_through); only a gap that may turn
+  // positive in the segment gets the full failure_time.
+  const double s_now = now - gaps[0].origin, s_end = gaps[0].end - gaps[0].origin;
   double first = kNever;
   for (const LinearCertificate& c : gaps) {
-    if (c.sign_after(now) > 0) {
+    const double v = c.c0 + c.c1 * s_now;
+    if (v > 0 || (v == 0 && c.c1 > 0)) {
       double failure = kNever;
       const int witness = find_witness(gaps, failure);  // before `failure` is read
       separate(id, witness, failure);
       return Outcome::separation;
     }
-    first = std::min(first, c.negated().failure_time(now));  // pad - gap_d turns negative
+    const bool holds =
+        (v < 0 || c.c1 < 0) && (c.c1 < 0 || (std::isfinite(s_end) && c.c0 + c.c1 * s_end < 0));
+    if (!holds) first = std::min(first, c.negated().failure_time(now));  // pad - gap_d > 0
   }
   schedule(id, first);
   if (m_records[id].state == State::leaf) test_leaf(id);
