@@ -192,5 +192,57 @@ TEST(ExactCertificate, FailuresMatchExactIsolationOnNearlyCancellingProducts) {
   EXPECT_GT(undecided, 100);
 }
 
+// Depth certificates of two triangles whose depths cross cleanly inside the window (the common
+// case of a pixel order, cloth's folds): the envelopes are a few ulps apart at the crossing, and
+// exact_first_failure must land on the double that exact isolation finds. decided_despite must
+// answer as the search of both envelopes' first failures, compared, does.
+TEST(ExactCertificate, CleanCrossingsMatchExactIsolation) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> coef(-2, 2), unit(0, 1);
+  auto full_decided = [](const Polynomial& f, const Polynomial& error, double s_now, double s_end) {
+    Polynomial lower = f, upper = f;
+    lower.degree = upper.degree = std::max(f.degree, error.degree);
+    for (int i = 0; i <= lower.degree; ++i) {
+      lower.c[size_t(i)] = f.c[size_t(i)] - error.c[size_t(i)];
+      upper.c[size_t(i)] = f.c[size_t(i)] + error.c[size_t(i)];
+    }
+    auto decided = [&](const Polynomial& below, const Polynomial& above) {
+      if (sign_after(below, s_now) < 0) return sign_after(above, s_now) < 0;
+      const std::optional<double> low = first_failure(below, s_now, s_end);
+      if (!low) return true;
+      const std::optional<double> high = first_failure(above, s_now, s_end);
+      return high && *high == *low;
+    };
+    return decided(lower, upper) && decided(-upper, -lower);
+  };
+  int failures = 0, undecided = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Polynomial p1{coef(rng), coef(rng), coef(rng), coef(rng)};
+    // D without a root in the window (a triangle seen edge-on is not ordered by depth).
+    const Polynomial q1{1 + unit(rng), unit(rng) * 0.3, unit(rng) * 0.3};
+    // p2 / q2 crosses p1 / q1 near a random time of the window (N cubic, D quadratic).
+    const double r = unit(rng), slope = coef(rng);
+    const Polynomial p2 = p1 + Polynomial{-r * slope, slope} * q1;
+    const Polynomial q2 = i % 3 == 0 ? q1 : q1 + Polynomial{0, 1e-3 * unit(rng)};
+    const double s_now = unit(rng) * 0.5, s_end = i % 5 == 0 ? kInf : 0.5 + unit(rng);
+    for (int sign : {1, -1}) {
+      const RationalPolynomial ref = reference(p1, q1, p2, q2, sign);
+      if (ref.is_zero()) continue;
+      const Polynomial rounded = sign * (p1 * q1 - p2 * q2);
+      const Polynomial error = product_difference_error(p1, q1, p2, q2);
+      const double end = std::isfinite(s_end) ? s_end : 8.0;
+      const bool decided = decided_despite(rounded, error, s_now, end);
+      EXPECT_EQ(decided, full_decided(rounded, error, s_now, end)) << i << " sign " << sign;
+      undecided += !decided;
+      const auto exact = exact_product_difference(p1, q1, p2, q2, sign);
+      const std::optional<double> got = exact_first_failure(*exact, s_now, end);
+      ASSERT_EQ(got, reference_failure(ref, s_now, end)) << i << " sign " << sign;
+      failures += got.has_value() && *got > s_now;
+    }
+  }
+  EXPECT_GT(failures, 500);
+  EXPECT_GT(undecided, 500);
+}
+
 }  // namespace
 }  // namespace kinray
