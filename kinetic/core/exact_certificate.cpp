@@ -142,6 +142,33 @@ Polynomial with_error(const Polynomial& f, const Polynomial& error, double k) {
   return out;
 }
 
+/// A double t in (low, s_end] with sign_after(upper, t) < 0, galloping from low (>= 0) with
+/// steps doubling from about an ulp; nullopt after 64 steps or at s_end.
+std::optional<double> upper_failure_near(const Polynomial& upper, double low, double s_end) {
+  double step = std::max(std::abs(low), 1e-300) * 0x1p-52;
+  for (int k = 0; k < 64; ++k, step *= 2) {
+    const double t = std::min(std::max(low + step, detail::next_up(low)), s_end);
+    if (!(t > low)) return std::nullopt;
+    if (sign_after(upper, t) < 0) return t;
+    if (t == s_end) return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// A guess for the exact crossing in (low, hi]: where the close polynomial's signs switch,
+/// by bisection in bit space (low < hi); hi when they do not. Only the search's speed depends
+/// on it: F is proven monotone on [low, hi] by then.
+double close_crossing(const Polynomial& close, double low, double hi) {
+  double a = detail::next_up(low), b = hi;
+  if (!(a < b) || sign_after(close, a) < 0) return std::min(a, hi);
+  if (sign_after(close, b) >= 0) return hi;
+  while (detail::next_up(a) < b) {
+    const double m = detail::bit_midpoint(a, b);
+    (sign_after(close, m) < 0 ? b : a) = m;
+  }
+  return b;
+}
+
 }  // namespace
 
 std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial& p1,
@@ -204,13 +231,21 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
     // F > 0 at every double of (from, low); F < 0 just after `high`.
     const std::optional<double> low = first_failure(lower, from, s_end);
     if (!low) return std::nullopt;
-    const std::optional<double> high = first_failure(upper, from, s_end);
-    if (high && *high == *low) return low;
+    // The upper envelope fails at low (then F does), or a little after it, where the close
+    // polynomial crosses: galloping on its signs from low finds a double where it has failed
+    // (F < 0 just after it) in a few steps, sparing its search over the whole window.
+    if (sign_after(upper, *low) < 0) return low;
+    std::optional<double> high = upper_failure_near(upper, *low, s_end);
+    if (!high) {
+      high = first_failure(upper, from, s_end);
+      if (high && *high == *low) return low;
+    }
     // Without `high`: up to where the lower envelope holds again (F > 0 there).
     const std::optional<double> back = high ? high : first_failure(-lower, *low, s_end);
     const double hi = back ? *back : s_end;
     if (!std::isfinite(hi) || hi < *low) break;
-    if (sign_after(falling, *low) > 0 && !first_failure(falling, *low, hi)) {
+    if (sign_after(falling, *low) > 0 &&
+        (holds_through(falling, *low, hi) || !first_failure(falling, *low, hi))) {
       // F decreasing on [low, hi]: one crossing at most, pinned down by the exact sign from
       // the close polynomial's own failure.
       if (negative(*low)) return low;
@@ -220,8 +255,7 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
         from = hi;
         continue;
       }
-      const double guess = std::clamp(first_failure(F.close, *low, hi).value_or(hi),
-                                      std::nextafter(*low, kInf), hi);
+      const double guess = close_crossing(F.close, *low, hi);
       const double step = std::max(std::abs(guess), 1e-300) * 0x1p-52;
       const std::optional<double> r = detail::first_negative_near(
           negative, guess, *low, hi, step, std::numeric_limits<int>::max());
