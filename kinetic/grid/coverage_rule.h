@@ -29,22 +29,48 @@ namespace kinray {
   return sign_after(f, s) >= 0 ? 1 : -1;
 }
 
+/// sign_plus(f, s) for f = c0 + c1 s + c2 s^2 stored with degree 2, without building it: the
+/// operations of Horner's rule and of sign_after_root's Taylor shift ((c1 + s c2) + s c2, then
+/// c2), written out.
+[[nodiscard]] inline int quadratic_sign_plus(double c0, double c1, double c2, double s) {
+  const double v = (c2 * s + c1) * s + c0;
+  if (v > 0) return 1;
+  if (v < 0) return -1;
+  const double d = (c1 + s * c2) + s * c2;
+  if (d != 0) return d < 0 ? -1 : 1;  // NaN: sign_after_root's 0, read as +1
+  return c2 < 0 ? -1 : 1;
+}
+
+/// sign_plus(n.perturbed(x, y), s) for the normal n times `k` (+1, or -1 for the reversed
+/// normal, an exact negation of each coefficient): the first of E(d), n_x, n_y that is not the
+/// zero polynomial, its sign read by quadratic_sign_plus, without building the polynomials.
+[[nodiscard]] inline int perturbed_sign(const EdgeNormal& n, double k, double x, double y,
+                                        double s) {
+  const Eigen::Vector3d a = k * n.c0, b = k * n.c1, c = k * n.c2;
+  const double e0 = a.x() * x + a.y() * y + a.z(), e1 = b.x() * x + b.y() * y + b.z(),
+               e2 = c.x() * x + c.y() * y + c.z();
+  if (e0 != 0 || e1 != 0 || e2 != 0) return quadratic_sign_plus(e0, e1, e2, s);
+  if (a.x() != 0 || b.x() != 0 || c.x() != 0) return quadratic_sign_plus(a.x(), b.x(), c.x(), s);
+  return quadratic_sign_plus(a.y(), b.y(), c.y(), s);
+}
+
 /// The sign of edge function n . d along the perturbed ray of (x, y, 1) just after s where
-/// Horner's value there is an exact 0 (rare): out of line, so that the callers' fast paths keep
-/// small frames.
+/// Horner's value there is an exact 0 (rare, but thousands per frame on a flat cloth): out of
+/// line, so that the callers' fast paths keep small frames.
 [[gnu::noinline]] inline int perturbed_edge_sign(const EdgeNormal& n, double x, double y, double s) {
-  return sign_plus(n.perturbed(x, y), s);
+  return perturbed_sign(n, 1, x, y, s);
 }
 /// The same for the reversed normal (EdgeNormal::reversed).
 [[gnu::noinline]] inline int perturbed_reversed_edge_sign(const EdgeNormal& n, double x, double y,
                                                          double s) {
-  return sign_plus(n.reversed().perturbed(x, y), s);
+  return perturbed_sign(n, -1, x, y, s);
 }
 
 /// sign_plus(row_side(v, y), s) where Horner's value is not decided (an exact 0 or not a number),
-/// out of line like the edge signs' fallbacks.
-[[gnu::noinline]] inline int row_side_sign_at_root(const PointMotion& v, double y, double s) {
-  return sign_plus(row_side(v, y), s);
+/// out of line like the edge signs' fallbacks: sign_after_root's sign of the linear coefficient,
+/// 0 (and a NaN) read as +1.
+[[gnu::noinline]] inline int row_side_sign_at_root(const PointMotion& v, double y, double) {
+  return v.b.y() - y * v.b.z() < 0 ? -1 : 1;
 }
 
 /// sign_plus(row_side(v, y), s): the side of the row plane of y that v is on just after s, +1 on

@@ -167,6 +167,42 @@ TEST(CoverageRule, RowSideSignIsThePolynomialsSign) {
   EXPECT_GT(zeros, 2000);  // the exact zeros, where the value alone does not decide, are tested
 }
 
+TEST(CoverageRule, PerturbedEdgeSignIsThePolynomialsSign) {
+  // Small integer normals at dyadic rays and times: many exact zeros of E(d), of n_x and of the
+  // Taylor shift's slope, where the written-out signs must take the polynomials' branches.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-10, 10);
+  std::uniform_int_distribution<int> small(-1, 1);
+  int zero_values = 0, zero_rays = 0;
+  for (int i = 0; i < 100000; ++i) {
+    EdgeNormal n;
+    double x, y, s;
+    if (i % 4 == 0) {
+      n.c0 = Vec(u(rng), u(rng), u(rng));
+      n.c1 = Vec(u(rng), u(rng), u(rng));
+      n.c2 = Vec(u(rng), u(rng), u(rng));
+      x = u(rng) / 10;
+      y = u(rng) / 10;
+      s = u(rng);
+    } else {
+      auto v = [&] { return Vec(small(rng), small(rng), small(rng)); };
+      n.c0 = v();
+      n.c1 = i % 3 == 0 ? Vec(0, 0, 0) : v();
+      n.c2 = i % 5 == 0 ? Vec(0, 0, 0) : v();
+      x = std::ldexp(double(small(rng)), -1);
+      y = std::ldexp(double(small(rng)), -1);
+      s = std::ldexp(double(small(rng)), -1);
+    }
+    zero_values += n.along(x, y)(s) == 0;
+    zero_rays += n.along(x, y).is_zero();
+    ASSERT_EQ(perturbed_edge_sign(n, x, y, s), sign_plus(n.perturbed(x, y), s)) << "draw " << i;
+    ASSERT_EQ(perturbed_reversed_edge_sign(n, x, y, s), sign_plus(n.reversed().perturbed(x, y), s))
+        << "draw " << i;
+  }
+  EXPECT_GT(zero_values, 5000);
+  EXPECT_GT(zero_rays, 1000);
+}
+
 TEST(SlotCircle, LocatesAndCrossesOnTheProjectiveCircle) {
   const SlotCircle circle{5};
   EXPECT_EQ(circle.watched(0), (std::pair<int, int>{0, 4}));
