@@ -175,7 +175,7 @@ std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial
                                                                 const Polynomial& q1,
                                                                 const Polynomial& p2,
                                                                 const Polynomial& q2, int sign) {
-  ExactPolynomial f{p1, q1, p2, q2, sign, {}, {}};
+  ExactPolynomial f{p1, q1, p2, q2, sign, {}, {}, {}, {}};
   const int n =
       std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
   f.close.degree = f.close_error.degree = n;
@@ -199,6 +199,8 @@ std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial
     // (gamma_10 |c|): 16 u |c| + 64 u^2 magnitude, with room to spare.
     f.close_error.c[size_t(k)] = 16 * kU * std::abs(c) + 64 * kU * kU * magnitude;
   }
+  f.lower = with_error(f.close, f.close_error, -1);
+  f.upper = with_error(f.close, f.close_error, 1);
   return std::make_shared<const ExactPolynomial>(std::move(f));
 }
 
@@ -206,10 +208,20 @@ std::shared_ptr<const ExactPolynomial> exact_negated(const ExactPolynomial& f) {
   ExactPolynomial g = f;
   g.sign = -f.sign;
   g.close = -f.close;
+  // (-c) -/+ e rounds to the negation of c +/- e.
+  g.lower = -f.upper;
+  g.upper = -f.lower;
   return std::make_shared<const ExactPolynomial>(std::move(g));
 }
 
 int exact_sign_after(const ExactPolynomial& f, double s) {
+  // F lies between the envelopes' Horner values (s >= 0): where one of them clears zero on its
+  // side, F(s) has that sign (most times a search asks about are a few ulps from the crossing,
+  // but the window's start and the bracket's end are not).
+  if (s >= 0) {
+    if (f.lower(s) > 0) return 1;
+    if (f.upper(s) < 0) return -1;
+  }
   const int filtered = filtered_sign(f, s);
   if (filtered != 2) return filtered;
   return sign_after_at(rational(f), mpq_class(s));
@@ -221,8 +233,8 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   // F lies between the envelopes (s >= 0). Invariant: F > 0 just after `from` and at every
   // double of (s_now, from]. Each round either decides, or proves F > 0 up to where the lower
   // envelope holds again, or gives up to exact isolation.
-  const Polynomial lower = with_error(F.close, F.close_error, -1);
-  const Polynomial upper = with_error(F.close, F.close_error, 1);
+  const Polynomial& lower = F.lower;
+  const Polynomial& upper = F.upper;
   const Polynomial rising = with_error(F.close.derivative(), F.close_error.derivative(), -2);
   const Polynomial falling = -with_error(F.close.derivative(), F.close_error.derivative(), 2);
   double from = s_now;

@@ -27,6 +27,10 @@ struct ExactPolynomial {
   /// (compensated sums of exact products), and a bound on its distance to the exact polynomial
   /// with room for Horner's rounding: the envelopes of the failure-time search.
   Polynomial close, close_error;
+  /// close -/+ close_error, rounded: F lies strictly between their Horner values for s >= 0, so
+  /// that a sign of either that clears zero the right way is F's sign (exact_sign_after's first
+  /// filter).
+  Polynomial lower, upper;
 };
 
 /// The exact form of sign (p1 q1 - p2 q2).
