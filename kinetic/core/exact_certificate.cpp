@@ -316,7 +316,11 @@ bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
     const std::optional<double> high = first_failure(above, s_now, s_end);
     return high && *high == *low;
   };
-  return decided(lower, upper) && decided(-upper, -lower);
+  if (!decided(lower, upper)) return false;
+  // -f's envelopes are -upper and -lower, whose signs are the negated ones (Horner's value and
+  // the Taylor shift negate exactly): the common case, -f broken now, needs neither polynomial.
+  if (sign_after(upper, s_now) > 0) return sign_after(lower, s_now) > 0;
+  return decided(-upper, -lower);
 }
 
 }  // namespace kinray
