@@ -90,6 +90,18 @@ class EventQueue {
     KINRAY_DCHECK(m_size > 0);
     return m_heap[kOffset].hint;
   }
+  /// The same for the event after the top one, when it is in the heap (the earliest of the top's
+  /// children; equal times ordered arbitrarily), else kNoEvent: a guess to prefetch by, two
+  /// events ahead.
+  [[nodiscard]] uint32_t second_payload_hint() const {
+    if (m_size < 2) return kNoEvent;
+    const uint32_t children = m_size > kArity ? kArity : m_size - 1;
+    const Node* child = m_heap + kOffset + 1;
+    uint32_t earliest = 0;
+    for (uint32_t i = 1; i < children; ++i)
+      if (child[i].time < child[earliest].time) earliest = i;
+    return child[earliest].hint;
+  }
   [[nodiscard]] EventHandle top() const {
     KINRAY_DCHECK(m_size > 0);  // settle() keeps the heap non-empty while the far list is not
     return m_heap[kOffset].handle;

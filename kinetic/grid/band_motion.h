@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "kinetic/grid/edge_normal_cache.h"
@@ -46,9 +47,13 @@ class BandMotion {
   /// The normal p x q of global edge `edge` in its own direction (GridScene::edge_vertices),
   /// bit for bit edge_normal() of its end points' motions, built once per segment.
   [[nodiscard]] const EdgeNormal& edge_normal(uint32_t edge) const {
-    const auto& ends = m_scene->edge_vertices(edge);
-    return m_edges.get(edge, m_vertices[ends[0]], m_vertices[ends[1]]);
+    return m_edges.get_lazily(edge, [&] {
+      const auto& ends = m_scene->edge_vertices(edge);
+      return std::pair{&m_vertices[ends[0]], &m_vertices[ends[1]]};
+    });
   }
+  /// Starts fetching edge_normal(edge)'s cache entry.
+  void prefetch_edge_normal(uint32_t edge) const { m_edges.prefetch(edge); }
 
   /// N and D of triangle tri along pixel (column, row), in the local time of `origin`. A band is
   /// single-threaded, so a small memo of recent ones is safe: an insertion into a pixel's order

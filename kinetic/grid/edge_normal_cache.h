@@ -25,6 +25,24 @@ class EdgeNormalCache {
     if (m_stamps[edge] != m_generation) build(edge, p, q);
     return m_normals[edge];
   }
+  /// The same, with the end points' motions asked for only when the normal is built
+  /// (`ends()` returns pointers to p and q): a hit reads the stamp and the normal alone, not the
+  /// edge's end points, a third random line of a boundary event.
+  template <class Ends>
+  [[nodiscard]] const EdgeNormal& get_lazily(uint32_t edge, Ends&& ends) {
+    if (m_stamps[edge] != m_generation) [[unlikely]] {
+      const auto [p, q] = ends();
+      build(edge, *p, *q);
+    }
+    return m_normals[edge];
+  }
+  /// Starts fetching what get() of the edge reads (a software prefetch).
+  void prefetch(uint32_t edge) const {
+    __builtin_prefetch(&m_stamps[edge]);
+    const char* normal = reinterpret_cast<const char*>(&m_normals[edge]);
+    __builtin_prefetch(normal);
+    __builtin_prefetch(normal + sizeof(EdgeNormal) - 1);
+  }
   /// Forgets every normal (some vertex motions changed).
   void invalidate() {
     if (++m_generation == 0) {  // wrapped: no stale stamp may match

@@ -94,6 +94,7 @@ void FrustumBand::handle_boundary(uint32_t id) {
   EdgeBoundary& b = m_boundaries[id];
   SlotTracker& st = b.tracker;
   st.event = kNoEvent;
+  prefetch_other_normals(id);  // read by pass_column's coverage tests, after the schedule
   const EdgeNow en = edge_now(b.edge);
   const EdgeNormal& edge = m_motion.edge_normal(en.edge);
   const double y = m_scene.row_y(b.row);

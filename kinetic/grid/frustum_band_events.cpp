@@ -44,9 +44,14 @@ void FrustumBand::start(double t0) {
 }
 
 void FrustumBand::advance_to(double t) {
-  // Most events are boundary events, whose payload names their boundary: while the queue pops,
-  // fetch the popped boundary's edge end points, records and the two pixels it watches (one of
-  // them changes), and the next event's boundary (a wrong guess costs one prefetch).
+  // Most events are boundary events, whose payload names their boundary, and a boundary event
+  // reads memory far apart: the boundary, its two records, then for each record its triangle's
+  // orientation, vertices and edges and its other edge's normal (covers_now). Those are fetched
+  // in stages, each a step ahead of the one that reads it, while the queue works and the
+  // previous event is handled: the boundary two events ahead (the heap's second event), its
+  // records one event ahead, the records' triangles and normals as the event pops. A wrong guess
+  // (the next event is not a boundary event, or an event scheduled meanwhile comes first) costs
+  // a few useless fetches.
   struct Prefetch {
     const FrustumBand& band;
     void before_pop(const EventKey& key, uint64_t payload) const {
@@ -55,8 +60,9 @@ void FrustumBand::advance_to(double t) {
       const auto& ends = band.m_scene.edge_vertices(b.edge);
       __builtin_prefetch(&band.m_motion.vertex(ends[0]));
       __builtin_prefetch(&band.m_motion.vertex(ends[1]));
+      band.m_motion.prefetch_edge_normal(b.edge);
       for (uint32_t rec : b.records)
-        if (rec != kNoRecord) __builtin_prefetch(&band.m_records[rec]);
+        if (rec != kNoRecord) band.prefetch_coverage(band.m_records[rec]);
       const int slot = b.tracker.slot;
       if (slot > 0) {
         band.m_orders->prefetch(band.pixel_index(slot - 1, b.row));
@@ -64,8 +70,12 @@ void FrustumBand::advance_to(double t) {
       }
     }
     void after_pop(const EventQueue& queue) const {
-      const uint32_t id = queue.top_payload_hint();
-      if (id < band.m_boundaries.size()) __builtin_prefetch(&band.m_boundaries[id]);
+      const uint32_t next = queue.top_payload_hint();
+      if (next < band.m_boundaries.size())
+        for (uint32_t rec : band.m_boundaries[next].records)
+          if (rec != kNoRecord) __builtin_prefetch(&band.m_records[rec]);
+      const uint32_t second = queue.second_payload_hint();
+      if (second < band.m_boundaries.size()) __builtin_prefetch(&band.m_boundaries[second]);
     }
   };
   KINRAY_CHECK_MSG(t >= m_sim.now(), "the kinetic grid cannot go back in time");

@@ -186,6 +186,20 @@ void FrustumBand::rescan_record(uint32_t rec, const TriangleNow& tn, bool full) 
   set_coverage(rec, lo, hi);
 }
 
+void FrustumBand::prefetch_coverage(const RowRecord& r) const {
+  __builtin_prefetch(&m_triangles[r.triangle]);
+  m_scene.prefetch_triangle(r.triangle);
+}
+
+void FrustumBand::prefetch_other_normals(uint32_t boundary) const {
+  for (uint32_t rec : m_boundaries[boundary].records) {
+    if (rec == kNoRecord) continue;
+    const RowRecord& r = m_records[rec];
+    const size_t other = r.boundary[0] == boundary ? 1 : 0;
+    m_motion.prefetch_edge_normal(m_scene.edge_of_triangle(r.triangle, r.edge[other]));
+  }
+}
+
 bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t boundary,
                              const EdgeOnRay* own) const {
   const RowRecord& r = m_records[rec];

@@ -63,6 +63,11 @@ class GridScene {
   [[nodiscard]] uint32_t edge_of_triangle(uint32_t tri, int e) const {
     return m_triangle_edges[tri][size_t(e)];
   }
+  /// Starts fetching what triangle_vertices(tri) and edge_of_triangle(tri, e) read.
+  void prefetch_triangle(uint32_t tri) const {
+    __builtin_prefetch(&m_triangle_vertices[tri]);
+    __builtin_prefetch(&m_triangle_edges[tri]);
+  }
   /// The end points of an edge in increasing global id order: the direction its edge function
   /// (p x q) is taken in. A triangle whose edge runs the other way sees the negated function.
   [[nodiscard]] const std::array<uint32_t, 2>& edge_vertices(uint32_t edge) const {
