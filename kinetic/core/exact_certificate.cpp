@@ -239,9 +239,18 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   const Polynomial falling = -with_error(F.close.derivative(), F.close_error.derivative(), 2);
   double from = s_now;
   auto negative = [&](double t) { return exact_sign_after(F, t) < 0; };
+  // The proofs below read "no failure before" from Bernstein searches on the envelopes and the
+  // slope's; a search that passed over a stretch at its noise level proves nothing there (the
+  // lower envelope of a near double root of F dips below zero by less than its Bernstein
+  // rounding, and F with it): exact isolation decides then.
+  bool noise = false;
+  auto holds = [&](const Polynomial& g, double a, double b) {
+    return !first_failure(g, a, b, noise) && !noise;
+  };
   for (int round = 0; round < 8; ++round) {
     // F > 0 at every double of (from, low); F < 0 just after `high`.
-    const std::optional<double> low = first_failure(lower, from, s_end);
+    const std::optional<double> low = first_failure(lower, from, s_end, noise);
+    if (noise) break;
     if (!low) return std::nullopt;
     // The upper envelope fails at low (then F does), or a little after it, where the close
     // polynomial crosses: galloping on its signs from low finds a double where it has failed
@@ -257,7 +266,7 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
     const double hi = back ? *back : s_end;
     if (!std::isfinite(hi) || hi < *low) break;
     if (sign_after(falling, *low) > 0 &&
-        (holds_through(falling, *low, hi) || !first_failure(falling, *low, hi))) {
+        (holds_through(falling, *low, hi) || holds(falling, *low, hi))) {
       // F decreasing on [low, hi]: one crossing at most, pinned down by the exact sign from
       // the close polynomial's own failure.
       if (negative(*low)) return low;
@@ -275,7 +284,7 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
       break;
     }
     // F increasing on [low, hi]: positive there (it is just before low, or after from).
-    if (high || !(sign_after(rising, *low) > 0 && !first_failure(rising, *low, hi))) break;
+    if (high || !(sign_after(rising, *low) > 0 && holds(rising, *low, hi))) break;
     if (!back) return std::nullopt;  // F > 0 up to s_end
     from = hi;
   }

@@ -206,6 +206,7 @@ struct Walker {
   bool stop_at_first = true;
   std::vector<double>* out = nullptr;
   bool done = false;
+  bool noise = false;  // a stretch passed over unsettled (first_failure's `noise`)
   std::optional<double> first;
 
   // Observation: f has (certain) sign sigma at p; fallback points q1, q2 (later than p, inside
@@ -223,7 +224,10 @@ struct Walker {
         break;
       }
     }
-    if (hi == kInf) return;
+    if (hi == kInf) {
+      noise = true;
+      return;
+    }
     const double r = refine(f, last, hi, sigma);
     if (out) out->push_back(r);
     if (!first) first = r;
@@ -269,7 +273,10 @@ void isolate(const Polynomial& p, double x0, double x1, bool reversed, Walker& w
       }
       c.kind = LeafKind::kUnresolved;
     }
-    if (c.kind == LeafKind::kUnresolved) continue;
+    if (c.kind == LeafKind::kUnresolved) {
+      walker.noise = true;
+      continue;
+    }
     // Observation points in increasing s.
     double s_first, s_mid, s_last;
     int sign_first, sign_last;
@@ -377,7 +384,13 @@ int sign_after_root(const Polynomial& f, double s) {
 }
 
 std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end) {
+  bool noise = false;
+  return first_failure(f, s_now, s_end, noise);
+}
+
+std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end, bool& noise) {
   ++t_stats.calls;
+  noise = false;
   KINRAY_DCHECK(std::isfinite(s_now) && !std::isnan(s_end));
   const int n = f.effective_degree();
   if (n <= 1) {
@@ -408,6 +421,7 @@ std::optional<double> first_failure(const Polynomial& f, double s_now, double s_
     const int end_sign = sign_after(f, s_end);
     walker.observe(s_end, end_sign, s_end, s_end);
   }
+  noise = walker.noise;
   return walker.first;
 }
 

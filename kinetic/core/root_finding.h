@@ -31,6 +31,14 @@ namespace kinray {
 /// The result r > s_now satisfies sign_after(f, r) < 0 as evaluated in double, so a certificate
 /// -f rebuilt at r holds just after r (no re-firing at the same instant).
 [[nodiscard]] std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end);
+/// first_failure, the same answer, and `noise` set when the search passed over a stretch of
+/// (s_now, answer] where f is within its rounding of zero (a leaf of the isolation at the noise
+/// level, or a certain sign that Horner's values did not confirm) and left unsettled: there
+/// Horner's values may be negative at doubles before the answer, or without an answer at all
+/// (an envelope a few ulps below a near double root). Callers that take "no earlier failure"
+/// as a proof about another polynomial (exact_first_failure's envelopes) check it.
+[[nodiscard]] std::optional<double> first_failure(const Polynomial& f, double s_now, double s_end,
+                                                  bool& noise);
 
 /// The linear certificate c0 + c1 s > 0 holds just after s_now and at s_end (as Horner's rule
 /// evaluates it, which is monotone in s), so nowhere in between does it fail: first_failure's

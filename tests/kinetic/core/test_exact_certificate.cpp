@@ -128,6 +128,34 @@ TEST(ExactCertificate, ARootAtTheSegmentEndDoesNotHideACrossingBeforeIt) {
   EXPECT_EQ(exact_first_failure(*exact, s_now, s_end), expected);
 }
 
+// Two triangles with the same D (coplanar), edge-on at D's root s = 1.8478 in the window: F =
+// (p1 - p2) q1, and the rounding of p2 leaves p1 - p2 a root within an ulp or two of q1's, so
+// that F < 0 at one double between the two. F's lower envelope dips below zero there by 4e-14,
+// under its Bernstein rounding (1e-13): first_failure passed over the dip as noise and answered
+// no failure, and exact_first_failure took that for a proof that F holds through the window
+// (docs/kinetic_grid.md, tenth round).
+TEST(ExactCertificate, ANearDoubleRootUnderTheEnvelopesNoiseIsNotPassedOver) {
+  const Polynomial p1{0.78830873717889638, -1.8962988826194347, 0.80679293056714751,
+                      0.68243296352001837};
+  const Polynomial q{1.3964745231965252, 0.27371849821145644, -0.55711960989036213};
+  const Polynomial p2{1.0299440000805076, -2.8717621666393858, 0.50991247960644315,
+                      1.0904863146488859};
+  const double s_now = 0.42074642496608250, s_end = 8;
+  const RationalPolynomial ref = reference(p1, q, p2, q, 1);
+  ASSERT_GT(reference_sign_after(ref, s_now), 0);
+  const std::optional<double> expected = reference_failure(ref, s_now, s_end);
+  ASSERT_TRUE(expected);
+  EXPECT_NEAR(*expected, 1.84782350259949, 1e-13);
+  EXPECT_GT(reference_sign_after(ref, std::nextafter(*expected, kInf)), 0);  // back up at once
+  const auto exact = exact_product_difference(p1, q, p2, q, 1);
+  EXPECT_EQ(exact_first_failure(*exact, s_now, s_end), expected);
+  // The other way round, broken now, and from just after the dip on: no failure.
+  const auto negated = exact_negated(*exact);
+  EXPECT_EQ(exact_first_failure(*negated, s_now, s_end), s_now);
+  const double after = std::nextafter(*expected, kInf);
+  EXPECT_EQ(exact_first_failure(*exact, after, s_end), reference_failure(ref, after, s_end));
+}
+
 TEST(ExactCertificate, SignsAgreeWithRationals) {
   // Doubles around the robots' cluster, where the double form is noise, and exact zeros.
   const auto exact = exact_product_difference(kNa, kDb, kNb, kDa, 1);
