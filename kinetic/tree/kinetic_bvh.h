@@ -166,7 +166,13 @@ class KineticBvh {
   void schedule_mesh(uint32_t m);
   /// Recomputes every node above mesh m's leaves, children first.
   void refresh_mesh(uint32_t m);
-  void audit_node(uint32_t node, double t, std::vector<std::array<double, 6>>& extreme) const;
+  /// A side recomputed from a node's leaves by the audit: the realizing vertex in the tree's order
+  /// and the largest sign * coordinate of the leaves' vertices.
+  struct AuditExtreme {
+    uint32_t vertex = kNoVertex;
+    double largest = -std::numeric_limits<double>::infinity();
+  };
+  void audit_node(uint32_t node, double t, std::vector<std::array<AuditExtreme, 6>>& extreme) const;
   [[nodiscard]] uint64_t live_certificates() const;
 
   Config m_config;

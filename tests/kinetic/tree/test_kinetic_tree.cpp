@@ -64,6 +64,27 @@ TEST(KineticTree, AuditedThroughRandomMotion) {
   }
 }
 
+TEST(KineticTree, AuditedWhenRoundedCoordinatesInvertTheCertificateOrder) {
+  // Two vertices of cloth-fold --self (453 and 486 on the min-x side of a leaf): one ulp apart in
+  // x at the first key, equal at the second, so their slopes differ by one ulp and their exact
+  // motions a + b (t - o) cross near s = 1/64 of the way. Afterwards the tree's certificate
+  // (c0 + c1 s, exact coefficients) puts 486 below 453 by a few 1e-18, while the rounded
+  // coordinates can put 453 below by as much: the audit compares in the tree's order, and the
+  // coordinates within their rounding.
+  test::TestScene scene;
+  scene.meshes.push_back(
+      test::moving_triangle({11.0 / 12, 23.0 / 24},
+                            {{Vec(0.021557424117480291, 0, 1), Vec(0.021557424117480295, 0.1, 1),
+                              Vec(0.038179781922915983, 0.2, 1.1)},
+                             {Vec(-0.032733060360947829, 0, 1), Vec(-0.032733060360947829, 0.1, 1),
+                              Vec(-0.02291395559729361, 0.2, 1.1)}}));
+  for (TreeShape shape : {TreeShape::aabb, TreeShape::boxtree}) {
+    KineticBvh tree = make_tree(scene, shape, true, 11.0 / 12);  // audits after every advance_to
+    for (int k = 1; k <= 2000; ++k) tree.advance_to(11.0 / 12 + k / (24.0 * 2000));
+    EXPECT_EQ(tree.stats().events.leaf, shape == TreeShape::aabb ? 1u : 0u);
+  }
+}
+
 TEST(KineticTree, EventsIndependentOfFramesQueried) {
   const test::TestScene scene = test::mixed_tree_scene(7);
   for (TreeShape shape : {TreeShape::aabb, TreeShape::boxtree}) {
