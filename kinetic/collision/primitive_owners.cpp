@@ -30,6 +30,11 @@ VertexTriangles::VertexTriangles(std::span<const std::array<std::uint32_t, 3>> t
   for (std::uint32_t k = 0; k < triangles.size(); ++k)  // increasing k: rows come out sorted
     for (int i = 0; i < 3; ++i)
       if (distinct(triangles[k], i)) m_triangles[next[triangles[k][i]]++] = k;
+  m_edges.resize(triangles.size());
+  for (std::uint32_t k = 0; k < triangles.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      m_edges[k][std::size_t(i)] = edge_triangles(
+          *this, {triangles[k][std::size_t(i)], triangles[k][std::size_t((i + 1) % 3)]});
 }
 
 bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v, const OwnerSide& b,
@@ -84,14 +89,9 @@ OwnedPrimitives owned_primitives(const OwnerSide& a, std::uint32_t ta, const Own
     if (owns_vertex_face(a, ta, fa[i], b, tb, self)) owned |= OwnedPrimitives(1u << (2 * i));
     if (owns_vertex_face(b, tb, fb[i], a, ta, self)) owned |= OwnedPrimitives(1u << (2 * i + 1));
   }
-  std::array<EdgeTriangles, 3> around_a, around_b;  // the triangles of each edge, once
-  for (int i = 0; i < 3; ++i) {
-    around_a[i] = edge_triangles(*a.around, {fa[i], fa[(i + 1) % 3]});
-    around_b[i] = edge_triangles(*b.around, {fb[i], fb[(i + 1) % 3]});
-  }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (owns_edge_edge(a, ta, around_a[i], b, tb, around_b[j], self))
+      if (owns_edge_edge(a, ta, a.around->edge(ta, i), b, tb, b.around->edge(tb, j), self))
         owned |= OwnedPrimitives(1u << (6 + 3 * i + j));
   return owned;
 }

@@ -12,7 +12,21 @@
 
 namespace kinray {
 
-/// The triangles around each vertex of one mesh, in increasing order (compressed rows).
+/// The triangles having an edge (around both its ends), in increasing order; `complete` is
+/// false for an edge of more triangles than are kept (a non-manifold fan).
+struct EdgeTriangles {
+  std::array<std::uint32_t, 8> triangles{};
+  std::uint32_t count = 0;
+  bool complete = true;
+};
+class VertexTriangles;
+[[nodiscard]] EdgeTriangles edge_triangles(const VertexTriangles& around,
+                                           std::array<std::uint32_t, 2> edge);
+
+/// The triangles around each vertex of one mesh, in increasing order (compressed rows), and the
+/// triangles having each edge of each triangle: built once per mesh, so that the owners of a
+/// triangle pair's primitive pairs (owned_primitives, asked by swept volumes and brute force for
+/// every candidate pair of every check) do not intersect the vertices' lists again.
 class VertexTriangles {
  public:
   VertexTriangles(std::span<const std::array<std::uint32_t, 3>> triangles,
@@ -21,9 +35,14 @@ class VertexTriangles {
   [[nodiscard]] std::span<const std::uint32_t> around(std::uint32_t vertex) const {
     return {m_triangles.data() + m_offsets[vertex], m_triangles.data() + m_offsets[vertex + 1]};
   }
+  /// edge_triangles of triangle t's edge i (from its vertex i to i + 1).
+  [[nodiscard]] const EdgeTriangles& edge(std::uint32_t t, int i) const {
+    return m_edges[std::size_t(t)][std::size_t(i)];
+  }
 
  private:
   std::vector<std::uint32_t> m_offsets, m_triangles;
+  std::vector<std::array<EdgeTriangles, 3>> m_edges;
 };
 
 /// One side of a triangle pair: a mesh's triangles and the triangles around its vertices.
@@ -37,16 +56,6 @@ struct OwnerSide {
 /// no vertex with it).
 [[nodiscard]] bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v,
                                     const OwnerSide& b, std::uint32_t tb, bool self);
-
-/// The triangles having an edge (around both its ends), in increasing order; `complete` is
-/// false for an edge of more triangles than are kept (a non-manifold fan).
-struct EdgeTriangles {
-  std::array<std::uint32_t, 8> triangles{};
-  std::uint32_t count = 0;
-  bool complete = true;
-};
-[[nodiscard]] EdgeTriangles edge_triangles(const VertexTriangles& around,
-                                           std::array<std::uint32_t, 2> edge);
 
 /// Whether triangle pair (ta, tb) owns the test of an edge of ta (its triangles `ea`) against
 /// an edge of tb (`eb`): of the pairs of a triangle around each that may be paired, it is the
