@@ -31,10 +31,17 @@ VertexTriangles::VertexTriangles(std::span<const std::array<std::uint32_t, 3>> t
     for (int i = 0; i < 3; ++i)
       if (distinct(triangles[k], i)) m_triangles[next[triangles[k][i]]++] = k;
   m_edges.resize(triangles.size());
+  m_lowest.assign(triangles.size(), 0);
   for (std::uint32_t k = 0; k < triangles.size(); ++k)
-    for (int i = 0; i < 3; ++i)
-      m_edges[k][std::size_t(i)] = edge_triangles(
+    for (int i = 0; i < 3; ++i) {
+      const std::size_t c = std::size_t(i);
+      m_edges[k][c] = edge_triangles(
           *this, {triangles[k][std::size_t(i)], triangles[k][std::size_t((i + 1) % 3)]});
+      const EdgeTriangles& e = m_edges[k][c];
+      const auto bit = [](bool b, int at) { return std::uint16_t(b ? 1u << at : 0u); };
+      m_lowest[k] |= bit(around(triangles[k][c]).front() == k, i) |
+                     bit(e.count > 0 && e.triangles[0] == k, 3 + i) | bit(!e.complete, 6 + i);
+    }
 }
 
 bool owns_vertex_face(const OwnerSide& a, std::uint32_t ta, std::uint32_t v, const OwnerSide& b,
@@ -82,9 +89,26 @@ bool owns_edge_edge(const OwnerSide& a, std::uint32_t ta, const EdgeTriangles& e
 
 OwnedPrimitives owned_primitives(const OwnerSide& a, std::uint32_t ta, const OwnerSide& b,
                                  std::uint32_t tb, bool self) {
+  OwnedPrimitives owned = 0;
+  if (!self) {
+    // Every pair may be paired: a vertex's owner is the lowest triangle around it, an edge
+    // pair's the pair of the lowest triangles of each edge (the lowest pair), or every pair when
+    // a list is incomplete; the ranks are kept per triangle.
+    const unsigned la = a.around->lowest(ta), lb = b.around->lowest(tb);
+    for (int i = 0; i < 3; ++i) {
+      owned |= OwnedPrimitives(((la >> i) & 1u) << (2 * i));
+      owned |= OwnedPrimitives(((lb >> i) & 1u) << (2 * i + 1));
+    }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const bool incomplete = ((la >> (6 + i)) & 1u) != 0 || ((lb >> (6 + j)) & 1u) != 0;
+        const bool lowest = ((la >> (3 + i)) & 1u) != 0 && ((lb >> (3 + j)) & 1u) != 0;
+        if (incomplete || lowest) owned |= OwnedPrimitives(1u << (6 + 3 * i + j));
+      }
+    return owned;
+  }
   const std::array<std::uint32_t, 3>& fa = a.triangles[ta];
   const std::array<std::uint32_t, 3>& fb = b.triangles[tb];
-  OwnedPrimitives owned = 0;
   for (int i = 0; i < 3; ++i) {
     if (owns_vertex_face(a, ta, fa[i], b, tb, self)) owned |= OwnedPrimitives(1u << (2 * i));
     if (owns_vertex_face(b, tb, fb[i], a, ta, self)) owned |= OwnedPrimitives(1u << (2 * i + 1));

@@ -39,10 +39,15 @@ class VertexTriangles {
   [[nodiscard]] const EdgeTriangles& edge(std::uint32_t t, int i) const {
     return m_edges[std::size_t(t)][std::size_t(i)];
   }
+  /// Triangle t's ranks, one bit each: bit i, t is the lowest triangle around its vertex i; bit
+  /// 3 + i, t is the lowest triangle of its edge i; bit 6 + i, that edge's list is incomplete.
+  /// Between two meshes (no pair excluded) they are the owner rule.
+  [[nodiscard]] std::uint16_t lowest(std::uint32_t t) const { return m_lowest[t]; }
 
  private:
   std::vector<std::uint32_t> m_offsets, m_triangles;
   std::vector<std::array<EdgeTriangles, 3>> m_edges;
+  std::vector<std::uint16_t> m_lowest;
 };
 
 /// One side of a triangle pair: a mesh's triangles and the triangles around its vertices.

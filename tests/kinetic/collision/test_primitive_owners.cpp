@@ -28,6 +28,33 @@ TEST(PrimitiveOwners, VertexTrianglesListsEachVertexsTrianglesInOrder) {
   EXPECT_TRUE(list(5).empty());
 }
 
+TEST(PrimitiveOwners, MasksBetweenMeshesFollowTheOwnerRule) {
+  // owned_primitives between two meshes reads ranks kept per triangle; they must give the owner
+  // rule's answer (owns_vertex_face, owns_edge_edge over each edge's triangles) for every pair,
+  // with a fan of ten triangles around one edge (an incomplete list) and a degenerate triangle.
+  std::vector<Triangle> fan = {{0, 1, 2}, {2, 1, 3}, {3, 3, 4}, {4, 0, 2}};
+  for (std::uint32_t k = 0; k < 10; ++k) fan.push_back({5, 6, 7 + k});
+  const std::vector<Triangle> grid = {{0, 1, 3}, {1, 4, 3}, {1, 2, 4}, {2, 5, 4}, {3, 4, 6}};
+  const VertexTriangles fan_around(fan, 17), grid_around(grid, 7);
+  const OwnerSide a{fan, &fan_around}, b{grid, &grid_around};
+  for (std::uint32_t ta = 0; ta < fan.size(); ++ta)
+    for (std::uint32_t tb = 0; tb < grid.size(); ++tb) {
+      OwnedPrimitives expected = 0;
+      for (int i = 0; i < 3; ++i) {
+        if (owns_vertex_face(a, ta, fan[ta][i], b, tb, false)) expected |= 1u << (2 * i);
+        if (owns_vertex_face(b, tb, grid[tb][i], a, ta, false)) expected |= 1u << (2 * i + 1);
+        for (int j = 0; j < 3; ++j) {
+          const EdgeTriangles ea = edge_triangles(fan_around, {fan[ta][i], fan[ta][(i + 1) % 3]});
+          const EdgeTriangles eb =
+              edge_triangles(grid_around, {grid[tb][j], grid[tb][(j + 1) % 3]});
+          if (owns_edge_edge(a, ta, ea, b, tb, eb, false)) expected |= 1u << (6 + 3 * i + j);
+        }
+      }
+      EXPECT_EQ(owned_primitives(a, ta, b, tb, false), expected) << ta << " " << tb;
+      EXPECT_EQ(owned_primitives(b, tb, a, ta, false) != 0, expected != 0);
+    }
+}
+
 /// A sheet of rows x columns quads (two triangles each) whose vertices move between random
 /// keys; `flat` keeps every vertex in the plane z = 0, so every primitive pair moves coplanar.
 struct Sheets {
