@@ -9,6 +9,7 @@
 // (EdgeNormal::reversed).
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "kinetic/motion/triangle_motion.h"
@@ -22,8 +23,7 @@ class EdgeNormalCache {
   /// The normal of edge `edge` from p to q (its own direction), built on first use after the
   /// last invalidate().
   [[nodiscard]] const EdgeNormal& get(uint32_t edge, const PointMotion& p, const PointMotion& q) {
-    if (m_stamps[edge] != m_generation) build(edge, p, q);
-    return m_normals[edge];
+    return get_lazily(edge, [&] { return std::pair{&p, &q}; });
   }
   /// The same, with the end points' motions asked for only when the normal is built
   /// (`ends()` returns pointers to p and q): a hit reads the stamp and the normal alone, not the

@@ -160,12 +160,12 @@ class FrustumBand {
   [[nodiscard]] Polynomial boundary_front(const EdgeNow& en, int row) const;
   /// sign_plus(boundary_front(en, row), en.s), without the polynomials (boundary_front_sign).
   [[nodiscard]] int front_sign(const EdgeNow& en, int row) const;
-  /// +1 if edge e of tri runs in its edge's own direction, else -1 (its edge function negated).
   /// Starts fetching what covers_now reads of a record: its triangle's state, vertices and edges
   /// (as a boundary event pops), then (as it starts, once those have come) the normals of the
   /// records' other edges.
   void prefetch_coverage(const RowRecord& r) const;
   void prefetch_other_normals(uint32_t boundary) const;
+  /// +1 if edge e of tri runs in its edge's own direction, else -1 (its edge function negated).
   [[nodiscard]] int edge_direction(uint32_t tri, int e) const {
     const auto& vs = m_scene.triangle_vertices(tri);
     return vs[size_t(kEdgeStart[e])] < vs[size_t(kEdgeEnd[e])] ? 1 : -1;
