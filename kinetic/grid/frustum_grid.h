@@ -30,7 +30,7 @@ namespace kinray {
 
 struct FrustumGridConfig {
   int threads = 0;  ///< worker threads; 0: all cores
-  int bands = 0;    ///< bands of rows; 0: one with one thread, four per thread with several
+  int bands = 0;    ///< bands of rows; 0: four per thread
   DepthSortKind sort = DepthSortKind::kList;
   /// Audit every invariant after each advance (and every touched pixel order after each
   /// change); a violation throws std::logic_error.
