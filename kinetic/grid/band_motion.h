@@ -86,6 +86,8 @@ class BandMotion {
     }
   }
 
+  /// Of memory_bytes(): the edge normals (a cache that fills as the band meets edges).
+  [[nodiscard]] size_t edge_normal_bytes() const { return m_edges.memory_bytes(); }
   [[nodiscard]] size_t memory_bytes() const {
     return m_segments.capacity() * sizeof(MeshSegment) +
            m_vertices.capacity() * sizeof(PointMotion) + m_edges.memory_bytes() +

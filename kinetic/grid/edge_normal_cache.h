@@ -12,7 +12,8 @@
 // thread runs several bands: the normals' storage is left unwritten until a normal is built, so
 // the pages of edges a band never meets are never touched and take no memory (1,000,000
 // triangles, one thread, four bands: peak resident memory 2.41 -> 2.04 GB). A normal is read only
-// once its stamp says it was built; the stamps (4 bytes an edge) are zeroed.
+// once its stamp says it was built; the stamps (4 bytes an edge) are zeroed. memory_bytes counts
+// the pages written (by offset from the table's start, which is near enough to the pages).
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -28,7 +29,9 @@ namespace kinray {
 class EdgeNormalCache {
  public:
   explicit EdgeNormalCache(size_t edge_count)
-      : m_normals(std::make_unique_for_overwrite<Storage[]>(edge_count)), m_stamps(edge_count, 0) {}
+      : m_normals(std::make_unique_for_overwrite<Storage[]>(edge_count)),
+        m_stamps(edge_count, 0),
+        m_page_written(edge_count * sizeof(Storage) / kPage + 2, false) {}
 
   /// The normal of edge `edge` from p to q (its own direction), built on first use after the
   /// last invalidate().
@@ -60,8 +63,11 @@ class EdgeNormalCache {
       m_generation = 1;
     }
   }
+  /// The stamps, and the normals' pages written so far (the table's pages of edges never met
+  /// take no memory).
   [[nodiscard]] size_t memory_bytes() const {
-    return m_stamps.size() * sizeof(Storage) + m_stamps.capacity() * sizeof(uint32_t);
+    return m_pages_written * kPage + m_stamps.capacity() * sizeof(uint32_t) +
+           m_page_written.capacity() * sizeof(bool);
   }
 
  private:
@@ -69,7 +75,14 @@ class EdgeNormalCache {
   [[gnu::noinline]] void build(uint32_t edge, const PointMotion& p, const PointMotion& q) {
     ::new (static_cast<void*>(m_normals[edge].bytes)) EdgeNormal(edge_normal(p, q));
     m_stamps[edge] = m_generation;
+    const size_t first = size_t(edge) * sizeof(Storage);
+    for (size_t page : {first / kPage, (first + sizeof(Storage) - 1) / kPage})
+      if (!m_page_written[page]) {
+        m_page_written[page] = true;
+        ++m_pages_written;
+      }
   }
+  static constexpr size_t kPage = 4096;
   /// Room for one normal, not written until it is built (EdgeNormal's own constructor would
   /// write every page of the table).
   struct Storage {
@@ -81,6 +94,8 @@ class EdgeNormalCache {
   std::unique_ptr<Storage[]> m_normals;  ///< by edge; the ones stamped with a generation built
   std::vector<uint32_t> m_stamps;  ///< the generation each normal was built in
   uint32_t m_generation = 1;
+  std::vector<bool> m_page_written;  ///< by page of m_normals (offsets from its start)
+  size_t m_pages_written = 0;
 };
 
 }  // namespace kinray

@@ -17,6 +17,7 @@ GridStats FrustumBand::stats() const {
   const size_t pixel_bytes = m_orders->memory_bytes();
   s.pixel_entries = m_orders->entries();
   s.pixel_memory_bytes = pixel_bytes;
+  s.edge_normal_bytes = m_motion.edge_normal_bytes();
   s.memory_bytes = pixel_bytes + m_sim.queue().memory_bytes() + m_records.capacity() * sizeof(RowRecord) +
                    m_free_records.capacity() * sizeof(uint32_t) +
                    m_boundaries.capacity() * sizeof(EdgeBoundary) +

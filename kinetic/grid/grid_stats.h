@@ -24,27 +24,28 @@ struct GridEventCounts {
 };
 
 // X(member, "stats key"). Gauges ("now") are summed over bands like the counts.
-#define KINRAY_GRID_COUNTERS(X)                                                               \
-  X(events_external, "events_external")   /* events that changed some pixel's front */        \
-  X(events_internal, "events_internal")   /* the others */                                    \
-  X(spurious, "spurious")                 /* certificate failures that were rounding */       \
-  X(renewals, "renewals")                 /* depth certificates renewed at a key */           \
-  X(coverage_changes, "coverage_changes") /* a triangle into / out of a pixel's order */      \
-  X(records_born, "records_born")                                                             \
-  X(records_died, "records_died")                                                             \
-  X(reties, "reties")                                                                         \
-  X(row_rebuilds, "row_rebuilds")         /* records rebuilt (orientation, degenerate) */     \
-  X(degenerate_rebuilds, "degenerate_rebuilds") /* of which: inconsistent signs at once */    \
-  X(certificates_computed, "certificates_computed") /* every (re)computation, depth too */    \
-  X(certificates_live, "certificates_live")         /* now */                                 \
-  X(certificates_live_max, "certificates_live_max") /* sum over bands of each one's most */   \
-  X(records, "records")                   /* live (triangle, row) records */                  \
-  X(pixel_entries, "pixel_entries")       /* triangles held in the per-pixel orders */        \
-  X(triangles_present, "triangles_present")                                                   \
-  X(meshes_culling, "meshes_culling")     /* present meshes with back-face culling, now */    \
-  X(triangles_culled, "triangles_culled") /* of theirs: facing away now, without records */   \
-  X(memory_bytes, "memory_bytes")         /* now */                                           \
-  X(pixel_memory_bytes, "pixel_memory_bytes") /* of which: the per-pixel orders */
+#define KINRAY_GRID_COUNTERS(X)                                                                  \
+  X(events_external, "events_external")   /* events that changed some pixel's front */           \
+  X(events_internal, "events_internal")   /* the others */                                       \
+  X(spurious, "spurious")                 /* certificate failures that were rounding */          \
+  X(renewals, "renewals")                 /* depth certificates renewed at a key */              \
+  X(coverage_changes, "coverage_changes") /* a triangle into / out of a pixel's order */         \
+  X(records_born, "records_born")                                                                \
+  X(records_died, "records_died")                                                                \
+  X(reties, "reties")                                                                            \
+  X(row_rebuilds, "row_rebuilds")               /* records rebuilt (orientation, degenerate) */  \
+  X(degenerate_rebuilds, "degenerate_rebuilds") /* of which: inconsistent signs at once */       \
+  X(certificates_computed, "certificates_computed") /* every (re)computation, depth too */       \
+  X(certificates_live, "certificates_live")         /* now */                                    \
+  X(certificates_live_max, "certificates_live_max") /* sum over bands of each one's most */      \
+  X(records, "records")                             /* live (triangle, row) records */           \
+  X(pixel_entries, "pixel_entries")                 /* triangles held in the per-pixel orders */ \
+  X(triangles_present, "triangles_present")                                                      \
+  X(meshes_culling, "meshes_culling")         /* present meshes with back-face culling, now */   \
+  X(triangles_culled, "triangles_culled")     /* of theirs: facing away now, without records */  \
+  X(memory_bytes, "memory_bytes")             /* now */                                          \
+  X(pixel_memory_bytes, "pixel_memory_bytes") /* of which: the per-pixel orders */               \
+  X(edge_normal_bytes, "edge_normal_bytes")   /* of which: the edge normals' pages written */
 
 struct GridStats {
   KINRAY_COUNTERS_WITH_EVENTS(GridStats, GridEventCounts, KINRAY_GRID_COUNTERS)
