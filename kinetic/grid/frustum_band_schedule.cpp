@@ -71,20 +71,17 @@ void FrustumBand::schedule_vertex(uint32_t v) {
   const MeshSegment& seg = m_motion.segment(m_scene.mesh_of_vertex(v));
   const auto [lo, hi] = m_rows.watched(st.slot);
   // Each band reschedules every vertex of a mesh at its keys, and most lie beyond its rows all
-  // segment long: failure_time's quick test of a linear certificate, on row_side's coefficients
-  // computed as row_side computes them, answers "never" without building the polynomials.
+  // segment long: failure_time's quick test of a linear certificate, taken here inline, answers
+  // "never" without the call.
   const double s_end = seg.end - seg.origin;
-  auto holds = [&](int sign, int row) {
-    const double y = m_scene.row_y(m_row_begin + row);
-    const double c0 = p.a.y() - y * p.a.z(), c1 = p.b.y() - y * p.b.z();
-    return sign != 0 && linear_holds_through(sign > 0 ? c0 : -c0, sign > 0 ? c1 : -c1, s, s_end);
+  auto time_at = [&](int sign, int row) {
+    const Polynomial f = row_side(p, m_scene.row_y(m_row_begin + row));
+    const double c0 = sign > 0 ? f.c[0] : -f.c[0], c1 = sign > 0 ? f.c[1] : -f.c[1];
+    if (sign != 0 && linear_holds_through(c0, c1, s, s_end)) return kInf;
+    return failure_time(sign, f, seg);
   };
-  double t = kInf;
-  if (!(holds(st.sign_lo, lo) && (hi == lo || holds(st.sign_hi, hi)))) {
-    t = failure_time(st.sign_lo, row_side(p, m_scene.row_y(m_row_begin + lo)), seg);
-    if (hi != lo)
-      t = std::min(t, failure_time(st.sign_hi, row_side(p, m_scene.row_y(m_row_begin + hi)), seg));
-  }
+  double t = time_at(st.sign_lo, lo);
+  if (hi != lo) t = std::min(t, time_at(st.sign_hi, hi));
   m_stats.certificates_computed += 2;
   m_sim.queue().schedule(st.event, EventKey{t, kGridVertexRow, v, 0}, v);
 }
