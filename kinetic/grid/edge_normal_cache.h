@@ -67,7 +67,7 @@ class EdgeNormalCache {
   /// take no memory).
   [[nodiscard]] size_t memory_bytes() const {
     return m_pages_written * kPage + m_stamps.capacity() * sizeof(uint32_t) +
-           m_page_written.capacity() * sizeof(bool);
+           (m_page_written.capacity() + 7) / 8;  // one bit a page
   }
 
  private:
