@@ -193,6 +193,10 @@ Interval piece_boundary(LocalWindow window, double k, int depth) {
 /// Bisection work per pair: a pair that needs more goes to the rational decision.
 constexpr int kMaxDepth = 10;
 constexpr int kMaxIntervals = 96;
+/// Edges sliding in a plane: where an end of one edge passes near an end of the other, both
+/// edges' orientations change sign within a few 1e-5 of each other (cloth folded flat onto
+/// itself), which depth 10 cannot separate. The path to them is narrow: two pieces a level.
+constexpr int kMaxPlanarDepth = 24;
 
 /// A piece of the window: k-th of 2^depth equal parts, with the polynomials on it.
 struct Piece {
@@ -208,10 +212,37 @@ struct ContactPiece {
   int sign_lo = 0;
 };
 
+/// The coplanarity cubic's exact sign at a double local time g: its enclosure in doubles, else
+/// long double with a static bound, else rationals (the rational cubic built at the first need
+/// and kept for the pair's other points).
+class CubicSign {
+ public:
+  CubicSign(const PairMotion& pair, const PrimitiveMotion& motion, IntervalCcdCounters& counters)
+      : m_pair(pair), m_motion(motion), m_counters(counters) {}
+
+  int operator()(double g) {
+    int s = m_pair.cubic(Interval::point(g)).certain_sign();
+    if (s == 0) s = detail::extended_cubic_sign(m_motion, g);
+    if (s == 0) {
+      ++m_counters.exact_signs;
+      if (!m_cubic) m_cubic = coplanarity_polynomial(to_rational(m_motion));
+      s = sign((*m_cubic)(mpq_class(g)));
+    }
+    return s;
+  }
+
+ private:
+  const PairMotion& m_pair;
+  const PrimitiveMotion& m_motion;
+  IntervalCcdCounters& m_counters;
+  std::optional<RationalPolynomial> m_cubic;
+};
+
 /// The bisection of one pair's window.
 class Bisection {
  public:
-  Bisection(const PairMotion& pair, LocalWindow window) : m_pair(pair), m_window(window) {}
+  Bisection(const PairMotion& pair, LocalWindow window, CubicSign& cubic_sign)
+      : m_pair(pair), m_window(window), m_cubic_sign(cubic_sign) {}
 
   /// Splits the window until every piece is free of contact or holds exactly one certified
   /// contact (appended to `contacts`, in time order); false when the budget runs out first.
@@ -234,19 +265,23 @@ class Bisection {
     const Interval start = piece_boundary(m_window, piece.index, piece.depth),
                    end = piece_boundary(m_window, piece.index + 1, piece.depth);
     if (!all_positive && m_pair.separated({start.lo, end.hi})) return true;
-    if (all_positive && piece.cubic.certainly_monotone()) {
-      const int at_start = piece.cubic.start_sign(), at_end = piece.cubic.end_sign();
-      if (at_start != 0 && at_end != 0) {
-        if (at_start == at_end) return true;
-        // The root lies strictly inside the piece; where an end is not a double, the few ulps
-        // between it and the double outside it must hold no root either.
-        const auto clear = [&](Interval sliver, int sign) {
-          return sliver.lo == sliver.hi || m_pair.cubic(sliver).certain_sign() == sign;
-        };
-        if (clear(start, at_start) && clear(end, at_end)) {
-          contacts.push_back({{start.lo, end.hi}, at_start});
-          return true;
-        }
+    if (piece.cubic.certainly_monotone()) {
+      // An end coefficient within its slack of zero is the cubic's value there: at an end that
+      // is a double, its exact sign. That decides a root within rounding of a segment's end (a
+      // key pose in contact or nearly), which no bisection can separate from the end.
+      int at_start = piece.cubic.start_sign(), at_end = piece.cubic.end_sign();
+      if (at_start == 0 && start.lo == start.hi) at_start = m_cubic_sign(start.lo);
+      if (at_end == 0 && end.lo == end.hi) at_end = m_cubic_sign(end.lo);
+      if (at_start != 0 && at_start == at_end) return true;  // monotone: no root
+      // The root lies strictly inside the piece; where an end is not a double, the few ulps
+      // between it and the double outside it must hold no root either.
+      const auto clear = [&](Interval sliver, int sign) {
+        return sliver.lo == sliver.hi || m_pair.cubic(sliver).certain_sign() == sign;
+      };
+      if (all_positive && at_start != 0 && at_end == -at_start && clear(start, at_start) &&
+          clear(end, at_end)) {
+        contacts.push_back({{start.lo, end.hi}, at_start});
+        return true;
       }
     }
     if (piece.depth == kMaxDepth) return false;
@@ -260,6 +295,7 @@ class Bisection {
 
   const PairMotion& m_pair;
   LocalWindow m_window;
+  CubicSign& m_cubic_sign;
   int m_conditions = 0;
   int m_budget = kMaxIntervals;
 };
@@ -329,23 +365,11 @@ double grid_floor_of_root(double guess, Interval t, int sign_lo, SignAt&& sign_a
   return a * e;
 }
 
-/// The coplanarity cubic's root on the grid: grid points signed in doubles when their
-/// enclosure allows, else in long doubles, else exactly.
-double grid_floor_of_cubic_root(const PairMotion& pair, const PrimitiveMotion& motion,
-                                const BernsteinBound<3>& cubic_on_window, LocalWindow window,
-                                Interval t, int sign_lo, IntervalCcdCounters& counters) {
-  std::optional<RationalPolynomial> cubic;
-  const auto sign_at = [&](double g) {
-    int s = pair.cubic(Interval::point(g)).certain_sign();
-    if (s == 0) s = detail::extended_cubic_sign(motion, g);
-    if (s == 0) {
-      ++counters.exact_signs;
-      if (!cubic) cubic = coplanarity_polynomial(to_rational(motion));
-      s = sign((*cubic)(mpq_class(g)));
-    }
-    return s;
-  };
-  return grid_floor_of_root(guess_root(cubic_on_window, window, t, sign_lo), t, sign_lo, sign_at);
+/// The coplanarity cubic's root on the grid: grid points signed exactly (CubicSign).
+double grid_floor_of_cubic_root(const BernsteinBound<3>& cubic_on_window, LocalWindow window,
+                                Interval t, int sign_lo, CubicSign& cubic_sign) {
+  return grid_floor_of_root(guess_root(cubic_on_window, window, t, sign_lo), t, sign_lo,
+                            cubic_sign);
 }
 
 /// Edges sliding in one axis plane (all four points on it over the whole segment): they touch
@@ -478,7 +502,7 @@ class PlanarEdges {
         return true;
       }
     }
-    if (piece.depth == kMaxDepth) return false;
+    if (piece.depth == kMaxPlanarDepth) return false;
     Piece left{piece.depth + 1, 2 * piece.index, {}};
     Piece right{piece.depth + 1, 2 * piece.index + 1, {}};
     for (size_t i = 0; i < 4; ++i) std::tie(left.f[i], right.f[i]) = piece.f[i].halves();
@@ -638,11 +662,11 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
   }
   if (!cubic.certainly_nonzero() && !(plane && plane->apart)) {
     const PairMotion pair(type, motion, plane);
-    if (!Bisection(pair, window).classify(cubic, contacts)) return std::nullopt;
+    CubicSign cubic_sign(pair, motion, counters);
+    if (!Bisection(pair, window, cubic_sign).classify(cubic, contacts)) return std::nullopt;
     std::vector<double> times;
     for (const ContactPiece& c : contacts)
-      times.push_back(
-          grid_floor_of_cubic_root(pair, motion, cubic, window, c.time, c.sign_lo, counters));
+      times.push_back(grid_floor_of_cubic_root(cubic, window, c.time, c.sign_lo, cubic_sign));
     times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one cell
     if (!times.empty()) {
       ++counters.contacts;

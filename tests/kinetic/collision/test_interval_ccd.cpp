@@ -296,5 +296,71 @@ TEST(IntervalCcd, DecidesEdgesSlidingInAnAxisPlane) {
   EXPECT_GT(decided, pairs * 9 / 10);
 }
 
+TEST(IntervalCcd, DecidesARootWithinRoundingOfTheSegmentsEnd) {
+  // A key pose with two edges in contact, or nearly (a cloth folded onto itself at a key): the
+  // cubic's root lies within rounding of local time 1, before or after it, and no bisection
+  // separates it from the end. The cubic's exact sign at the end decides it, with the rational
+  // decision's answer.
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<double> unit(-1, 1), along(0.2, 0.8), tiny(1e-17, 1e-15);
+  int decided = 0, with_contact = 0;
+  constexpr int kTrials = 200;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const V a0(unit(rng), unit(rng), unit(rng)), a1(unit(rng), unit(rng), unit(rng));
+    const V d = V(unit(rng), unit(rng), unit(rng)).normalized();
+    const V normal = (a1 - a0).cross(d).normalized();
+    // edge b crosses edge a at x at the key, offset along the normal by a few ulps, either way
+    const V x = a0 + along(rng) * (a1 - a0) + (trial % 2 == 0 ? 1 : -1) * tiny(rng) * normal;
+    PrimitiveMotion m;
+    m.end = {a0, a1, x - (0.3 + along(rng)) * d, x + (0.3 + along(rng)) * d};
+    const V towards = 0.5 * normal + 0.2 * V(unit(rng), unit(rng), unit(rng));
+    for (int i = 0; i < 4; ++i)
+      m.start[size_t(i)] = m.end[size_t(i)] + (i < 2 ? 0.05 : 1.0) * (i < 2 ? d : towards);
+    const std::vector<double> exact = exact_contact_times(ContactType::edge_edge, to_rational(m));
+    with_contact += !exact.empty();
+    IntervalCcdCounters counters;
+    const std::optional<std::vector<double>> times =
+        interval_contact_times(ContactType::edge_edge, m, counters);
+    if (!times) continue;
+    ++decided;
+    ASSERT_EQ(*times, exact) << "trial " << trial;
+  }
+  EXPECT_GT(with_contact, kTrials / 4);
+  EXPECT_LT(with_contact, kTrials);
+  EXPECT_GT(decided, kTrials * 9 / 10);
+}
+
+TEST(IntervalCcd, DecidesEdgesSlidingInAnAxisPlanePastEachOthersEnds) {
+  // An edge sliding in an axis plane whose end passes close by the end of another edge there:
+  // both edges' orientations change sign within a short time of each other (the distance over
+  // the speed), and the bisection must go deep to order them.
+  std::mt19937 rng(83);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int decided = 0, with_contact = 0;
+  constexpr int kTrials = 100;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const double c = 0.5 + 0.1 * unit(rng), gap = std::ldexp(1 + unit(rng), -14 - trial % 6);
+    const V a0(unit(rng), unit(rng), c), a1(unit(rng), unit(rng), c);
+    const V side = V(a0.y() - a1.y(), a1.x() - a0.x(), 0).normalized();
+    // b's first end passes a1 at the given distance, on one side or the other, at mid-segment
+    const V pass = a1 + (trial % 2 == 0 ? gap : -gap) * side;
+    const V velocity(unit(rng), unit(rng), 0), b_edge(unit(rng), unit(rng), 0);
+    PrimitiveMotion m;
+    m.start = {a0, a1, pass - 0.5 * velocity, pass - 0.5 * velocity + b_edge};
+    m.end = {a0, a1, pass + 0.5 * velocity, pass + 0.5 * velocity + b_edge};
+    for (int i = 0; i < 4; ++i) m.start[size_t(i)].z() = m.end[size_t(i)].z() = c;
+    const std::vector<double> exact = exact_contact_times(ContactType::edge_edge, to_rational(m));
+    with_contact += !exact.empty();
+    IntervalCcdCounters counters;
+    const std::optional<std::vector<double>> times =
+        interval_contact_times(ContactType::edge_edge, m, counters);
+    if (!times) continue;
+    ++decided;
+    ASSERT_EQ(*times, exact) << "trial " << trial;
+  }
+  EXPECT_GT(with_contact, kTrials / 4);
+  EXPECT_GT(decided, kTrials * 9 / 10);
+}
+
 }  // namespace
 }  // namespace kinray
