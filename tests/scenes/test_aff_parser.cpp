@@ -209,9 +209,10 @@ TEST(AffParser, MalformedFilesNameFileLineAndProblem) {
     } catch (const InputError& error) {
       const std::string message = error.what();
       EXPECT_EQ(message.find('\n'), std::string::npos) << c.name;
-      if (std::string(c.name) != "no view" && std::string(c.name) != "cycle")
+      if (std::string(c.name) != "no view" && std::string(c.name) != "cycle") {
         EXPECT_EQ(message.rfind(file.string() + c.where + ": ", 0), 0u)
             << c.name << ": " << message;
+      }
       EXPECT_NE(message.find(c.problem), std::string::npos) << c.name << ": " << message;
     }
   }

@@ -196,7 +196,9 @@ TEST_P(AnimatedModels, LoadsWithItsTrianglesShotMotionAndCamera) {
     for (double t :
          {scene.time_begin, 0.37 * scene.time_begin + 0.63 * scene.time_end, scene.time_end})
       EXPECT_DOUBLE_EQ(fraction_in_view(scene, t), 1.0) << t;
-    if (scene.camera.keys.size() == 1) EXPECT_TRUE(bounds_in_view(scene, scene.time_begin));
+    if (scene.camera.keys.size() == 1) {
+      EXPECT_TRUE(bounds_in_view(scene, scene.time_begin));
+    }
   }
   EXPECT_NO_THROW(scene.validate(path.string()));
 }

@@ -132,7 +132,7 @@ TEST_F(CliVerdicts, ASharedGltfWithItsPositionBufferCorruptedIsRefused) {
     ASSERT_TRUE(bin.good());
   }
   const std::string model = "'" + path("AnimatedMorphSphere.gltf") + "'";
-  for (const std::string args :
+  for (const std::string& args :
        {"render " + model + " --size 32x32 --frames 1 -q --out '" + path("f") + "'",
         "diff " + model + " --size 32x32 --frames 1 -q --json '" + path("d.json") + "'",
         "info " + model}) {

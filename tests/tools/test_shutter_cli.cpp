@@ -39,7 +39,7 @@ class ShutterCli : public ::testing::Test {
 constexpr const char* kScene = "wavy-sphere:triangles=600 --size 40x40 --time 1:1.1 --frames 2";
 
 TEST_F(ShutterCli, BadValuesNameTheFlagAndWriteNothing) {
-  for (const std::string& bad :
+  for (const char* bad :
        {"--shutter 1.5", "--shutter -1", "--shutter nan", "--shutter 0.5 --shutter-samples 0",
         "--shutter 0.5 --shutter-order 99"}) {
     const auto run = kinray(std::string("render ") + kScene + " " + bad + " --out " + path("out"));
