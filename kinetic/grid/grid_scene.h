@@ -56,6 +56,16 @@ class GridScene {
             m_adjacency.data() + m_adjacency_begin[v + 1]};
   }
 
+  /// The corners of a global triangle by position: each vertex replaced by the lowest vertex of
+  /// its mesh with the same flightplan (the same position at every key), so that triangles on
+  /// either side of a seam (a mesh edge split for its texture coordinates or normals, as
+  /// exporters of skinned models write them) share their edge here too. They move as one
+  /// vertex, so whatever holds of a shared vertex holds of them. A triangle with two corners of
+  /// one flightplan (it never has an area) keeps its vertex ids.
+  [[nodiscard]] const std::array<uint32_t, 3>& triangle_positions(uint32_t tri) const {
+    return m_triangle_positions[tri];
+  }
+
   /// Edge e of triangle tri (from its vertex e to its vertex (e + 1) % 3) as a global edge id.
   /// The two triangles on either side of a mesh edge (the same two global vertices) share its
   /// id, so a band tracks the edge's crossings of pixel centres once for both of them; a third
@@ -94,12 +104,15 @@ class GridScene {
  private:
   /// The global edge ids (edge_of_triangle, edge_vertices).
   void build_edges();
+  /// The corners by position (triangle_positions).
+  void build_triangle_positions();
 
   GridInput m_input;
   std::vector<double> m_x, m_y;
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin;  ///< prefix sums over meshes
   std::vector<uint32_t> m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;  ///< global vertex ids
+  std::vector<std::array<uint32_t, 3>> m_triangle_positions;
   std::vector<uint32_t> m_adjacency_begin, m_adjacency;
   std::vector<std::array<uint32_t, 3>> m_triangle_edges;  ///< global edge ids
   std::vector<std::array<uint32_t, 2>> m_edge_vertices;

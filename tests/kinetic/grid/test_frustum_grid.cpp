@@ -182,6 +182,66 @@ TEST(GridScene, TrianglesOfAnEdgeShareItsId) {
   EXPECT_EQ(gs.edge_vertices(gs.edge_of_triangle(0, 2)), (std::array<uint32_t, 2>{0, 2}));
 }
 
+// A seam: a mesh edge written twice, with vertices of the same flightplan (as exporters write
+// skinned models' texture seams). Its two sides share their corners by position; a vertex equal
+// to another at one key only, and a triangle using one position twice, keep their ids.
+TEST(GridScene, SeamSidesShareTheirCornersByPosition) {
+  TestScene scene;
+  OwnedMesh seam;
+  seam.times = {0.0, 1.0};
+  seam.vertex_count = 7;
+  for (double u : {0.0, 0.3}) {
+    const Vec p = at_depth(0 + u, -0.5, 2), q = at_depth(0, 0.5, 2 + u);
+    // 3 and 4 are 1 and 0 again; 5 is 2 at the first key only; 6 is 2 again
+    for (const Vec& v : {p, q, at_depth(0.5, 0, 2), q, p,
+                         u == 0 ? at_depth(0.5, 0, 2) : at_depth(-0.5, 0, 2), at_depth(0.5, 0, 2)})
+      seam.positions.push_back(v);
+  }
+  seam.triangles = {{0, 1, 2}, {3, 4, 5}, {0, 2, 6}};
+  scene.meshes.push_back(seam);
+  const GridScene gs(scene.input());
+  EXPECT_EQ(gs.triangle_positions(0), (std::array<uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(gs.triangle_positions(1), (std::array<uint32_t, 3>{1, 0, 5}));
+  EXPECT_EQ(gs.triangle_positions(2), (std::array<uint32_t, 3>{0, 2, 6}));  // 2 and 6: one position
+  // the vertex ids themselves are untouched
+  EXPECT_EQ(gs.triangle_vertices(1), (std::array<uint32_t, 3>{3, 4, 5}));
+}
+
+// A fold across a seam (the two sides overlap on the screen and turn through each other) is
+// ordered like the same fold across a shared edge: the same swaps, and the fronts of brute force.
+// The seam's sides used to be ordered by the general depth certificate, whose roots on the edge
+// itself fired swaps ulps before the coverage events that end them.
+TEST_P(GridSorts, AFoldAcrossASeamIsOrderedLikeASharedEdge) {
+  GridEventCounts counts[2];
+  for (const bool split : {false, true}) {
+    TestScene scene;
+    OwnedMesh fold;
+    fold.times = {0.0, 1.0};
+    fold.vertex_count = split ? 6 : 4;
+    for (double u : {0.0, 1.0}) {
+      // the spine sweeps over pixel centres, where both flaps leave or enter a pixel at once
+      const Vec p = at_depth(-0.2 + 0.3 * u, -0.6, 2), q = at_depth(0.1 + 0.2 * u, 0.6, 2.2);
+      // both flaps on the same side of the spine p q: a fold, whose far flap turns through the
+      // near one
+      const Vec a = at_depth(0.6, 0.1, 2.1), b = at_depth(0.5 - 0.3 * u, -0.1, 1.6 + 1.0 * u);
+      for (const Vec& v : split ? std::vector<Vec>{p, q, a, q, p, b} : std::vector<Vec>{p, q, a, b})
+        fold.positions.push_back(v);
+    }
+    fold.triangles = split ? std::vector<std::array<uint32_t, 3>>{{0, 1, 2}, {3, 4, 5}}
+                           : std::vector<std::array<uint32_t, 3>>{{0, 1, 2}, {1, 0, 3}};
+    scene.meshes.push_back(fold);
+    const GridInput in = scene.input();
+    FrustumGrid grid(in, 0.0, audited(GetParam()));
+    const test::Comparison c = run_against_brute_force(grid, in, even_times(0, 1, 40));
+    EXPECT_GT(c.covered, 500u);
+    counts[split] = grid.stats().events;
+  }
+  // (the seam's two sides keep an edge id each, so its boundary events count twice)
+  EXPECT_GT(counts[0].swap, 0u);
+  EXPECT_EQ(counts[1].swap, counts[0].swap);
+  EXPECT_EQ(counts[1].orientation, counts[0].orientation);
+}
+
 // Three pages on one spine (a non-manifold edge) slide and turn across the image, the spine over
 // many pixel centres: two pages share the spine's boundaries, the third has its own, and every
 // pixel they pass hands over between them exactly.
