@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "kinetic/core/certificate_time.h"
@@ -77,19 +78,94 @@ RationalPolynomial rational(const Polynomial& p) {
   return RationalPolynomial(std::move(c));
 }
 
+/// A polynomial of doubles as integers times 2^exponent: every double is an integer times a
+/// power of two, and the lowest of the coefficients' powers serves them all. Nothing when the
+/// coefficients span too many binades for the integers to be doubles themselves.
+struct ScaledIntegers {
+  std::vector<mpz_class> c;
+  long exponent = 0;
+};
+
+std::optional<ScaledIntegers> scaled_integers(const Polynomial& p) {
+  int lowest = std::numeric_limits<int>::max();
+  for (int k = 0; k <= p.degree; ++k) {
+    const double x = p.c[size_t(k)];
+    if (x == 0) continue;
+    int e = 0;
+    const double mantissa = std::frexp(x, &e);  // x = mantissa 2^e, 0.5 <= |mantissa| < 1
+    // the last bit of x: 2^(e - 53), or 2^-1074 for a subnormal
+    (void)mantissa;
+    lowest = std::min(lowest, std::max(e - 53, -1074));
+  }
+  ScaledIntegers out;
+  if (lowest == std::numeric_limits<int>::max()) {  // the zero polynomial
+    out.c.assign(size_t(p.degree) + 1, 0);
+    return out;
+  }
+  out.exponent = lowest;
+  for (int k = 0; k <= p.degree; ++k) {
+    const double integer = std::ldexp(p.c[size_t(k)], -lowest);  // exact unless it overflows
+    if (!std::isfinite(integer)) return std::nullopt;
+    out.c.emplace_back(integer);
+  }
+  return out;
+}
+
+std::vector<mpz_class> product(const std::vector<mpz_class>& f, const std::vector<mpz_class>& g) {
+  std::vector<mpz_class> p(f.size() + g.size() - 1);
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (std::size_t j = 0; j < g.size(); ++j)
+      mpz_addmul(p[i + j].get_mpz_t(), f[i].get_mpz_t(), g[j].get_mpz_t());
+  return p;
+}
+
+/// F, or a positive multiple of it: its roots and signs are F's, which is all the exact path
+/// asks of it. Built on integers (products without the gcds of rational ones), p1 q1 and p2 q2
+/// each an integer polynomial times a power of two, the one with the higher power shifted down
+/// to the other's.
 RationalPolynomial rational(const ExactPolynomial& f) {
-  RationalPolynomial r = rational(f.p1) * rational(f.q1) - rational(f.p2) * rational(f.q2);
-  return f.sign < 0 ? RationalPolynomial{} - r : r;
+  const auto p1 = scaled_integers(f.p1), q1 = scaled_integers(f.q1);
+  const auto p2 = scaled_integers(f.p2), q2 = scaled_integers(f.q2);
+  if (!p1 || !q1 || !p2 || !q2) {
+    RationalPolynomial r = rational(f.p1) * rational(f.q1) - rational(f.p2) * rational(f.q2);
+    return f.sign < 0 ? RationalPolynomial{} - r : r;
+  }
+  std::vector<mpz_class> first = product(p1->c, q1->c), second = product(p2->c, q2->c);
+  const long e1 = p1->exponent + q1->exponent, e2 = p2->exponent + q2->exponent;
+  const long lowest = std::min(e1, e2);
+  for (mpz_class& x : first) mpz_mul_2exp(x.get_mpz_t(), x.get_mpz_t(), mp_bitcnt_t(e1 - lowest));
+  for (mpz_class& x : second) mpz_mul_2exp(x.get_mpz_t(), x.get_mpz_t(), mp_bitcnt_t(e2 - lowest));
+  std::vector<mpq_class> c(std::max(first.size(), second.size()));
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    mpz_class x = 0;
+    if (k < first.size()) x += first[k];
+    if (k < second.size()) x -= second[k];
+    c[k] = f.sign < 0 ? mpz_class(-x) : x;
+  }
+  return RationalPolynomial(std::move(c));
 }
 
 /// Sign of f just after the rational x: the first derivative that does not vanish there.
-int sign_after_at(RationalPolynomial f, const mpq_class& x) {
-  while (!f.is_zero()) {
-    const int s = sgn(f(x));
-    if (s != 0) return s;
-    f = f.derivative();
-  }
+int sign_after_at(const RationalPolynomial& f, const mpq_class& x) {
+  if (f.is_zero()) return 0;
+  if (const int s = sgn(f(x)); s != 0) return s;
+  for (RationalPolynomial d = f.derivative(); !d.is_zero(); d = d.derivative())
+    if (const int s = sgn(d(x)); s != 0) return s;
   return 0;
+}
+
+/// exact_sign_after, with F's rational polynomial when the caller has built it already.
+int sign_after_using(const ExactPolynomial& f, double s, const RationalPolynomial* built) {
+  // F lies between the envelopes' Horner values (s >= 0): where one of them clears zero on its
+  // side, F(s) has that sign (most times a search asks about are a few ulps from the crossing,
+  // but the window's start and the bracket's end are not).
+  if (s >= 0) {
+    if (f.lower(s) > 0) return 1;
+    if (f.upper(s) < 0) return -1;
+  }
+  const int filtered = filtered_sign(f, s);
+  if (filtered != 2) return filtered;
+  return sign_after_at(built != nullptr ? *built : rational(f), mpq_class(s));
 }
 
 /// The smallest double >= x.
@@ -130,7 +206,7 @@ std::optional<double> isolated_failure(const ExactPolynomial& F, double s_now, d
     r.refine_to(mpq_class(std::max(std::abs(r.hi.get_d()), 1e-300) * 0x1p-80));
     double t = double_at_or_above(r.lo);
     for (int k = 0; k < 8 && t <= end; ++k, t = std::nextafter(t, kInf))
-      if (t > s_now && exact_sign_after(F, t) < 0) return t;
+      if (t > s_now && sign_after_using(F, t, &f) < 0) return t;
   }
   return std::nullopt;
 }
@@ -215,16 +291,7 @@ std::shared_ptr<const ExactPolynomial> exact_negated(const ExactPolynomial& f) {
 }
 
 int exact_sign_after(const ExactPolynomial& f, double s) {
-  // F lies between the envelopes' Horner values (s >= 0): where one of them clears zero on its
-  // side, F(s) has that sign (most times a search asks about are a few ulps from the crossing,
-  // but the window's start and the bracket's end are not).
-  if (s >= 0) {
-    if (f.lower(s) > 0) return 1;
-    if (f.upper(s) < 0) return -1;
-  }
-  const int filtered = filtered_sign(f, s);
-  if (filtered != 2) return filtered;
-  return sign_after_at(rational(f), mpq_class(s));
+  return sign_after_using(f, s, nullptr);
 }
 
 std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now, double s_end) {

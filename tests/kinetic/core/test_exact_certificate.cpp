@@ -178,6 +178,36 @@ TEST(ExactCertificate, SignsAgreeWithRationals) {
   EXPECT_EQ(exact_first_failure(*cross, 0, 1), 0.5);
 }
 
+TEST(ExactCertificate, SignsAtAnExactRootHoldOverTheWholeExponentRange) {
+  // F = (s - 1/2) (A q1 - B q2) exactly (small dyadic coefficients): at s = 1/2 no filter can
+  // sign it, and the sign comes from F's exact polynomial, built on integers times powers of
+  // two; coefficients a thousand binades apart (or subnormal) take the rational route instead.
+  // Either way: the rational reference's signs.
+  std::mt19937_64 rng(23);
+  std::uniform_int_distribution<int> small(-64, 64);
+  const auto dyadic = [&](int n) {
+    Polynomial p;
+    p.degree = n;
+    for (int k = 0; k <= n; ++k) p.c[size_t(k)] = small(rng) / 64.0;
+    return p;
+  };
+  const Polynomial root{-0.5, 1};
+  for (const int spread : {0, 300, 900, 1060}) {
+    for (int i = 0; i < 20; ++i) {
+      Polynomial a = dyadic(2), b = dyadic(2);
+      a.c[0] = std::ldexp(a.c[0], -spread);  // at 1060: subnormal products
+      const Polynomial p1 = root * a, q1 = dyadic(2), p2 = root * b, q2 = dyadic(2);
+      for (int sign : {1, -1}) {
+        const auto exact = exact_product_difference(p1, q1, p2, q2, sign);
+        const RationalPolynomial ref = reference(p1, q1, p2, q2, sign);
+        for (double s : {0.5, std::nextafter(0.5, 0.0), std::nextafter(0.5, 1.0), 0.25})
+          ASSERT_EQ(exact_sign_after(*exact, s), reference_sign_after(ref, s))
+              << "spread " << spread << ", " << i << ", s " << s;
+      }
+    }
+  }
+}
+
 TEST(ExactCertificate, FailuresMatchExactIsolationOnNearlyCancellingProducts) {
   // p2 q2 = p1 q1 up to a perturbation of a few ulps, plus a small cubic with roots in the window:
   // the double-formed difference is mostly rounding noise, the exact one is not.
