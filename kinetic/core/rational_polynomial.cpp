@@ -46,17 +46,6 @@ RationalPolynomial monic(RationalPolynomial f) {
   return f;
 }
 
-int sign_variations(const std::vector<mpq_class>& b) {
-  int variations = 0, last = 0;
-  for (const mpq_class& x : b) {
-    const int s = sgn(x);
-    if (s == 0) continue;
-    if (last != 0 && s != last) ++variations;
-    last = s;
-  }
-  return variations;
-}
-
 /// Bounds that keep interval Horner evaluation far from overflow (so its ends are never NaN):
 /// coefficients below 2^300, |t| below 2^32, degree at most 16.
 constexpr double kMaxFilterCoefficient = 0x1p300, kMaxFilterTime = 0x1p32;
@@ -130,11 +119,21 @@ bool certainly_no_root(const RationalPolynomial& f, const mpq_class& lo, const m
   return interval_sign_variations(f, lo, hi) == 0;
 }
 
+int sign_variations(const std::vector<int>& signs) {
+  int variations = 0, last = 0;
+  for (const int s : signs) {
+    if (s == 0) continue;
+    if (last != 0 && s != last) ++variations;
+    last = s;
+  }
+  return variations;
+}
+
 /// Roots of p, none multiple in [a, b], in the open (a, b), whose ends are not roots, in order.
 void descartes(const RationalPolynomial& p, const mpq_class& a, const mpq_class& b,
                std::vector<IsolatedRoot>& out) {
   int variations = interval_sign_variations(p, a, b);
-  if (variations < 0) variations = sign_variations(bernstein_coefficients(p, a, b));
+  if (variations < 0) variations = sign_variations(bernstein_signs(p, a, b));
   if (variations == 0) return;
   if (variations == 1) {
     out.push_back({p, a, b});
@@ -248,6 +247,41 @@ int sign(const mpq_class& x) {
   return sgn(x);
 }
 
+std::vector<int> bernstein_signs(const RationalPolynomial& f, const mpq_class& a,
+                                 const mpq_class& b) {
+  const int n = f.degree();
+  if (n < 0) return {};
+  mpz_class lcm = 1;
+  for (const mpq_class& c : f.c) mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), c.get_den_mpz_t());
+  std::vector<mpz_class> c(f.c.size());
+  for (std::size_t j = 0; j < c.size(); ++j) c[j] = f.c[j].get_num() * (lcm / f.c[j].get_den());
+  const mpq_class h = b - a;
+  const mpz_class r = a.get_den() * h.get_den();
+  const mpz_class p_term = a.get_num() * h.get_den(), q_term = h.get_num() * a.get_den();
+  // g = (((c_n (P + Q s) + c_{n-1} R) (P + Q s) + c_{n-2} R^2) ...)
+  std::vector<mpz_class> g(size_t(n) + 1, 0);
+  g[0] = c[size_t(n)];
+  mpz_class r_power = r;
+  for (int j = n - 1, degree = 0; j >= 0; --j, ++degree, r_power *= r) {
+    // g (P + Q s): from the top down, so that each g_i is read before it is overwritten
+    g[size_t(degree) + 1] = g[size_t(degree)] * q_term;
+    for (int i = degree; i >= 1; --i)
+      g[size_t(i)] = g[size_t(i)] * p_term + g[size_t(i) - 1] * q_term;
+    g[0] = g[0] * p_term + c[size_t(j)] * r_power;
+  }
+  std::vector<int> signs(size_t(n) + 1);
+  mpz_class sum, weight;
+  for (int k = 0; k <= n; ++k) {
+    sum = 0;
+    for (int i = 0; i <= k; ++i) {
+      mpz_bin_uiui(weight.get_mpz_t(), (unsigned long)(n - i), (unsigned long)(k - i));
+      mpz_addmul(sum.get_mpz_t(), weight.get_mpz_t(), g[size_t(i)].get_mpz_t());
+    }
+    signs[size_t(k)] = sgn(sum);
+  }
+  return signs;
+}
+
 std::vector<mpq_class> bernstein_coefficients(const RationalPolynomial& f, const mpq_class& a,
                                               const mpq_class& b) {
   std::vector<mpq_class> q = f.c;
@@ -315,11 +349,10 @@ std::vector<IsolatedRoot> isolate_roots(const RationalPolynomial& f, const mpq_c
 /// coefficients on its interval agree in sign.
 int sign_apart_from_zero(const RationalPolynomial& g, IsolatedRoot& root) {
   for (;;) {
-    const std::vector<mpq_class> b = bernstein_coefficients(g, root.lo, root.hi);
     bool positive = true, negative = true;
-    for (const mpq_class& x : b) {
-      positive = positive && sgn(x) > 0;
-      negative = negative && sgn(x) < 0;
+    for (const int x : bernstein_signs(g, root.lo, root.hi)) {
+      positive = positive && x > 0;
+      negative = negative && x < 0;
     }
     if (positive) return 1;
     if (negative) return -1;

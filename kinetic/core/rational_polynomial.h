@@ -47,6 +47,10 @@ void use_default_gmp_allocation();
 /// hull on [a, b], and the number of their sign changes bounds the roots in (a, b) (Descartes).
 std::vector<mpq_class> bernstein_coefficients(const RationalPolynomial& f, const mpq_class& a,
                                               const mpq_class& b);
+/// The signs (-1, 0, 1) of bernstein_coefficients(f, a, b), from positive multiples of them
+/// computed in integers: the exact isolation needs only these, and they cost no gcds.
+std::vector<int> bernstein_signs(const RationalPolynomial& f, const mpq_class& a,
+                                 const mpq_class& b);
 
 /// A real algebraic number: the only root of `poly` in [lo, hi], a simple one (poly is
 /// square-free, or has no multiple root in [lo, hi]). Either lo == hi (a rational root) or

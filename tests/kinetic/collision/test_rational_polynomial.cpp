@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "kinetic/core/rational_polynomial.h"
 
@@ -140,6 +141,42 @@ TEST(RationalPolynomial, BernsteinCoefficientsBoundTheRange) {
   EXPECT_EQ(b[0], 1);                 // p(0)
   EXPECT_EQ(b[1], mpq_class(-1, 2));  // 1 + (-3)/2
   EXPECT_EQ(b[2], 0);                 // p(1)
+}
+
+TEST(RationalPolynomial, BernsteinSignsAreTheCoefficientsSigns) {
+  // Random rational polynomials (degrees 0 to 7, coefficients with denominators) on random
+  // rational intervals, negative ends included, and on intervals around a root, where
+  // coefficients vanish.
+  std::mt19937 rng(29);
+  std::uniform_int_distribution<int> numerator(-40, 40), denominator(1, 12), degree(0, 7);
+  const auto rational = [&] { return mpq_class(numerator(rng), denominator(rng)); };
+  for (int trial = 0; trial < 400; ++trial) {
+    std::vector<mpq_class> c(size_t(degree(rng)) + 1);
+    for (mpq_class& x : c) {
+      x = rational();
+      x.canonicalize();
+    }
+    const RationalPolynomial f(c);
+    mpq_class a = rational(), b = rational();
+    a.canonicalize();
+    b.canonicalize();
+    if (trial % 4 == 0) {  // an interval with a root of f at its end
+      b = a + 1;
+      const RationalPolynomial g = f * RationalPolynomial::linear(-a, 1);
+      const std::vector<mpq_class> reference = bernstein_coefficients(g, a, b);
+      const std::vector<int> signs = bernstein_signs(g, a, b);
+      ASSERT_EQ(signs.size(), reference.size());
+      for (std::size_t k = 0; k < signs.size(); ++k) EXPECT_EQ(signs[k], sgn(reference[k]));
+      continue;
+    }
+    if (a == b) continue;
+    if (b < a) std::swap(a, b);
+    const std::vector<mpq_class> reference = bernstein_coefficients(f, a, b);
+    const std::vector<int> signs = bernstein_signs(f, a, b);
+    ASSERT_EQ(signs.size(), reference.size()) << trial;
+    for (std::size_t k = 0; k < signs.size(); ++k)
+      EXPECT_EQ(signs[k], sgn(reference[k])) << "trial " << trial << ", k " << k;
+  }
 }
 
 }  // namespace
