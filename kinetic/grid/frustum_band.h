@@ -317,6 +317,7 @@ class FrustumBand {
   KineticSortStats m_sort_stats;       ///< the pixel orders' counters, summed
   std::unique_ptr<PixelOrders> m_orders;  ///< one depth order per pixel, by pixel_index
   std::vector<uint32_t> m_fronts;   ///< per pixel: its order's front, or kNoFront
+  std::vector<uint8_t> m_pixel_marks;     ///< per pixel: listed by the key being handled
   FrontChangeLog* m_front_log = nullptr;  ///< motion blur: where front changes go, if anywhere
 
   GridStats m_stats;

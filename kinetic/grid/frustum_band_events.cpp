@@ -24,6 +24,7 @@ FrustumBand::FrustumBand(const GridScene& scene, int row_begin, int row_end, con
   m_orders = PixelOrders::make(config.sort, m_motion, m_width, row_begin, row_end, m_sim.queue(),
                                kGridSwap, m_sort_stats);
   m_fronts.assign(size_t(row_end - row_begin) * size_t(m_width), kNoFront);
+  m_pixel_marks.assign(m_fronts.size(), 0);
 }
 
 void FrustumBand::start(double t0) {

@@ -103,6 +103,9 @@ void FrustumBand::handle_flightplans(uint32_t first_mesh) {
     if (b.unused() || !switched[m_scene.mesh_of_vertex(m_scene.edge_vertices(b.edge)[0])]) continue;
     schedule_boundary(id, edge_now(b.edge));
   }
+  // The pixels holding a switched triangle, each once: a pixel's certificates between two
+  // switched triangles are then computed once, not once per member.
+  std::vector<size_t> pixels;
   for (uint32_t m : meshes) {
     if (!m_meshes[m].present) continue;
     const bool moving = !m_scene.mesh(m).is_static;
@@ -117,10 +120,16 @@ void FrustumBand::handle_flightplans(uint32_t first_mesh) {
         const RowRecord& r = m_records[rec];
         for (int c = r.lo; c <= r.hi; ++c) {
           const size_t k = pixel_index(c, r.row);
-          refresh_front(k, m_orders->replace_motion(k, tri, m_sim.now()));
+          if (m_pixel_marks[k] != 0) continue;
+          m_pixel_marks[k] = 1;
+          pixels.push_back(k);
         }
       }
     }
+  }
+  for (const size_t k : pixels) {
+    m_pixel_marks[k] = 0;
+    refresh_front(k, m_orders->replace_motions(k, switched, m_sim.now()));
   }
 }
 

@@ -15,7 +15,8 @@ template <class Sort>
 class PixelOrdersOf final : public PixelOrders {
  public:
   PixelOrdersOf(const BandMotion& motion, int width, int row_begin, int row_end, EventQueue& queue,
-                const KineticSortConfig& config) {
+                const KineticSortConfig& config)
+      : m_motion(&motion) {
     m_cells_of.reserve(size_t(row_end - row_begin) * size_t(width));
     for (int j = row_begin; j < row_end; ++j)
       for (int i = 0; i < width; ++i)
@@ -37,6 +38,22 @@ class PixelOrdersOf final : public PixelOrders {
   uint32_t replace_motion(size_t pixel, uint32_t tri, double now) override {
     Sort& order = m_cells_of[pixel].order;
     order.replace_motion(tri, now);  // the same members and bytes (the audit's running counts)
+    return order.front().value_or(kNoFront);
+  }
+  uint32_t replace_motions(size_t pixel, const std::vector<uint8_t>& switched,
+                           double now) override {
+    Sort& order = m_cells_of[pixel].order;
+    const GridScene& scene = m_motion->scene();
+    const auto moved = [&](uint32_t tri) { return switched[scene.mesh_of_triangle(tri)] != 0; };
+    if constexpr (requires { order.replace_motions(moved, now); }) {
+      order.replace_motions(moved, now);
+    } else {
+      m_moved.clear();
+      order.for_each([&](uint32_t tri) {
+        if (moved(tri)) m_moved.push_back(tri);
+      });
+      for (uint32_t tri : m_moved) order.replace_motion(tri, now);
+    }
     return order.front().value_or(kNoFront);
   }
   uint32_t handle_event(size_t pixel, uint64_t payload, double now) override {
@@ -86,6 +103,8 @@ class PixelOrdersOf final : public PixelOrders {
     Sort order;
   };
   std::vector<Cell> m_cells_of;  ///< reserved once: the orders point at their keys
+  const BandMotion* m_motion;
+  std::vector<uint32_t> m_moved;  ///< replace_motions' scratch
 };
 
 }  // namespace

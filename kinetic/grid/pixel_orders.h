@@ -43,6 +43,11 @@ class PixelOrders {
   virtual uint32_t erase(size_t pixel, uint32_t tri, double now) = 0;
   /// tri's motion changed at now (a flightplan update): its certificates are computed afresh.
   virtual uint32_t replace_motion(size_t pixel, uint32_t tri, double now) = 0;
+  /// The motions of the members whose mesh is marked in `switched` changed at now: the
+  /// certificates they take part in are computed afresh, each once (the sorted list; the
+  /// tournament and the heap take replace_motion member by member).
+  virtual uint32_t replace_motions(size_t pixel, const std::vector<uint8_t>& switched,
+                                   double now) = 0;
   /// The pixel's swap event with this payload was popped at now.
   virtual uint32_t handle_event(size_t pixel, uint64_t payload, double now) = 0;
 

@@ -111,6 +111,16 @@ class KineticSortedList {
     if (m_core.audit_on()) audit(now);
   }
 
+  /// The motions of the members for which moved(id) holds changed from now on (a flightplan
+  /// update of their meshes): every certificate with a moved member is recomputed, once, where
+  /// replace_motion on each would compute a pair of two moved members twice.
+  template <class Moved>
+  void replace_motions(Moved&& moved, double now) {
+    for (size_t i = 0; i + 1 < m_entries.size(); ++i)
+      if (moved(m_entries[i].id) || moved(m_entries[i + 1].id)) schedule(i, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
   /// The event with this payload was popped from the queue; now = its time.
   void handle_event(uint64_t payload, double now) {
     const auto i = static_cast<size_t>(payload);
