@@ -59,6 +59,8 @@ GridScene::GridScene(GridInput input, int threads, WorkProgress* progress)
         m_triangle_vertices[m_triangle_begin[m] + k][size_t(c)] = m_vertex_begin[m] + tris[k][size_t(c)];
   }
 
+  weld_seams();
+
   // Vertex -> triangle adjacency (CSR), triangles in increasing id order.
   m_adjacency_begin.assign(size_t(vertex_count()) + 1, 0);
   for (uint32_t tri = 0; tri < triangle_count(); ++tri)
@@ -86,7 +88,6 @@ GridScene::GridScene(GridInput input, int threads, WorkProgress* progress)
   m_adjacency.resize(out);
 
   build_edges();
-  build_triangle_positions();
 
   m_cull_sign.resize(meshes);
   if (progress != nullptr) {
@@ -131,7 +132,7 @@ void GridScene::build_edges() {
   }
 }
 
-void GridScene::build_triangle_positions() {
+void GridScene::weld_seams() {
   // Per mesh, its vertices sorted by their whole flightplan (lexicographically over the keys);
   // each run of equal flightplans maps to its lowest id.
   std::vector<uint32_t> same(vertex_count());
@@ -159,13 +160,9 @@ void GridScene::build_triangle_positions() {
       same[vertex_begin(m) + order[k]] = vertex_begin(m) + first;
     }
   }
-  m_triangle_positions.resize(triangle_count());
-  for (uint32_t tri = 0; tri < triangle_count(); ++tri) {
-    const auto& vs = m_triangle_vertices[tri];
-    const std::array<uint32_t, 3> by_position = {same[vs[0]], same[vs[1]], same[vs[2]]};
-    const bool distinct = by_position[0] != by_position[1] && by_position[1] != by_position[2] &&
-                          by_position[0] != by_position[2];
-    m_triangle_positions[tri] = distinct ? by_position : vs;
+  for (std::array<uint32_t, 3>& vs : m_triangle_vertices) {
+    const std::array<uint32_t, 3> welded = {same[vs[0]], same[vs[1]], same[vs[2]]};
+    if (welded[0] != welded[1] && welded[1] != welded[2] && welded[0] != welded[2]) vs = welded;
   }
 }
 

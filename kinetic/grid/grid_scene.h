@@ -46,7 +46,13 @@ class GridScene {
   [[nodiscard]] uint32_t vertex_end(uint32_t m) const { return m_vertex_begin[m + 1]; }
   [[nodiscard]] uint32_t mesh_of_triangle(uint32_t tri) const { return m_triangle_mesh[tri]; }
   [[nodiscard]] uint32_t mesh_of_vertex(uint32_t v) const { return m_vertex_mesh[v]; }
-  /// Global vertex ids of a global triangle.
+  /// Global vertex ids of a global triangle, seams welded: each vertex is the lowest vertex of its
+  /// mesh with the same flightplan (the same position at every key). Exporters of skinned models
+  /// split a mesh edge where texture coordinates or normals change; its two sides move as one
+  /// edge, and welded they share it here: one edge to track, one vertex per point, and the fold
+  /// certificate between them (pixel_depth_order.h). A triangle that welding would give a vertex
+  /// twice (it never has an area) keeps the input's ids. Every position read through a welded id
+  /// is the same as through the input's.
   [[nodiscard]] const std::array<uint32_t, 3>& triangle_vertices(uint32_t tri) const {
     return m_triangle_vertices[tri];
   }
@@ -54,16 +60,6 @@ class GridScene {
   [[nodiscard]] std::span<const uint32_t> triangles_of_vertex(uint32_t v) const {
     return {m_adjacency.data() + m_adjacency_begin[v],
             m_adjacency.data() + m_adjacency_begin[v + 1]};
-  }
-
-  /// The corners of a global triangle by position: each vertex replaced by the lowest vertex of
-  /// its mesh with the same flightplan (the same position at every key), so that triangles on
-  /// either side of a seam (a mesh edge split for its texture coordinates or normals, as
-  /// exporters of skinned models write them) share their edge here too. They move as one
-  /// vertex, so whatever holds of a shared vertex holds of them. A triangle with two corners of
-  /// one flightplan (it never has an area) keeps its vertex ids.
-  [[nodiscard]] const std::array<uint32_t, 3>& triangle_positions(uint32_t tri) const {
-    return m_triangle_positions[tri];
   }
 
   /// Edge e of triangle tri (from its vertex e to its vertex (e + 1) % 3) as a global edge id.
@@ -104,15 +100,14 @@ class GridScene {
  private:
   /// The global edge ids (edge_of_triangle, edge_vertices).
   void build_edges();
-  /// The corners by position (triangle_positions).
-  void build_triangle_positions();
+  /// Replaces the triangles' vertex ids by the lowest of the same flightplan (triangle_vertices).
+  void weld_seams();
 
   GridInput m_input;
   std::vector<double> m_x, m_y;
   std::vector<uint32_t> m_triangle_begin, m_vertex_begin;  ///< prefix sums over meshes
   std::vector<uint32_t> m_triangle_mesh, m_vertex_mesh;
   std::vector<std::array<uint32_t, 3>> m_triangle_vertices;  ///< global vertex ids
-  std::vector<std::array<uint32_t, 3>> m_triangle_positions;
   std::vector<uint32_t> m_adjacency_begin, m_adjacency;
   std::vector<std::array<uint32_t, 3>> m_triangle_edges;  ///< global edge ids
   std::vector<std::array<uint32_t, 2>> m_edge_vertices;

@@ -97,7 +97,7 @@ class PixelDepthKeys {
     const GridScene& scene = m_source->scene();
     const uint32_t first = std::min(a, b), second = std::max(a, b);
     if (const std::optional<SharedEdge> edge =
-            shared_edge(scene.triangle_positions(first), scene.triangle_positions(second))) {
+            shared_edge(scene.triangle_vertices(first), scene.triangle_vertices(second))) {
       c = fold_certificate(first, second, *edge, now, c);
       if (a > b) c.f = -c.f;
       return c;
@@ -136,9 +136,8 @@ class PixelDepthKeys {
     return c;
   }
 
-  /// Two triangles of one mesh sharing an edge by position (GridScene::triangle_positions: a
-  /// seam's two sides too; fold_certificate.h): sign(D_b) kappa times the volume of their four
-  /// vertices.
+  /// Two triangles of one mesh sharing an edge (a seam's two sides too, welded by GridScene;
+  /// fold_certificate.h): sign(D_b) kappa times the volume of their four vertices.
   [[nodiscard]] OrderCertificate fold_certificate(uint32_t a, uint32_t b, const SharedEdge& edge,
                                                   double now, OrderCertificate c) const {
     const GridScene& scene = m_source->scene();
@@ -163,8 +162,7 @@ class PixelDepthKeys {
   [[nodiscard]] bool tied(uint32_t a, uint32_t b, double t) const {
     const GridScene& scene = m_source->scene();
     const auto& va = scene.triangle_vertices(a);
-    const std::optional<SharedEdge> edge =
-        shared_edge(scene.triangle_positions(a), scene.triangle_positions(b));
+    const std::optional<SharedEdge> edge = shared_edge(va, scene.triangle_vertices(b));
     if (!edge) return false;
     const EdgeNormal n = edge_normal(m_source->vertex(va[size_t(edge->first)]),
                                      m_source->vertex(va[size_t((edge->first + 1) % 3)]));
