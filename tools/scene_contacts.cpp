@@ -6,6 +6,7 @@
 
 #include "kinetic/collision/kinetic_contact_finder.h"
 #include "kinetic/collision/swept_volume_hierarchy.h"
+#include "kinetic/motion/welded_triangles.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -37,12 +38,16 @@ struct SegmentMeshes {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
 };
 
-/// The KSL's input: each selected object's flightplans as a FlightplanMesh (positions flattened).
+/// Each selected object's flightplans as a FlightplanMesh (positions flattened; the KSL's input)
+/// and its triangles with seams welded (welded_triangles.h), which every structure tests: the two
+/// sides of a seam are neighbours, not a contact along it all the time.
 struct FlightplanMeshes {
   std::vector<std::vector<Vec3>> positions;
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles;
   std::vector<FlightplanMesh> meshes;
   FlightplanMeshes(const Scene& scene, std::span<const std::uint32_t> objects) {
     positions.resize(objects.size());
+    triangles.resize(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const Object& o = scene.objects[objects[i]];
       for (const std::vector<Vec3>& key : o.key_positions)
@@ -54,6 +59,8 @@ struct FlightplanMeshes {
       m.vertex_count = o.vertex_count();
       m.triangles = o.triangles;
       m.is_static = o.is_static();
+      triangles[i] = welded_triangles(m);
+      m.triangles = triangles[i];
       meshes.push_back(m);
     }
   }
@@ -88,7 +95,8 @@ void swept_segment(SegmentMeshes& s, std::vector<SweptVolumeHierarchy>& hierarch
 /// Walks the segments of `times`, filling `s` for each, and calls visit(t0, t1).
 template <class Visit>
 void walk_segments(const Scene& scene, std::span<const std::uint32_t> objects,
-                   const std::vector<double>& times, SegmentMeshes& s, Visit&& visit) {
+                   const FlightplanMeshes& flightplans, const std::vector<double>& times,
+                   SegmentMeshes& s, Visit&& visit) {
   const std::size_t n = objects.size();
   s.start.resize(n);
   s.finish.resize(n);
@@ -97,14 +105,14 @@ void walk_segments(const Scene& scene, std::span<const std::uint32_t> objects,
   for (std::size_t i = 0; i < n; ++i) {
     const Object& object = scene.objects[objects[i]];
     positions_at(object, times[0], s.finish[i]);
-    s.around.emplace_back(object.triangles, std::uint32_t(object.vertex_count()));
+    s.around.emplace_back(flightplans.triangles[i], std::uint32_t(object.vertex_count()));
   }
   for (std::size_t k = 0; k + 1 < times.size(); ++k) {
     for (std::size_t i = 0; i < n; ++i) {
       const Object& object = scene.objects[objects[i]];
       std::swap(s.start[i], s.finish[i]);
       positions_at(object, times[k + 1], s.finish[i]);
-      s.meshes[i] = {objects[i], object.triangles, s.start[i], s.finish[i], &s.around[i]};
+      s.meshes[i] = {objects[i], flightplans.triangles[i], s.start[i], s.finish[i], &s.around[i]};
     }
     visit(times[k], times[k + 1]);
   }
@@ -160,7 +168,7 @@ SceneContacts find_scene_contacts(const Scene& scene, const CollideParams& param
 
   if (params.structure == ContactStructure::ksl) {
     KineticContactFinder finder(flightplans.meshes, s.pairs, begin, params.audit);
-    walk_segments(scene, objects, times, s, [&](double t0, double t1) {
+    walk_segments(scene, objects, flightplans, times, s, [&](double t0, double t1) {
       finder.begin_segment(s.meshes, t0, t1);
       for (int c = 1; c <= params.checks; ++c)
         finder.advance_to(c == params.checks ? t1 : t0 + (t1 - t0) * c / params.checks,
@@ -172,12 +180,12 @@ SceneContacts find_scene_contacts(const Scene& scene, const CollideParams& param
     result.ksl = KslReport{finder.stats(), finder.tree_stats(), finder.pad()};
   } else if (params.structure == ContactStructure::swept) {
     std::vector<SweptVolumeHierarchy> hierarchies(n);
-    walk_segments(scene, objects, times, s, [&](double t0, double t1) {
+    walk_segments(scene, objects, flightplans, times, s, [&](double t0, double t1) {
       swept_segment(s, hierarchies, params.checks, pad, t0, t1, result);
     });
     sort_contacts(result.contacts);
   } else {
-    walk_segments(scene, objects, times, s, [&](double t0, double t1) {
+    walk_segments(scene, objects, flightplans, times, s, [&](double t0, double t1) {
       for (const auto& [i, j] : s.pairs)  // i == j: the same MeshSegment means self-contacts
         brute_force_contacts(s.meshes[i], s.meshes[j], t0, t1, result.contacts, result.counters);
     });

@@ -1,10 +1,11 @@
 #include "kinetic/grid/grid_scene.h"
 
-#include "kinetic/motion/back_face_culling.h"
-
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+
+#include "kinetic/motion/back_face_culling.h"
+#include "kinetic/motion/welded_triangles.h"
 
 namespace kinray {
 
@@ -53,13 +54,11 @@ GridScene::GridScene(GridInput input, int threads, WorkProgress* progress)
 
   m_triangle_vertices.resize(triangle_count());
   for (uint32_t m = 0; m < meshes; ++m) {
-    const auto& tris = m_input.meshes[m].triangles;
+    const auto tris = welded_triangles(m_input.meshes[m]);
     for (size_t k = 0; k < tris.size(); ++k)
       for (int c = 0; c < 3; ++c)
         m_triangle_vertices[m_triangle_begin[m] + k][size_t(c)] = m_vertex_begin[m] + tris[k][size_t(c)];
   }
-
-  weld_seams();
 
   // Vertex -> triangle adjacency (CSR), triangles in increasing id order.
   m_adjacency_begin.assign(size_t(vertex_count()) + 1, 0);
@@ -129,40 +128,6 @@ void GridScene::build_edges() {
     run = k > 0 && sides[k - 1].ends == sides[k].ends ? run + 1 : 0;
     if (run % 2 == 0) m_edge_vertices.push_back(sides[k].ends);
     m_triangle_edges[sides[k].tri][size_t(sides[k].edge)] = uint32_t(m_edge_vertices.size() - 1);
-  }
-}
-
-void GridScene::weld_seams() {
-  // Per mesh, its vertices sorted by their whole flightplan (lexicographically over the keys);
-  // each run of equal flightplans maps to its lowest id.
-  std::vector<uint32_t> same(vertex_count());
-  for (uint32_t m = 0; m < mesh_count(); ++m) {
-    const FlightplanMesh& mesh = m_input.meshes[m];
-    // -1, 0, 1: a's flightplan below, equal to, above b's (lexicographically over the keys)
-    const auto compare = [&](uint32_t a, uint32_t b) {
-      for (size_t key = 0; key < mesh.key_count(); ++key) {
-        const Eigen::Vector3d &p = mesh.key_position(key, a), &q = mesh.key_position(key, b);
-        for (int k = 0; k < 3; ++k)
-          if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
-      }
-      return 0;
-    };
-    std::vector<uint32_t> order(mesh.vertex_count);
-    for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
-    // equal flightplans by id, so that a run starts at its lowest id
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      const int c = compare(a, b);
-      return c != 0 ? c < 0 : a < b;
-    });
-    uint32_t first = 0;
-    for (size_t k = 0; k < order.size(); ++k) {
-      if (k == 0 || compare(order[k - 1], order[k]) != 0) first = order[k];
-      same[vertex_begin(m) + order[k]] = vertex_begin(m) + first;
-    }
-  }
-  for (std::array<uint32_t, 3>& vs : m_triangle_vertices) {
-    const std::array<uint32_t, 3> welded = {same[vs[0]], same[vs[1]], same[vs[2]]};
-    if (welded[0] != welded[1] && welded[1] != welded[2] && welded[0] != welded[2]) vs = welded;
   }
 }
 

@@ -46,13 +46,9 @@ class GridScene {
   [[nodiscard]] uint32_t vertex_end(uint32_t m) const { return m_vertex_begin[m + 1]; }
   [[nodiscard]] uint32_t mesh_of_triangle(uint32_t tri) const { return m_triangle_mesh[tri]; }
   [[nodiscard]] uint32_t mesh_of_vertex(uint32_t v) const { return m_vertex_mesh[v]; }
-  /// Global vertex ids of a global triangle, seams welded: each vertex is the lowest vertex of its
-  /// mesh with the same flightplan (the same position at every key). Exporters of skinned models
-  /// split a mesh edge where texture coordinates or normals change; its two sides move as one
-  /// edge, and welded they share it here: one edge to track, one vertex per point, and the fold
-  /// certificate between them (pixel_depth_order.h). A triangle that welding would give a vertex
-  /// twice (it never has an area) keeps the input's ids. Every position read through a welded id
-  /// is the same as through the input's.
+  /// Global vertex ids of a global triangle, seams welded (welded_triangles.h): a seam's two
+  /// sides share their edge, so it is tracked once and its sides are ordered by their fold
+  /// (pixel_depth_order.h).
   [[nodiscard]] const std::array<uint32_t, 3>& triangle_vertices(uint32_t tri) const {
     return m_triangle_vertices[tri];
   }
@@ -100,8 +96,6 @@ class GridScene {
  private:
   /// The global edge ids (edge_of_triangle, edge_vertices).
   void build_edges();
-  /// Replaces the triangles' vertex ids by the lowest of the same flightplan (triangle_vertices).
-  void weld_seams();
 
   GridInput m_input;
   std::vector<double> m_x, m_y;

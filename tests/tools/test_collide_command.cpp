@@ -1,12 +1,13 @@
 // `kinray collide`: a contact at a known time, identical contact sets from swept volumes and brute
 // force on the collision scenes, time order, and bad input.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "tests/tools/kinray_process.h"
 
@@ -131,6 +132,33 @@ TEST_F(CollideCommand, SelfContactsExcludeAdjacentTriangles) {
   const nlohmann::json report =
       collide("cloth-fold:triangles=72,duration=1,keyrate=4 --self --time 0:0.25");
   EXPECT_EQ(report["contacts"].size(), 0u);
+}
+
+TEST_F(CollideCommand, SelfContactsExcludeTheTwoSidesOfASeam) {
+  // Two triangles sharing an edge only by position (vertices 3 and 4 repeat 1 and 0 at every
+  // key, as a texture seam of a skinned model is written), folding: neighbours, not a contact
+  // along the seam at every instant; a third triangle falls through the fold and does touch it.
+  const fs::path scene = m_dir / "seam.json";
+  std::ofstream(scene) << R"({"shot": {"begin": 0, "end": 1},
+    "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]},
+    "objects": [
+      {"kind": "mesh", "name": "seam", "triangles": [[0, 1, 2], [3, 4, 5], [6, 7, 8]],
+       "keys": [{"time": 0, "vertices": [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [1, 0, 0], [0, 0, 0],
+                                         [0.5, -1, 0], [0.4, -0.1, 1], [0.6, -0.1, 1], [0.5, 0.2, 1]]},
+                {"time": 1, "vertices": [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [1, 0, 0], [0, 0, 0],
+                                         [0.5, -0.8, 0.6], [0.4, -0.1, -1], [0.6, -0.1, -1],
+                                         [0.5, 0.2, -1]]}]}]})";
+  for (const char* structure : {"brute", "swept", "ksl"}) {
+    SCOPED_TRACE(structure);
+    const nlohmann::json report =
+        collide("'" + scene.string() + "' --self --structure " + structure);
+    ASSERT_FALSE(report["contacts"].empty());  // the falling triangle
+    for (const nlohmann::json& c : report["contacts"]) {
+      const std::vector<int> v = c["vertices"];
+      // every contact is with the falling triangle (vertices 6 to 8)
+      EXPECT_TRUE(std::ranges::any_of(v, [](int x) { return x >= 6; })) << c.dump();
+    }
+  }
 }
 
 TEST_F(CollideCommand, BadFlagsAreOneLineAndExitTwo) {
