@@ -45,15 +45,7 @@ class PixelOrdersOf final : public PixelOrders {
     Sort& order = m_cells_of[pixel].order;
     const GridScene& scene = m_motion->scene();
     const auto moved = [&](uint32_t tri) { return switched[scene.mesh_of_triangle(tri)] != 0; };
-    if constexpr (requires { order.replace_motions(moved, now); }) {
-      order.replace_motions(moved, now);
-    } else {
-      m_moved.clear();
-      order.for_each([&](uint32_t tri) {
-        if (moved(tri)) m_moved.push_back(tri);
-      });
-      for (uint32_t tri : m_moved) order.replace_motion(tri, now);
-    }
+    order.replace_motions(moved, now);
     return order.front().value_or(kNoFront);
   }
   uint32_t handle_event(size_t pixel, uint64_t payload, double now) override {
@@ -104,7 +96,6 @@ class PixelOrdersOf final : public PixelOrders {
   };
   std::vector<Cell> m_cells_of;  ///< reserved once: the orders point at their keys
   const BandMotion* m_motion;
-  std::vector<uint32_t> m_moved;  ///< replace_motions' scratch
 };
 
 }  // namespace

@@ -44,8 +44,7 @@ class PixelOrders {
   /// tri's motion changed at now (a flightplan update): its certificates are computed afresh.
   virtual uint32_t replace_motion(size_t pixel, uint32_t tri, double now) = 0;
   /// The motions of the members whose mesh is marked in `switched` changed at now: the
-  /// certificates they take part in are computed afresh, each once (the sorted list; the
-  /// tournament and the heap take replace_motion member by member).
+  /// certificates they take part in are computed afresh, each once.
   virtual uint32_t replace_motions(size_t pixel, const std::vector<uint8_t>& switched,
                                    double now) = 0;
   /// The pixel's swap event with this payload was popped at now.

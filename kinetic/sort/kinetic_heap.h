@@ -92,6 +92,17 @@ class KineticHeap {
     if (m_core.audit_on()) audit(now);
   }
 
+  /// The motions of the members for which moved(id) holds changed from now on: the
+  /// certificates of their nodes, each once.
+  template <class Moved>
+  void replace_motions(Moved&& moved, double now) {
+    Touched touched;
+    for (uint32_t i = 0; i < m_nodes.size(); ++i)
+      if (moved(m_nodes[i].id)) touched.push_back(i);
+    reschedule(touched, now);
+    if (m_core.audit_on()) audit(now);
+  }
+
   void handle_event(uint64_t payload, double now) {
     const auto i = static_cast<uint32_t>(payload);
     KINRAY_CHECK(i >= 1 && i < m_nodes.size());

@@ -78,6 +78,22 @@ class KineticTournament {
     if (m_core.audit_on()) audit(now);
   }
 
+  /// The motions of the members for which moved(id) holds changed from now on: every match with
+  /// a moved member below it is recomputed once, children first, where replace_motion on each
+  /// would recompute the matches their paths share once per member.
+  template <class Moved>
+  void replace_motions(Moved&& moved, double now) {
+    std::vector<uint8_t> touched(m_capacity, 0);
+    for (uint32_t i = 0; i < m_size; ++i)
+      if (moved(m_nodes[m_capacity + i].winner)) touched[(m_capacity + i) / 2] = 1;
+    for (uint32_t k = m_capacity - 1; k >= 1; --k) {
+      if (touched[k] == 0) continue;
+      recompute(k, now);
+      touched[k / 2] = 1;
+    }
+    if (m_core.audit_on()) audit(now);
+  }
+
   void handle_event(uint64_t payload, double now) {
     const auto k = static_cast<uint32_t>(payload);
     KINRAY_CHECK(k >= 1 && k < m_capacity);

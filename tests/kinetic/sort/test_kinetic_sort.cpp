@@ -262,11 +262,11 @@ TYPED_TEST(KineticSort, RandomMotionsAgainstBruteForce) {
 }
 
 // A flightplan update of many members at once (a mesh key in a pixel): replace_motions computes
-// each certificate with a moved member once, where replace_motion member by member computes a
-// pair of two moved members twice, and the order then runs exactly as with replace_motion.
-TEST(KineticSortList, ReplaceMotionsComputesEachPairOnceAndRunsTheSame) {
-  using List = KineticSortedList<PolynomialKeys>;
-  Harness<List> once, each;
+// each certificate with a moved member once (the sorted list: one per adjacent pair with a moved
+// member, where replace_motion member by member computes a pair of two moved members twice),
+// and the structure then runs exactly as with replace_motion.
+TYPED_TEST(KineticSort, ReplaceMotionsRunsLikeReplaceMotionMemberByMember) {
+  Harness<TypeParam> once, each;
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<Polynomial> start, moved;
@@ -274,7 +274,7 @@ TEST(KineticSortList, ReplaceMotionsComputesEachPairOnceAndRunsTheSame) {
     start.push_back(Polynomial{5 * u(rng), u(rng), 0.2 * u(rng)});
     moved.push_back(Polynomial{5 * u(rng), u(rng), 0.2 * u(rng)});
   }
-  for (Harness<List>* h : {&once, &each}) {
+  for (Harness<TypeParam>* h : {&once, &each}) {
     for (const Polynomial& p : start) h->insert(h->keys.add(p));
     h->advance(1);
   }
@@ -283,7 +283,7 @@ TEST(KineticSortList, ReplaceMotionsComputesEachPairOnceAndRunsTheSame) {
   const double t = 1;
   const uint64_t work_once = once.s.stats().work, work_each = each.s.stats().work;
   for (uint32_t id = 0; id < 40; id += 2) {
-    for (Harness<List>* h : {&once, &each}) {
+    for (Harness<TypeParam>* h : {&once, &each}) {
       Polynomial p = moved[id];
       p.c[0] = h->keys.value(id, t);  // local time from t
       h->keys.set_motion(id, p, t);
@@ -291,29 +291,29 @@ TEST(KineticSortList, ReplaceMotionsComputesEachPairOnceAndRunsTheSame) {
     each.s.replace_motion(id, t);
   }
   once.s.replace_motions([](uint32_t id) { return id % 2 == 0; }, t);
-  // every adjacent pair has a moved member unless both are odd; pairs of two even ids count
-  // twice member by member
-  std::vector<uint32_t> order;
-  once.s.for_each_in_order([&](uint32_t id) { order.push_back(id); });
-  uint64_t pairs = 0, both = 0;
-  for (size_t i = 0; i + 1 < order.size(); ++i) {
-    const bool a = order[i] % 2 == 0, b = order[i + 1] % 2 == 0;
-    pairs += a || b;
-    both += a && b;
+  EXPECT_LT(once.s.stats().work - work_once, each.s.stats().work - work_each);
+  if constexpr (kIsList<TypeParam>) {
+    // every adjacent pair has a moved member unless both are odd; pairs of two even ids count
+    // twice member by member
+    std::vector<uint32_t> order;
+    once.s.for_each_in_order([&](uint32_t id) { order.push_back(id); });
+    uint64_t pairs = 0, both = 0;
+    for (size_t i = 0; i + 1 < order.size(); ++i) {
+      const bool a = order[i] % 2 == 0, b = order[i + 1] % 2 == 0;
+      pairs += a || b;
+      both += a && b;
+    }
+    EXPECT_EQ(once.s.stats().work - work_once, pairs);
+    EXPECT_EQ(each.s.stats().work - work_each, pairs + both);
   }
-  EXPECT_EQ(once.s.stats().work - work_once, pairs);
-  EXPECT_EQ(each.s.stats().work - work_each, pairs + both);
   for (double at = 1.5; at <= 6; at += 0.5) {
     once.advance(at);
     each.advance(at);
     ASSERT_NO_FATAL_FAILURE(once.check());
-    std::vector<uint32_t> a, b;
-    once.s.for_each_in_order([&](uint32_t id) { a.push_back(id); });
-    each.s.for_each_in_order([&](uint32_t id) { b.push_back(id); });
-    ASSERT_EQ(a, b) << "t = " << at;
+    ASSERT_EQ(once.s.front(), each.s.front()) << "t = " << at;
   }
   EXPECT_EQ(once.s.stats().events(), each.s.stats().events());
-  EXPECT_GT(once.s.stats().events(), 20u);
+  EXPECT_GT(once.s.stats().events(), 10u);  // the structure did run
 }
 
 TYPED_TEST(KineticSort, InsertAllThenSimulate) {
