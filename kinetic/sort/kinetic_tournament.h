@@ -83,13 +83,15 @@ class KineticTournament {
   /// would recompute the matches their paths share once per member.
   template <class Moved>
   void replace_motions(Moved&& moved, double now) {
-    std::vector<uint8_t> touched(m_capacity, 0);
-    for (uint32_t i = 0; i < m_size; ++i)
-      if (moved(m_nodes[m_capacity + i].winner)) touched[(m_capacity + i) / 2] = 1;
-    for (uint32_t k = m_capacity - 1; k >= 1; --k) {
-      if (touched[k] == 0) continue;
-      recompute(k, now);
-      touched[k / 2] = 1;
+    if (m_size >= 2) {  // else no match (and m_capacity may be 0)
+      std::vector<uint8_t> touched(m_capacity, 0);
+      for (uint32_t i = 0; i < m_size; ++i)
+        if (moved(m_nodes[m_capacity + i].winner)) touched[(m_capacity + i) / 2] = 1;
+      for (uint32_t k = m_capacity - 1; k >= 1; --k) {
+        if (touched[k] == 0) continue;
+        recompute(k, now);
+        touched[k / 2] = 1;
+      }
     }
     if (m_core.audit_on()) audit(now);
   }
