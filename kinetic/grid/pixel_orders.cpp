@@ -35,17 +35,12 @@ class PixelOrdersOf final : public PixelOrders {
     --m_entries;
     return change(pixel, [&](Sort& order) { order.erase(tri, now); });
   }
-  uint32_t replace_motion(size_t pixel, uint32_t tri, double now) override {
-    Sort& order = m_cells_of[pixel].order;
-    order.replace_motion(tri, now);  // the same members and bytes (the audit's running counts)
-    return order.front().value_or(kNoFront);
-  }
   uint32_t replace_motions(size_t pixel, const std::vector<uint8_t>& switched,
                            double now) override {
     Sort& order = m_cells_of[pixel].order;
     const GridScene& scene = m_motion->scene();
     const auto moved = [&](uint32_t tri) { return switched[scene.mesh_of_triangle(tri)] != 0; };
-    order.replace_motions(moved, now);
+    order.replace_motions(moved, now);  // the same members and bytes (the audit's running counts)
     return order.front().value_or(kNoFront);
   }
   uint32_t handle_event(size_t pixel, uint64_t payload, double now) override {

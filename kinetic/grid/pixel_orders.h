@@ -41,10 +41,8 @@ class PixelOrders {
   // Changes at `now`; each returns the pixel's front after it (kNoFront if empty).
   virtual uint32_t insert(size_t pixel, uint32_t tri, double now) = 0;
   virtual uint32_t erase(size_t pixel, uint32_t tri, double now) = 0;
-  /// tri's motion changed at now (a flightplan update): its certificates are computed afresh.
-  virtual uint32_t replace_motion(size_t pixel, uint32_t tri, double now) = 0;
-  /// The motions of the members whose mesh is marked in `switched` changed at now: the
-  /// certificates they take part in are computed afresh, each once.
+  /// The motions of the members whose mesh is marked in `switched` changed at now (a flightplan
+  /// update): the certificates they take part in are computed afresh, each once.
   virtual uint32_t replace_motions(size_t pixel, const std::vector<uint8_t>& switched,
                                    double now) = 0;
   /// The pixel's swap event with this payload was popped at now.
