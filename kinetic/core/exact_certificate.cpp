@@ -91,11 +91,8 @@ std::optional<ScaledIntegers> scaled_integers(const Polynomial& p) {
   for (int k = 0; k <= p.degree; ++k) {
     const double x = p.c[size_t(k)];
     if (x == 0) continue;
-    int e = 0;
-    const double mantissa = std::frexp(x, &e);  // x = mantissa 2^e, 0.5 <= |mantissa| < 1
-    // the last bit of x: 2^(e - 53), or 2^-1074 for a subnormal
-    (void)mantissa;
-    lowest = std::min(lowest, std::max(e - 53, -1074));
+    // the last bit of x: 2^(ilogb(x) - 52), or 2^-1074 for a subnormal
+    lowest = std::min(lowest, std::max(std::ilogb(x) - 52, -1074));
   }
   ScaledIntegers out;
   if (lowest == std::numeric_limits<int>::max()) {  // the zero polynomial
