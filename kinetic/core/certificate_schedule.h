@@ -22,11 +22,15 @@ struct OrderCertificate {
   /// When set, the exact polynomial that f rounds, too close to call in double near its roots:
   /// signs and failure times are then decided on it (kinetic/core/exact_certificate.h).
   std::shared_ptr<const ExactPolynomial> exact;
+  /// With `exact`: how long the rounded envelopes were seen to decide the sign, so that the exact
+  /// failure search can wait (schedule_certificate's defer_exact).
+  EnvelopeVouch vouched;
 
   /// The certificate of the swapped pair: -f (exactly, as the keys contract requires).
   void negate() {
     f = -f;
     if (exact) exact = exact_negated(*exact);
+    vouched.orientation = -vouched.orientation;
   }
 };
 
@@ -45,13 +49,23 @@ struct Schedule {
   bool failure = false;     ///< true: c fails at `time`; false: renewal at c.end (or never)
   bool degenerate = false;  ///< a near-tie was given up (see schedule_degenerate)
   double broken_until = -std::numeric_limits<double>::infinity();  ///< degenerate: c < 0 until
+  /// `time` is where c's exact polynomial stops being vouched for by its rounded lower envelope
+  /// (it holds at every double before): the exact failure search was put off until then.
+  bool recheck = false;
 };
 /// The absolute event time of certificate c of (a, b) (already holding just after now, or
 /// broken: then time = now). The time t returned for a failure satisfies
 /// sign_after(f, t - origin) < 0 with the subtraction in double, as the structure will compute
 /// it when the event is handled, so processing the swap gives a successor that holds.
+///
+/// With `defer_exact`, a certificate decided on its exact polynomial whose lower envelope holds
+/// for a while is scheduled for a recheck where the envelope first fails (`recheck`), never later
+/// than its failure: most such pairs stop being neighbours before then (a triangle leaves the
+/// pixel), and the exact search, ten times the rest of the certificate, is never run. The
+/// structure recomputes the certificate at the recheck as at any event, finds it holding, and
+/// schedules it again from there, then exactly (the envelope fails at once).
 [[nodiscard]] Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
-                                            uint32_t b);
+                                            uint32_t b, bool defer_exact = false);
 
 /// Same-instant guard: counts events per instant; beyond a budget, a certificate created broken
 /// at now is treated as a numerical near-tie and scheduled after its next - to + change.

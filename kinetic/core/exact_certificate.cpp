@@ -372,10 +372,12 @@ Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
   return e;
 }
 
-bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now, double s_end) {
+bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now, double s_end,
+                     EnvelopeVouch* vouch) {
   // Both ways: a structure that swaps the pair schedules -f, computed from the same call.
   const Polynomial lower = with_error(f, error, -1), upper = with_error(f, error, 1);
-  auto decided = [&](const Polynomial& below, const Polynomial& above) {
+  EnvelopeVouch seen;
+  auto decided = [&](const Polynomial& below, const Polynomial& above, int orientation) {
     // first_failure returns s_now exactly when sign_after is negative there; else the filter,
     // which decides only where first_failure(below) finds no failure either: most depth
     // certificates hold through their segment one way and are broken now the other.
@@ -383,17 +385,21 @@ bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
     if (holds_through(below, s_now, s_end)) return true;
     const std::optional<double> low = first_failure(below, s_now, s_end);
     if (!low) return true;
+    // The exact polynomial lies above `below`: it holds at every double before low.
+    seen = {orientation, *low};
     // first_failure answers a double where sign_after is negative, so `above` can fail first at
     // low only if it is broken there: most undecided certificates are spared its search.
     if (sign_after(above, *low) >= 0) return false;
     const std::optional<double> high = first_failure(above, s_now, s_end);
     return high && *high == *low;
   };
-  if (!decided(lower, upper)) return false;
+  bool both = decided(lower, upper, 1);
   // -f's envelopes are -upper and -lower, whose signs are the negated ones (Horner's value and
   // the Taylor shift negate exactly): the common case, -f broken now, needs neither polynomial.
-  if (sign_after(upper, s_now) > 0) return sign_after(lower, s_now) > 0;
-  return decided(-upper, -lower);
+  if (both) both = sign_after(upper, s_now) > 0 ? sign_after(lower, s_now) > 0
+                                                : decided(-upper, -lower, -1);
+  if (!both && vouch != nullptr) *vouch = seen;
+  return both;
 }
 
 }  // namespace kinray

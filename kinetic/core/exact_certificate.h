@@ -11,6 +11,7 @@
 // tell; failure times by bisection between the envelopes' failures where the exact polynomial is
 // provably monotone, by exact root isolation (GMP) otherwise.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -57,12 +58,21 @@ struct ExactPolynomial {
 [[nodiscard]] Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
                                                   const Polynomial& p2, const Polynomial& q2);
 
+/// What the rounded envelopes of an undecided certificate still prove: the exact polynomial has
+/// the sign `orientation` (+1, or -1 for its negation; 0: nothing proved) at every double of
+/// (s_now, until), local time.
+struct EnvelopeVouch {
+  int orientation = 0;
+  double until = -std::numeric_limits<double>::infinity();
+};
+
 /// Does the rounded certificate f decide its failure in (s_now, s_end] (s_now >= 0), and that of
 /// -f, whatever the exact polynomial within `error` (coefficient-wise) of it? One way, true when
 /// f - error holds throughout, or f - error and f + error fail at the same double: the exact
 /// polynomial, lying between them for s >= 0, then fails there too. Both ways, since a swap
-/// schedules the negation without recomputing it.
+/// schedules the negation without recomputing it. When it does not decide, `vouch` (if given)
+/// receives how long the envelope of the way that holds now was seen to hold, found on the way.
 [[nodiscard]] bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
-                                   double s_end);
+                                   double s_end, EnvelopeVouch* vouch = nullptr);
 
 }  // namespace kinray

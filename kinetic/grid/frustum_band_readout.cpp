@@ -10,6 +10,7 @@ GridStats FrustumBand::stats() const {
     for (uint32_t m = 0; m < m_scene.mesh_count(); ++m)
       if (m_scene.cull_sign(m) != 0 && m_meshes[m].present) ++s.meshes_culling;
   s.certificates_computed += m_sort_stats.work;
+  s.exact_deferred += m_sort_stats.exact_deferred;
   s.certificates_live = 2 * (m_live_boundaries + m_live_vertices) + m_live_orientations +
                         m_sort_stats.certificates_live;
   s.records = m_records.size() - m_free_records.size();

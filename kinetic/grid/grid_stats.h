@@ -28,7 +28,8 @@ struct GridEventCounts {
   X(events_external, "events_external")   /* events that changed some pixel's front */           \
   X(events_internal, "events_internal")   /* the others */                                       \
   X(spurious, "spurious")                 /* certificate failures that were rounding */          \
-  X(renewals, "renewals")                 /* depth certificates renewed at a key */              \
+  X(renewals, "renewals")                 /* depth certificates renewed at a key, or rechecked */ \
+  X(exact_deferred, "exact_deferred")     /* exact depth searches put off to a recheck */        \
   X(coverage_changes, "coverage_changes") /* a triangle into / out of a pixel's order */         \
   X(records_born, "records_born")                                                                \
   X(records_died, "records_died")                                                                \

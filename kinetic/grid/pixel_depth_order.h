@@ -130,7 +130,8 @@ class PixelDepthKeys {
     if (n == 0) {
       const Polynomial& na = pa.numerator;
       const Polynomial& nb = pb.numerator;
-      if (!decided_despite(c.f, product_difference_error(nb, da, na, db), s, c.end - c.origin))
+      if (!decided_despite(c.f, product_difference_error(nb, da, na, db), s, c.end - c.origin,
+                           &c.vouched))
         c.exact = exact_product_difference(nb, da, na, db, sigma);
     }
     return c;

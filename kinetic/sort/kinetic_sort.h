@@ -75,7 +75,8 @@ struct KineticSortConfig {
   X(certificates_live, "certificates_live")       /* held now (a gauge) */                  \
   X(certificates_created, "certificates_created") /* computed and (re)scheduled */          \
   X(work, "work")             /* certificate computations, comparisons included */          \
-  X(degenerate, "degenerate") /* near-ties resolved by the same-instant guard */
+  X(degenerate, "degenerate") /* near-ties resolved by the same-instant guard */             \
+  X(exact_deferred, "exact_deferred") /* exact failure searches put off to a recheck */
 
 /// Counters of one structure (or of many, when shared).
 struct KineticSortStats {
@@ -228,7 +229,8 @@ class SortCore {
   /// (Re)schedules the event of certificate c of (a, b) whose handle is `handle`, or cancels it.
   void schedule(EventHandle& handle, const OrderCertificate& c, uint32_t a, uint32_t b,
                 double now, size_t n, uint64_t payload) {
-    Schedule s = schedule_certificate(c, now, a, b);
+    Schedule s = schedule_certificate(c, now, a, b, /*defer_exact=*/true);
+    if (s.recheck) ++m_stats->exact_deferred;
     if (s.failure && s.time == now && now == m_instant_time && m_instant_events > budget(n)) {
       s = schedule_degenerate(c, now, a, b);
       ++m_stats->degenerate;

@@ -31,7 +31,7 @@ TEST(StatsJson, EveryGridCounterIsSummedAndWrittenUnderItsKey) {
   EXPECT_EQ(counters["records_born"], 14);
   EXPECT_EQ(counters["pixel_memory_bytes"], 2000);
   EXPECT_EQ(counters["certificates_live_max"], 0);
-  EXPECT_EQ(counters.size(), 21u);
+  EXPECT_EQ(counters.size(), 22u);
 }
 
 TEST(StatsJson, EventKindsOfEveryStructureHaveTheirKeysAndTotal) {

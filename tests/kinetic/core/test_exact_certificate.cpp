@@ -1,7 +1,7 @@
 // Exact depth certificates (kinetic/core/exact_certificate.h): the certificate of BART robots' two
 // nearly edge-on triangles at t = 1.4997 s (the sort audit's "key values out of order"), signs
 // against GMP rationals, and failure times against exact root isolation on products that nearly
-// cancel.
+// cancel; the exact search put off to a recheck lands on the same failure.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "kinetic/core/certificate_schedule.h"
 #include "kinetic/core/exact_certificate.h"
 #include "kinetic/core/rational_polynomial.h"
 #include "kinetic/core/root_finding.h"
@@ -300,6 +301,55 @@ TEST(ExactCertificate, CleanCrossingsMatchExactIsolation) {
   }
   EXPECT_GT(failures, 500);
   EXPECT_GT(undecided, 500);
+}
+
+// A structure that defers the exact search (schedule_certificate's defer_exact) looks at the pair
+// again at the recheck, where the certificate must still hold, and from there finds the failure
+// the exact search would have found at once: deferring never moves an event. Depth certificates
+// crossing inside the window, as CleanCrossingsMatchExactIsolation draws them, with the vouch that
+// decided_despite leaves and without it.
+TEST(ExactCertificate, ADeferredExactSearchFindsTheSameFailureAfterItsRecheck) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> coef(-2, 2), unit(0, 1);
+  int deferred = 0, failed_after_recheck = 0, undecided = 0;
+  for (int i = 0; i < 1500; ++i) {
+    const Polynomial p1{coef(rng), coef(rng), coef(rng), coef(rng)};
+    const Polynomial q1{1 + unit(rng), unit(rng) * 0.3, unit(rng) * 0.3};
+    const double r = unit(rng), slope = coef(rng) * (i % 4 == 0 ? 1e-12 : 1.0);
+    const Polynomial p2 = p1 + Polynomial{-r * slope, slope} * q1;
+    const Polynomial q2 = i % 3 == 0 ? q1 : q1 + Polynomial{0, 1e-3 * unit(rng)};
+    const double origin = 2 + unit(rng), now = origin + unit(rng) * 0.5;
+    OrderCertificate c;
+    c.origin = origin;
+    c.end = origin + 0.5 + unit(rng);
+    c.f = p1 * q1 - p2 * q2;
+    const RationalPolynomial ref = reference(p1, q1, p2, q2, 1);
+    if (ref.is_zero()) continue;
+    if (decided_despite(c.f, product_difference_error(p1, q1, p2, q2), now - origin,
+                        c.end - origin, i % 2 == 0 ? &c.vouched : nullptr))
+      continue;
+    ++undecided;
+    c.exact = exact_product_difference(p1, q1, p2, q2, 1);
+    if (detail::order_sign(c, now, 0, 1) < 0) c.negate();  // the way that holds now, scheduled
+    const detail::Schedule direct = detail::schedule_certificate(c, now, 0, 1);
+    double t = now;
+    detail::Schedule s = detail::schedule_certificate(c, t, 0, 1, true);
+    for (int k = 0; s.recheck; ++k) {
+      ASSERT_LT(k, 3) << i;
+      ASSERT_GT(s.time, t) << i;
+      ASSERT_LE(s.time, direct.time) << i;  // never after the failure
+      t = s.time;
+      ASSERT_GT(detail::order_sign(c, t, 0, 1), 0) << i << ": broken at its recheck";
+      ++deferred;
+      s = detail::schedule_certificate(c, t, 0, 1, true);
+    }
+    EXPECT_EQ(s.time, direct.time) << i;
+    EXPECT_EQ(s.failure, direct.failure) << i;
+    failed_after_recheck += t > now && s.failure;
+  }
+  EXPECT_GT(undecided, 500);
+  EXPECT_GT(deferred, 300);
+  EXPECT_GT(failed_after_recheck, 200);
 }
 
 }  // namespace
