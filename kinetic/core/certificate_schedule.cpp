@@ -45,26 +45,15 @@ double nudge(const OrderCertificate& c, double from, double limit) {
 }
 
 // The recheck of a certificate decided exactly (schedule_certificate's defer_exact): the last
-// absolute time t > now whose local time t - origin (as the handler computes it) lies in
-// (s_now, low], where low is the first failure of a lower envelope of F (the filter's, when it
-// saw one, else the exact polynomial's own), F > 0 at every double before it. Nothing when the envelope fails at once, its search met its own rounding noise, or
-// the absolute time cannot lie after now: the exact search decides then.
-std::optional<double> exact_recheck_time(const OrderCertificate& c, double now, double s_now,
-                                         double s_end, bool& holds_throughout) {
-  std::optional<double> low;
-  if (c.vouched.orientation > 0 && c.vouched.until > s_now) {
-    low = c.vouched.until;  // found by the filter that sent c to the exact path
-  } else {
-    bool noise = false;
-    low = first_failure(c.exact->lower, s_now, s_end, noise);
-    if (noise) return std::nullopt;
-    if (!low) {
-      holds_throughout = true;  // F > lower >= 0 up to s_end: exact_first_failure's answer too
-      return std::nullopt;
-    }
-  }
-  double t = c.origin + *low;
-  while (t - c.origin > *low) t = std::nextafter(t, -kInf);
+// absolute time t > now whose local time t - origin (as the handler computes it) is at most
+// `until`, before which the filter that sent c to the exact path saw F hold. Nothing without
+// that vouch, or when no such time lies after now: the exact search decides then. (The exact
+// polynomial's own, tighter envelope would vouch for longer, but its failure lies in F's noise
+// band, where an exact search that starts there costs some hundred times one started before it.)
+std::optional<double> exact_recheck_time(const OrderCertificate& c, double now, double s_now) {
+  if (!(c.vouched.orientation > 0 && c.vouched.until > s_now)) return std::nullopt;
+  double t = c.origin + c.vouched.until;
+  while (t - c.origin > c.vouched.until) t = std::nextafter(t, -kInf);
   if (!(t > now)) return std::nullopt;
   return t;
 }
@@ -95,15 +84,9 @@ Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
     return s;
   }
   if (c.exact && defer_exact) {
-    bool holds_throughout = false;
-    if (const std::optional<double> t =
-            exact_recheck_time(c, now, s_now, c.end - c.origin, holds_throughout)) {
+    if (const std::optional<double> t = exact_recheck_time(c, now, s_now)) {
       s.time = *t;
       s.recheck = true;
-      return s;
-    }
-    if (holds_throughout) {
-      if (c.end < kInf && c.end > now) s.time = c.end;
       return s;
     }
   }
