@@ -51,7 +51,7 @@ double nudge(const OrderCertificate& c, double from, double limit) {
 // polynomial's own, tighter envelope would vouch for longer, but its failure lies in F's noise
 // band, where an exact search that starts there costs some hundred times one started before it.)
 std::optional<double> exact_recheck_time(const OrderCertificate& c, double now, double s_now) {
-  if (!(c.vouched.orientation > 0 && c.vouched.until > s_now)) return std::nullopt;
+  if (!(c.vouched.orientation > 0 && c.vouched.covers(s_now))) return std::nullopt;
   double t = c.origin + c.vouched.until;
   while (t - c.origin > c.vouched.until) t = std::nextafter(t, -kInf);
   if (!(t > now)) return std::nullopt;
@@ -61,7 +61,9 @@ std::optional<double> exact_recheck_time(const OrderCertificate& c, double now, 
 }  // namespace
 
 int certificate_sign_after(const OrderCertificate& c, double s) {
-  return c.exact ? exact_sign_after(*c.exact, s) : sign_after(c.f, s);
+  if (!c.exact) return sign_after(c.f, s);
+  if (c.vouched.covers(s)) return c.vouched.orientation;  // the exact polynomial is not asked
+  return exact_sign_after(*c.exact, s);
 }
 
 int order_sign(const OrderCertificate& c, double now, uint32_t a, uint32_t b) {

@@ -157,8 +157,9 @@ int sign_after_using(const ExactPolynomial& f, double s, const RationalPolynomia
   // side, F(s) has that sign (most times a search asks about are a few ulps from the crossing,
   // but the window's start and the bracket's end are not).
   if (s >= 0) {
-    if (f.lower(s) > 0) return 1;
-    if (f.upper(s) < 0) return -1;
+    const ExactPolynomial::Envelopes& e = f.envelopes();
+    if (e.lower(s) > 0) return 1;
+    if (e.upper(s) < 0) return -1;
   }
   const int filtered = filtered_sign(f, s);
   if (filtered != 2) return filtered;
@@ -244,11 +245,9 @@ double close_crossing(const Polynomial& close, double low, double hi) {
 
 }  // namespace
 
-std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial& p1,
-                                                                const Polynomial& q1,
-                                                                const Polynomial& p2,
-                                                                const Polynomial& q2, int sign) {
-  ExactPolynomial f{p1, q1, p2, q2, sign, {}, {}, {}, {}};
+const ExactPolynomial::Envelopes& ExactPolynomial::envelopes() const {
+  if (m_envelopes) return *m_envelopes;
+  Envelopes& f = m_envelopes.emplace();
   const int n =
       std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
   f.close.degree = f.close_error.degree = n;
@@ -274,17 +273,31 @@ std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial
   }
   f.lower = with_error(f.close, f.close_error, -1);
   f.upper = with_error(f.close, f.close_error, 1);
-  return std::make_shared<const ExactPolynomial>(std::move(f));
+  return f;
+}
+
+ExactPolynomial ExactPolynomial::negated() const {
+  ExactPolynomial g(p1, q1, p2, q2, -sign);
+  if (m_envelopes) {
+    Envelopes& e = g.m_envelopes.emplace();
+    e.close = -m_envelopes->close;
+    e.close_error = m_envelopes->close_error;
+    // (-c) -/+ e rounds to the negation of c +/- e.
+    e.lower = -m_envelopes->upper;
+    e.upper = -m_envelopes->lower;
+  }
+  return g;
+}
+
+std::shared_ptr<const ExactPolynomial> exact_product_difference(const Polynomial& p1,
+                                                                const Polynomial& q1,
+                                                                const Polynomial& p2,
+                                                                const Polynomial& q2, int sign) {
+  return std::make_shared<const ExactPolynomial>(p1, q1, p2, q2, sign);
 }
 
 std::shared_ptr<const ExactPolynomial> exact_negated(const ExactPolynomial& f) {
-  ExactPolynomial g = f;
-  g.sign = -f.sign;
-  g.close = -f.close;
-  // (-c) -/+ e rounds to the negation of c +/- e.
-  g.lower = -f.upper;
-  g.upper = -f.lower;
-  return std::make_shared<const ExactPolynomial>(std::move(g));
+  return std::make_shared<const ExactPolynomial>(f.negated());
 }
 
 int exact_sign_after(const ExactPolynomial& f, double s) {
@@ -297,10 +310,11 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   // F lies between the envelopes (s >= 0). Invariant: F > 0 just after `from` and at every
   // double of (s_now, from]. Each round either decides, or proves F > 0 up to where the lower
   // envelope holds again, or gives up to exact isolation.
-  const Polynomial& lower = F.lower;
-  const Polynomial& upper = F.upper;
-  const Polynomial rising = with_error(F.close.derivative(), F.close_error.derivative(), -2);
-  const Polynomial falling = -with_error(F.close.derivative(), F.close_error.derivative(), 2);
+  const ExactPolynomial::Envelopes& e = F.envelopes();
+  const Polynomial& lower = e.lower;
+  const Polynomial& upper = e.upper;
+  const Polynomial rising = with_error(e.close.derivative(), e.close_error.derivative(), -2);
+  const Polynomial falling = -with_error(e.close.derivative(), e.close_error.derivative(), 2);
   double from = s_now;
   auto negative = [&](double t) { return exact_sign_after(F, t) < 0; };
   // The proofs below read "no failure before" from Bernstein searches on the envelopes and the
@@ -340,7 +354,7 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
         from = hi;
         continue;
       }
-      const double guess = close_crossing(F.close, *low, hi);
+      const double guess = close_crossing(e.close, *low, hi);
       const double step = std::max(std::abs(guess), 1e-300) * 0x1p-52;
       const std::optional<double> r = detail::first_negative_near(
           negative, guess, *low, hi, step, std::numeric_limits<int>::max());
@@ -390,13 +404,13 @@ bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
     if (vouch != nullptr && std::isfinite(s_end))
       for (double h = 0.5 * (s_end - s_now), k = 0; k < 3; h *= 0.5, ++k)
         if (const double until = s_now + h; until > s_now && holds_through(below, s_now, until)) {
-          seen = {orientation, until};
+          seen = {orientation, s_now, until};
           return false;
         }
     const std::optional<double> low = first_failure(below, s_now, s_end);
     if (!low) return true;
     // The exact polynomial lies above `below`: it holds at every double before low.
-    seen = {orientation, *low};
+    seen = {orientation, s_now, *low};
     // first_failure answers a double where sign_after is negative, so `above` can fail first at
     // low only if it is broken there: most undecided certificates are spared its search.
     if (sign_after(above, *low) >= 0) return false;

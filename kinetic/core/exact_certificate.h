@@ -21,17 +21,36 @@ namespace kinray {
 
 /// sign (p1 q1 - p2 q2) with exact value semantics: the products and the difference are those
 /// of the real polynomials whose coefficients are the given doubles.
-struct ExactPolynomial {
+class ExactPolynomial {
+ public:
+  ExactPolynomial(const Polynomial& first, const Polynomial& first_factor,
+                  const Polynomial& second, const Polynomial& second_factor, int sign_of_difference)
+      : p1(first), q1(first_factor), p2(second), q2(second_factor), sign(sign_of_difference) {}
+
   Polynomial p1, q1, p2, q2;
   int sign = 1;
-  /// sign (p1 q1 - p2 q2) with every coefficient rounded once from its exact value
-  /// (compensated sums of exact products), and a bound on its distance to the exact polynomial
-  /// with room for Horner's rounding: the envelopes of the failure-time search.
-  Polynomial close, close_error;
-  /// close -/+ close_error, rounded: F lies strictly between their Horner values for s >= 0, so
-  /// that a sign of either that clears zero the right way is F's sign (exact_sign_after's first
-  /// filter).
-  Polynomial lower, upper;
+
+  struct Envelopes {
+    /// sign (p1 q1 - p2 q2) with every coefficient rounded once from its exact value
+    /// (compensated sums of exact products), and a bound on its distance to the exact polynomial
+    /// with room for Horner's rounding: the envelopes of the failure-time search.
+    Polynomial close, close_error;
+    /// close -/+ close_error, rounded: F lies strictly between their Horner values for s >= 0,
+    /// so that a sign of either that clears zero the right way is F's sign (exact_sign_after's
+    /// first filter).
+    Polynomial lower, upper;
+  };
+  /// Computed on first use and kept: most exact certificates are scheduled for a recheck and
+  /// dropped before it (their pair parts), and never ask. Not to be called from two threads at
+  /// once on one object (a structure's certificates belong to the thread that runs it).
+  [[nodiscard]] const Envelopes& envelopes() const;
+
+  /// -F, its envelopes negated if computed (the same bits as computing them: IEEE negation and
+  /// rounding are symmetric).
+  [[nodiscard]] ExactPolynomial negated() const;
+
+ private:
+  mutable std::optional<Envelopes> m_envelopes;
 };
 
 /// The exact form of sign (p1 q1 - p2 q2).
@@ -60,10 +79,12 @@ struct ExactPolynomial {
 
 /// What the rounded envelopes of an undecided certificate still prove: the exact polynomial has
 /// the sign `orientation` (+1, or -1 for its negation; 0: nothing proved) at every double of
-/// (s_now, until), local time.
+/// (from, until), local time, so its sign just after any s of [from, until) too.
 struct EnvelopeVouch {
   int orientation = 0;
+  double from = std::numeric_limits<double>::infinity();
   double until = -std::numeric_limits<double>::infinity();
+  [[nodiscard]] bool covers(double s) const { return orientation != 0 && s >= from && s < until; }
 };
 
 /// Does the rounded certificate f decide its failure in (s_now, s_end] (s_now >= 0), and that of
