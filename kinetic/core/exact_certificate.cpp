@@ -369,16 +369,33 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   return isolated_failure(F, s_now, s_end);
 }
 
+namespace {
+/// e[i + j] += |p1_i q1_j| + |p2_i q2_j| for i <= dp, j <= dq, i + j <= the maximum degree, in
+/// that order; written out for a depth certificate's N (3) by D (2), the same sums.
+template <int kDp, int kDq>
+void add_product_magnitudes(const Polynomial& p1, const Polynomial& q1, const Polynomial& p2,
+                            const Polynomial& q2, Polynomial& e) {
+  for (int i = 0; i <= kDp; ++i)
+    for (int j = 0; j <= kDq && i + j <= kMaxPolynomialDegree; ++j)
+      e.c[size_t(i + j)] +=
+          std::abs(p1.c[size_t(i)] * q1.c[size_t(j)]) + std::abs(p2.c[size_t(i)] * q2.c[size_t(j)]);
+}
+}  // namespace
+
 Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
                                     const Polynomial& p2, const Polynomial& q2) {
   Polynomial e;
   e.degree = std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
   // Summed in pairs, so that swapping (p1, q1) with (p2, q2) gives the same bits.
   const int dp = std::max(p1.degree, p2.degree), dq = std::max(q1.degree, q2.degree);
-  for (int i = 0; i <= dp; ++i)
-    for (int j = 0; j <= dq && i + j <= kMaxPolynomialDegree; ++j)
-      e.c[size_t(i + j)] +=
-          std::abs(p1.c[size_t(i)] * q1.c[size_t(j)]) + std::abs(p2.c[size_t(i)] * q2.c[size_t(j)]);
+  if (dp == 3 && dq == 2) {
+    add_product_magnitudes<3, 2>(p1, q1, p2, q2, e);
+  } else {
+    for (int i = 0; i <= dp; ++i)
+      for (int j = 0; j <= dq && i + j <= kMaxPolynomialDegree; ++j)
+        e.c[size_t(i + j)] += std::abs(p1.c[size_t(i)] * q1.c[size_t(j)]) +
+                              std::abs(p2.c[size_t(i)] * q2.c[size_t(j)]);
+  }
   // Forming: at most 4 products summed and one subtraction per coefficient (gamma_5); Horner
   // on the envelopes: gamma_10 of the same magnitudes. 64 u leaves a factor 4 for the rounding
   // of these bounds and of the envelopes' own coefficients.
