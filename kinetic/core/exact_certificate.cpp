@@ -416,10 +416,10 @@ bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
     if (holds_through(below, s_now, s_end)) return true;
     // A caller that takes a vouch (a structure that looks at the pair again where it ends) is
     // spared the search for the envelope's failure when the envelope holds through the first
-    // half, quarter or eighth of the window: most pairs of a pixel part before then. The pairs
-    // whose envelopes fail at one double go to the exact path with the others.
+    // half, quarter, ... or thirty-second of the window: most pairs of a pixel part before then.
+    // The pairs whose envelopes fail at one double go to the exact path with the others.
     if (vouch != nullptr && std::isfinite(s_end))
-      for (double h = 0.5 * (s_end - s_now), k = 0; k < 3; h *= 0.5, ++k)
+      for (double h = 0.5 * (s_end - s_now), k = 0; k < 5; h *= 0.5, ++k)
         if (const double until = s_now + h; until > s_now && holds_through(below, s_now, until)) {
           seen = {orientation, s_now, until};
           return false;
