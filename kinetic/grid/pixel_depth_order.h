@@ -19,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -78,6 +79,88 @@ struct QuadraticRoots {
   return q;
 }
 
+/// Bounds on the exact values of the polynomial c (double coefficients, degree kN <= 3) for s
+/// in [a, a + w], a >= 0, w > 0: the hull of its Bernstein coefficients there, widened by a bound
+/// on their rounding. The error count is root_finding's Bernstein conversion's (the Taylor shift
+/// to a, the powers of w, the conversion: (8 kN + 16) u, with a factor two to spare) times the
+/// sum of the shifted magnitudes, which is sum |c_k| (a + w)^k.
+struct ValueRange {
+  double lo, hi;
+};
+template <int kN>
+[[nodiscard]] inline ValueRange polynomial_range(const double* c, double a, double w) {
+  constexpr double kGamma = 2 * (8 * kN + 16) * 0x1p-53;
+  std::array<double, kN + 1> g;
+  for (int k = 0; k <= kN; ++k) g[size_t(k)] = c[k];
+  for (int i = 0; i < kN; ++i)
+    for (int k = kN - 1; k >= i; --k) g[size_t(k)] += a * g[size_t(k + 1)];
+  const double reach = a + w;
+  double magnitude = std::abs(c[kN]);
+  for (int k = kN - 1; k >= 0; --k) magnitude = magnitude * reach + std::abs(c[k]);
+  const double error = kGamma * magnitude;
+  double lo, hi;
+  if constexpr (kN == 3) {
+    const double g1 = g[1] * w, g2 = g[2] * (w * w), g3 = g[3] * (w * w * w);
+    constexpr double kThird = 1.0 / 3;
+    const double b1 = g[0] + g1 * kThird, b2 = g[0] + (2 * g1 + g2) * kThird;
+    const double b3 = ((g[0] + g1) + g2) + g3;
+    lo = std::min(std::min(g[0], b1), std::min(b2, b3));
+    hi = std::max(std::max(g[0], b1), std::max(b2, b3));
+  } else {
+    static_assert(kN == 2);
+    const double g1 = g[1] * w, g2 = g[2] * (w * w);
+    const double b1 = g[0] + 0.5 * g1, b2 = (g[0] + g1) + g2;
+    lo = std::min(std::min(g[0], b1), b2);
+    hi = std::max(std::max(g[0], b1), b2);
+  }
+  lo -= error + std::abs(lo) * 0x1p-50;  // the subtraction's own rounding
+  hi += error + std::abs(hi) * 0x1p-50;
+  return {lo, hi};
+}
+
+/// Is z = N / D on the side `side` (+1: beyond, -1: before) of the depth Z at every instant of
+/// local [s0, s0 + w]? D must keep one sign there, and sign(D) (N - Z D), a cubic without the
+/// dependency of N on D that an interval quotient N / D would suffer, the sign `side`. The
+/// coefficients N_k - Z D_k round (at most 3 u (|N_k| + |Z D_k|) each, counted over the window
+/// as polynomial_range counts magnitudes).
+[[nodiscard]] inline bool depth_beyond(const DepthPolynomials& p, double z, double s0, double w,
+                                       int side) {
+  const ValueRange d = polynomial_range<2>(p.denominator.c.data(), s0, w);
+  const int sign_d = d.lo > 0 ? 1 : (d.hi < 0 ? -1 : 0);
+  if (sign_d == 0) return false;
+  std::array<double, 4> c;
+  const double reach = s0 + w;
+  double rounding = 0;
+  for (int k = 3; k >= 0; --k) {
+    const double zd = z * p.denominator.c[size_t(k)];
+    c[size_t(k)] = p.numerator.c[size_t(k)] - zd;
+    rounding = rounding * reach + (std::abs(p.numerator.c[size_t(k)]) + std::abs(zd));
+  }
+  const ValueRange r = polynomial_range<3>(c.data(), s0, w);
+  const double extra = 4 * 0x1p-53 * rounding;
+  return side * sign_d > 0 ? r.lo - extra > 0 : r.hi + extra < 0;
+}
+
+/// +1 when z_A < z_B at every instant of local [s0, s1], -1 when z_A > z_B there, 0 when the
+/// bounds cannot tell: a depth Z between the two at s0 separates them throughout
+/// (depth_beyond). Where it tells, the certificate sign(D_A D_B) (N_B D_A - N_A D_B) =
+/// |D_A D_B| (z_B - z_A) has that sign throughout, and no common root of N and D lies inside
+/// to be divided out (D keeps its sign).
+[[nodiscard]] inline int depth_order_apart(const DepthPolynomials& a, const DepthPolynomials& b,
+                                           double s0, double s1) {
+  if (!(s0 >= 0 && s0 < s1 && s1 < 0x1p20)) return 0;
+  if (a.numerator.degree > 3 || a.denominator.degree > 2 || b.numerator.degree > 3 ||
+      b.denominator.degree > 2)
+    return 0;
+  const double za = a.numerator(s0) / a.denominator(s0), zb = b.numerator(s0) / b.denominator(s0);
+  if (!(std::isfinite(za) && std::isfinite(zb)) || za == zb) return 0;
+  const double z = 0.5 * za + 0.5 * zb;  // any double works: the tests below are the proof
+  const double w = (s1 - s0) * (1 + 0x1p-50);  // at least s1 - s0
+  const int order = za < zb ? 1 : -1;
+  if (depth_beyond(a, z, s0, w, -order) && depth_beyond(b, z, s0, w, order)) return order;
+  return 0;
+}
+
 }  // namespace detail
 
 /// The depth keys of one pixel: ids are global triangle ids (kinetic_sort.h's Keys concept).
@@ -106,6 +189,12 @@ class PixelDepthKeys {
     const DepthPolynomials pa = m_source->depth(a, m_column, m_row, c.origin);
     const DepthPolynomials pb = m_source->depth(b, m_column, m_row, c.origin);
     const double s = now - c.origin;
+    // Most pairs of a pixel stay apart in depth for the rest of the segment: the certificate is
+    // then the constant of their order, without products, envelopes or roots.
+    if (const int apart = detail::depth_order_apart(pa, pb, s, c.end - c.origin)) {
+      c.f = Polynomial(double(apart));
+      return c;
+    }
     Polynomial f = pb.numerator * pa.denominator - pa.numerator * pb.denominator;
     Polynomial da = pa.denominator, db = pb.denominator;
     // The common roots, in one order for (a, b) and (b, a), so that f stays exactly antisymmetric.
