@@ -14,7 +14,10 @@
 // after now, which is constant across r. The certificate is exactly antisymmetric
 // in (A, B), its origin is the later of the two segment starts and it ends at the earlier of the
 // two next flightplan updates, as the kinetic sorts of kinetic_sort.h require; exact ties
-// (identical triangles) give the zero polynomial and are broken by triangle id there.
+// (identical triangles) give the zero polynomial and are broken by triangle id there. Most pairs
+// are proved apart for the rest of the segment first (depth_order_apart) and get the constant
+// certificate of their order; pairs the rounded polynomial cannot decide carry their exact form
+// (exact_certificate.h) and, while the filter vouches for them, wait for a recheck.
 #include <algorithm>
 #include <array>
 #include <cmath>
