@@ -49,8 +49,8 @@ struct Schedule {
   bool failure = false;     ///< true: c fails at `time`; false: renewal at c.end (or never)
   bool degenerate = false;  ///< a near-tie was given up (see schedule_degenerate)
   double broken_until = -std::numeric_limits<double>::infinity();  ///< degenerate: c < 0 until
-  /// `time` is where c's exact polynomial stops being vouched for by its rounded lower envelope
-  /// (it holds at every double before): the exact failure search was put off until then.
+  /// `time` is where the filter's vouch for c's exact polynomial ends (it holds at every double
+  /// before): the exact failure search was put off until then.
   bool recheck = false;
 };
 /// The absolute event time of certificate c of (a, b) (already holding just after now, or
@@ -58,12 +58,12 @@ struct Schedule {
 /// sign_after(f, t - origin) < 0 with the subtraction in double, as the structure will compute
 /// it when the event is handled, so processing the swap gives a successor that holds.
 ///
-/// With `defer_exact`, a certificate decided on its exact polynomial whose lower envelope holds
-/// for a while is scheduled for a recheck where the envelope first fails (`recheck`), never later
+/// With `defer_exact`, a certificate decided on its exact polynomial whose filter vouched for it
+/// past now (`vouched`) is scheduled for a recheck where that vouch ends (`recheck`), never later
 /// than its failure: most such pairs stop being neighbours before then (a triangle leaves the
 /// pixel), and the exact search, ten times the rest of the certificate, is never run. The
 /// structure recomputes the certificate at the recheck as at any event, finds it holding, and
-/// schedules it again from there, then exactly (the envelope fails at once).
+/// schedules it again from there, then exactly (the new vouch ends at once).
 [[nodiscard]] Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
                                             uint32_t b, bool defer_exact = false);
 
