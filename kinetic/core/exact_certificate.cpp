@@ -371,12 +371,15 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
 
 namespace {
 /// e[i + j] += |p1_i q1_j| + |p2_i q2_j| for i <= dp, j <= dq, i + j <= the maximum degree, in
-/// that order; written out for a depth certificate's N (3) by D (2), the same sums.
-template <int kDp, int kDq>
-void add_product_magnitudes(const Polynomial& p1, const Polynomial& q1, const Polynomial& p2,
-                            const Polynomial& q2, Polynomial& e) {
-  for (int i = 0; i <= kDp; ++i)
-    for (int j = 0; j <= kDq && i + j <= kMaxPolynomialDegree; ++j)
+/// that order (pairs summed, so that swapping (p1, q1) with (p2, q2) gives the same bits).
+/// Inlined, so that a call with constant bounds (a depth certificate's N by D) is unrolled.
+[[gnu::always_inline]] inline void add_product_magnitudes(const Polynomial& p1,
+                                                          const Polynomial& q1,
+                                                          const Polynomial& p2,
+                                                          const Polynomial& q2, int dp, int dq,
+                                                          Polynomial& e) {
+  for (int i = 0; i <= dp; ++i)
+    for (int j = 0; j <= dq && i + j <= kMaxPolynomialDegree; ++j)
       e.c[size_t(i + j)] +=
           std::abs(p1.c[size_t(i)] * q1.c[size_t(j)]) + std::abs(p2.c[size_t(i)] * q2.c[size_t(j)]);
 }
@@ -386,16 +389,11 @@ Polynomial product_difference_error(const Polynomial& p1, const Polynomial& q1,
                                     const Polynomial& p2, const Polynomial& q2) {
   Polynomial e;
   e.degree = std::min(std::max(p1.degree + q1.degree, p2.degree + q2.degree), kMaxPolynomialDegree);
-  // Summed in pairs, so that swapping (p1, q1) with (p2, q2) gives the same bits.
   const int dp = std::max(p1.degree, p2.degree), dq = std::max(q1.degree, q2.degree);
-  if (dp == 3 && dq == 2) {
-    add_product_magnitudes<3, 2>(p1, q1, p2, q2, e);
-  } else {
-    for (int i = 0; i <= dp; ++i)
-      for (int j = 0; j <= dq && i + j <= kMaxPolynomialDegree; ++j)
-        e.c[size_t(i + j)] += std::abs(p1.c[size_t(i)] * q1.c[size_t(j)]) +
-                              std::abs(p2.c[size_t(i)] * q2.c[size_t(j)]);
-  }
+  if (dp == 3 && dq == 2)
+    add_product_magnitudes(p1, q1, p2, q2, 3, 2, e);
+  else
+    add_product_magnitudes(p1, q1, p2, q2, dp, dq, e);
   // Forming: at most 4 products summed and one subtraction per coefficient (gamma_5); Horner
   // on the envelopes: gamma_10 of the same magnitudes. 64 u leaves a factor 4 for the rounding
   // of these bounds and of the envelopes' own coefficients.
@@ -418,12 +416,16 @@ bool decided_despite(const Polynomial& f, const Polynomial& error, double s_now,
     // spared the search for the envelope's failure when the envelope holds through the first
     // half, quarter, ... or thirty-second of the window: most pairs of a pixel part before then.
     // The pairs whose envelopes fail at one double go to the exact path with the others.
-    if (vouch != nullptr && std::isfinite(s_end))
-      for (double h = 0.5 * (s_end - s_now), k = 0; k < 5; h *= 0.5, ++k)
+    if (vouch != nullptr && std::isfinite(s_end)) {
+      double h = s_end - s_now;
+      for (int k = 0; k < 5; ++k) {
+        h *= 0.5;
         if (const double until = s_now + h; until > s_now && holds_through(below, s_now, until)) {
           seen = {orientation, s_now, until};
           return false;
         }
+      }
+    }
     const std::optional<double> low = first_failure(below, s_now, s_end);
     if (!low) return true;
     // The exact polynomial lies above `below`: it holds at every double before low.
