@@ -101,6 +101,8 @@ class FrustumBand {
   /// t, the invariant and where (triangle and row, edge, vertex or pixel); never aborts.
   [[nodiscard]] std::vector<std::string> audit(double t, size_t limit = 20) const;
   [[nodiscard]] GridStats stats() const;
+  /// stats().events.total(), without the rest.
+  [[nodiscard]] uint64_t event_total() const { return m_stats.events.total(); }
   /// Motion blur: appends every later change of a pixel's front to `log` (nullptr: none).
   void set_front_log(FrontChangeLog* log) { m_front_log = log; }
 

@@ -28,6 +28,14 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// An audit after an advance: throws std::logic_error listing the first problems, if any.
+void throw_audit_problems(const std::vector<std::string>& problems) {
+  if (problems.empty()) return;
+  std::string text = "kinetic grid audit failed (" + std::to_string(problems.size()) + "):";
+  for (size_t k = 0; k < std::min<size_t>(problems.size(), 5); ++k) text += "\n  " + problems[k];
+  throw std::logic_error(text);
+}
+
 }  // namespace
 
 /// The bands of rows, each simulated on its own: the grid's work is handed out by band.
@@ -80,6 +88,9 @@ class FrustumGrid::Bands {
     return s;
   }
   [[nodiscard]] int count() const { return int(m_bands.size()); }
+  [[nodiscard]] FrustumBand& band(size_t b) { return *m_bands[b]; }
+  /// The rows [first, second) of band b.
+  [[nodiscard]] std::pair<int, int> rows(size_t b) const { return {m_row_begin[b], m_row_begin[b + 1]}; }
   /// Band b logs its front changes into logs[b] (logs == nullptr: no band logs).
   void set_front_logs(FrontChangeLog* logs) {
     for (size_t b = 0; b < m_bands.size(); ++b) m_bands[b]->set_front_log(logs ? &logs[b] : nullptr);
@@ -140,14 +151,7 @@ void FrustumGrid::advance_to(double t) {
   m_now = t;
   m_timings.events += seconds_since(started);
   m_memory_peak = std::max(m_memory_peak, m_bands->stats().memory_bytes);
-  if (m_config.audit) {
-    const auto problems = audit();
-    if (!problems.empty()) {
-      std::string text = "kinetic grid audit failed (" + std::to_string(problems.size()) + "):";
-      for (size_t k = 0; k < std::min<size_t>(problems.size(), 5); ++k) text += "\n  " + problems[k];
-      throw std::logic_error(text);
-    }
-  }
+  if (m_config.audit) throw_audit_problems(audit());
 }
 
 std::optional<GridHit> FrustumGrid::front(int i, int j) const {
@@ -171,6 +175,13 @@ class RowReader {
       : m_scene(scene), m_bands(bands), m_blends(blends), m_width(scene.width()),
         m_column_x(size_t(scene.width())), m_cache(kPlaneCache), m_missing(size_t(scene.width())) {
     for (int i = 0; i < m_width; ++i) m_column_x[size_t(i)] = scene.column_x(i);
+  }
+
+  /// Reads out at another time: each mesh's place on its key grid then; the cached planes were
+  /// another time's.
+  void set_blends(std::span<const FlightplanMesh::KeyBlend> blends) {
+    m_blends = blends;
+    for (CachedPlane& c : m_cache) c.tri = kNoGridHit;
   }
 
   /// Row j of the read-out into the rows of the buffers.
@@ -391,6 +402,71 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
     }
   });
   m_timings.readout += seconds_since(started);
+}
+
+void FrustumGrid::advance_and_read_out(std::span<BatchFrame> frames) {
+  if (frames.empty()) return;
+  const int w = m_scene.width(), h = m_scene.height();
+  const size_t n = size_t(w) * size_t(h);
+  double previous = m_now;
+  for (const BatchFrame& f : frames) {
+    if (!(f.t >= previous)) throw std::invalid_argument("kinetic grid: frame times must not decrease");
+    if (f.object.size() != n || f.prim.size() != n || f.depth.size() != n)
+      throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
+    previous = f.t;
+  }
+  const auto started = std::chrono::steady_clock::now();
+  const size_t count = frames.size(), bands = size_t(m_bands->count());
+  std::vector<std::vector<FlightplanMesh::KeyBlend>> blends(count);
+  for (size_t f = 0; f < count; ++f) {
+    blends[f].resize(m_scene.mesh_count());
+    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) blends[f][m] = m_scene.mesh(m).blend_at(frames[f].t);
+  }
+  // Per band and frame: seconds of events and of read-out on the thread that ran it, and events.
+  std::vector<double> events_s(bands * count), readout_s(bands * count);
+  std::vector<uint64_t> events(bands * count);
+  tbb::enumerable_thread_specific<RowReader> readers(
+      [&] { return RowReader(m_scene, *m_bands, blends.front()); });
+  parallel_for_dynamic(bands, m_threads, [&](size_t b) {
+    RowReader& reader = readers.local();
+    FrustumBand& band = m_bands->band(b);
+    const auto [first_row, end_row] = m_bands->rows(b);
+    for (size_t f = 0; f < count; ++f) {
+      const BatchFrame& frame = frames[f];
+      const auto start = std::chrono::steady_clock::now();
+      const uint64_t before = band.event_total();
+      band.advance_to(frame.t);
+      if (m_config.audit) throw_audit_problems(band.audit(frame.t));
+      events[b * count + f] = band.event_total() - before;
+      const auto advanced = std::chrono::steady_clock::now();
+      reader.set_blends(blends[f]);
+      for (int j = first_row; j < end_row; ++j) {
+        const size_t row = size_t(j) * size_t(w);
+        reader.read(j, frame.object.data() + row, frame.prim.data() + row, frame.depth.data() + row);
+      }
+      events_s[b * count + f] = std::chrono::duration<double>(advanced - start).count();
+      readout_s[b * count + f] = seconds_since(advanced);
+    }
+  });
+  // The threads' seconds are shared out over the batch's wall-clock time, so that the frames'
+  // timings add up to it as advance_to's and read_out's do.
+  double busy = 0;
+  for (size_t k = 0; k < bands * count; ++k) busy += events_s[k] + readout_s[k];
+  const double wall = seconds_since(started), scale = busy > 0 ? wall / busy : 0;
+  for (size_t f = 0; f < count; ++f) {
+    BatchFrame& frame = frames[f];
+    frame.events_s = frame.readout_s = 0;
+    frame.events = 0;
+    for (size_t b = 0; b < bands; ++b) {
+      frame.events_s += scale * events_s[b * count + f];
+      frame.readout_s += scale * readout_s[b * count + f];
+      frame.events += events[b * count + f];
+    }
+    m_timings.events += frame.events_s;
+    m_timings.readout += frame.readout_s;
+  }
+  m_now = frames.back().t;
+  m_memory_peak = std::max(m_memory_peak, m_bands->stats().memory_bytes);
 }
 
 std::vector<std::string> FrustumGrid::audit() const { return m_bands->audit(m_now, m_threads); }

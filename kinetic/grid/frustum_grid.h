@@ -49,6 +49,17 @@ struct GridHit {
 
 inline constexpr uint32_t kNoGridHit = ~0u;
 
+/// One frame of FrustumGrid::advance_and_read_out: its time and read-out buffers (width * height
+/// each, as read_out's), and what the grid spent on it.
+struct BatchFrame {
+  double t = 0;
+  std::span<uint32_t> object, prim;
+  std::span<float> depth;
+  double events_s = 0;   ///< out: wall-clock seconds of its events (the batch's, shared out)
+  double readout_s = 0;  ///< out: wall-clock seconds of its read-out
+  uint64_t events = 0;   ///< out: events processed on the way to it from the frame before
+};
+
 /// Wall-clock seconds spent by the grid.
 struct GridTimings {
   double init = 0;     ///< indexing and scan conversion at the start time
@@ -78,6 +89,14 @@ class FrustumGrid {
   /// computed in double from the interpolated positions exactly as the Embree backend does (+inf
   /// for background). Spans of width * height.
   void read_out(std::span<uint32_t> object, std::span<uint32_t> prim, std::span<float> depth) const;
+
+  /// advance_to(f.t) then read_out(f's buffers) for each frame f in turn (times non-decreasing),
+  /// with the same buffers, events and audits, but band by band: each band runs to every frame
+  /// of the batch and reads its rows out at each before the next band starts. A band's events
+  /// touch its own rows' pixels, records and queue only, so a batch keeps them in cache for all
+  /// its frames, where frame by frame every band's data is evicted by the others' before it is
+  /// met again (docs/kinetic_grid.md, "Frames in batches"). now() is the last frame's time after.
+  void advance_and_read_out(std::span<BatchFrame> frames);
 
   /// Every invariant checked by brute force at now(); the problems found (empty: none).
   [[nodiscard]] std::vector<std::string> audit() const;

@@ -4,10 +4,13 @@
 // by side in every row, a static mesh (unblended positions) beside moving ones, odd covered runs,
 // and a front triangle collapsed into the eye at a frame time (its depth there is no hit, so the
 // nearest other member of the pixel's order is read out).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <span>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -125,6 +128,81 @@ TEST(GridReadout, IsTheFrontsPlaneDepthBitForBit) {
     EXPECT_GT(fallbacks, 20u);
     EXPECT_GT(static_fronts, 100u);
   }
+}
+
+// Frames read out in batches, band by band (advance_and_read_out), are those of advance_to and
+// read_out frame by frame, bit for bit, with the same events per frame, whatever the batches'
+// lengths, the sort and the threads; the audit runs after each band's advance. The times include
+// the one where a front collapses into the eye (its pixels read the next member out) and one
+// repeated.
+TEST(GridReadout, InBatchesIsFrameByFrameBitForBit) {
+  const TestScene scene = readout_scene();
+  const GridInput in = scene.input();
+  const std::vector<double> times = {0.0625, 0.125, 0.25, 0.375, 0.5, 0.5, 0.625, 0.75, 0.875, 1.0};
+  const size_t n = in.rays.pixel_count();
+  for (const DepthSortKind sort : {DepthSortKind::kList, DepthSortKind::kTournament, DepthSortKind::kHeap})
+    for (const int threads : {1, 2}) {
+      FrustumGridConfig config;
+      config.threads = threads;
+      config.bands = 3;
+      config.sort = sort;
+      config.audit = true;
+      FrustumGrid reference(in, 0.0, config);
+      std::vector<std::vector<uint32_t>> object(times.size(), std::vector<uint32_t>(n)), prim = object;
+      std::vector<std::vector<float>> depth(times.size(), std::vector<float>(n));
+      std::vector<uint64_t> events;
+      for (size_t f = 0; f < times.size(); ++f) {
+        const uint64_t before = reference.event_count();
+        reference.advance_to(times[f]);
+        reference.read_out(object[f], prim[f], depth[f]);
+        events.push_back(reference.event_count() - before);
+      }
+      EXPECT_GT(reference.event_count(), 0u);
+      for (const size_t batch : {size_t(1), size_t(3), times.size()}) {
+        FrustumGrid grid(in, 0.0, config);
+        std::vector<uint32_t> o(n * times.size(), 7), p(n * times.size(), 7);
+        std::vector<float> d(n * times.size(), 7.0f);
+        for (size_t first = 0; first < times.size(); first += batch) {
+          std::vector<BatchFrame> frames;
+          for (size_t f = first; f < std::min(times.size(), first + batch); ++f)
+            frames.push_back({.t = times[f],
+                              .object = std::span(o).subspan(f * n, n),
+                              .prim = std::span(p).subspan(f * n, n),
+                              .depth = std::span(d).subspan(f * n, n)});
+          grid.advance_and_read_out(frames);
+          EXPECT_EQ(grid.now(), frames.back().t);
+          for (size_t k = 0; k < frames.size(); ++k) {
+            const size_t f = first + k;
+            const std::string where = std::string(depth_sort_name(sort)) + ", " + std::to_string(threads) +
+                                      " threads, batches of " + std::to_string(batch) + ", t " +
+                                      std::to_string(times[f]);
+            EXPECT_EQ(frames[k].events, events[f]) << where;
+            EXPECT_GE(frames[k].events_s, 0.0);
+            EXPECT_GE(frames[k].readout_s, 0.0);
+            EXPECT_TRUE(std::equal(object[f].begin(), object[f].end(), o.begin() + f * n)) << where;
+            EXPECT_TRUE(std::equal(prim[f].begin(), prim[f].end(), p.begin() + f * n)) << where;
+            EXPECT_EQ(std::memcmp(depth[f].data(), d.data() + f * n, n * sizeof(float)), 0) << where;
+          }
+        }
+        EXPECT_EQ(grid.event_count(), reference.event_count());
+        EXPECT_GT(grid.timings().events + grid.timings().readout, 0.0);
+      }
+    }
+}
+
+TEST(GridReadout, BatchesRejectTimeGoingBackAndWrongBuffers) {
+  const TestScene scene = readout_scene();
+  const GridInput in = scene.input();
+  FrustumGrid grid(in, 0.5);
+  const size_t n = in.rays.pixel_count();
+  std::vector<uint32_t> object(n), prim(n);
+  std::vector<float> depth(n);
+  std::vector<BatchFrame> back = {{.t = 0.25, .object = object, .prim = prim, .depth = depth}};
+  EXPECT_THROW(grid.advance_and_read_out(back), std::invalid_argument);
+  std::vector<BatchFrame> short_buffers = {
+      {.t = 0.75, .object = std::span(object).first(n - 1), .prim = prim, .depth = depth}};
+  EXPECT_THROW(grid.advance_and_read_out(short_buffers), std::invalid_argument);
+  EXPECT_EQ(grid.now(), 0.5);  // nothing was advanced
 }
 
 }  // namespace
