@@ -2,6 +2,7 @@
 // The interface between the frame loop and the backends (kinetic, embree, osmesa). Virtual
 // dispatch is fine here: it happens once per frame, never per ray.
 #include <memory>
+#include <span>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -36,6 +37,10 @@ class Backend {
   /// Renders frame time t into `frame` (object, prim and depth; colour is filled by shade_frame).
   /// Frame times must not decrease between calls for the kinetic backend.
   virtual void render(double t, Frame& frame) = 0;
+  /// The frame times render() will be asked for next, in this order (non-decreasing): a backend
+  /// may render them ahead, several at a time (the kinetic grid does, band by band). A render(t)
+  /// off the plan drops what is left of it and renders t as if none had been given.
+  virtual void plan_frames(std::span<const double> times) {}
   /// Motion blur (renderer/shutter.h): frame.color is the time average of the shaded radiance over
   /// the window; object, prim and depth are those of render(window.time). Windows' open times
   /// must not decrease between calls for the kinetic backend. Throws OptionError naming the

@@ -10,6 +10,7 @@
 #include "renderer/kinetic_shadow_tracer.h"
 #include "renderer/kinetic_shutter.h"
 #include "renderer/stats_json.h"
+#include "util/check.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -45,10 +46,30 @@ class KineticBackend final : public Backend {
 
   [[nodiscard]] std::string name() const override { return "kinetic"; }
 
+  void plan_frames(std::span<const double> times) override {
+    m_plan.assign(times.begin(), times.end());
+    m_planned = 0;
+    m_ahead_count = m_ahead_next = 0;
+  }
+
   void render(double t, Frame& frame) override {
     if (frame.width != m_config.width || frame.height != m_config.height || frame.pixel_count() == 0)
       frame.resize(m_config.width, m_config.height);
     frame.time = t;
+    const bool planned = m_planned < m_plan.size() && m_plan[m_planned] == t;
+    if (planned) {
+      ++m_planned;
+    } else {
+      plan_frames({});  // off the plan: what is left of it is dropped
+    }
+    if (m_grid && planned && m_ahead_next == m_ahead_count) {
+      const size_t count = batch_length();
+      if (count > 0) render_ahead(t, count);
+    }
+    if (m_grid && planned && m_ahead_next < m_ahead_count) {
+      serve_ahead(frame);
+      return;
+    }
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
     if (!m_grid) {
@@ -68,6 +89,7 @@ class KineticBackend final : public Backend {
   [[nodiscard]] bool has_motion_blur() const override { return true; }
 
   void render_shutter(const ShutterWindow& window, Frame& frame) override {
+    plan_frames({});
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
     if (!m_grid)
@@ -110,11 +132,77 @@ class KineticBackend final : public Backend {
     kinetic["audit"] = m_grid_config.audit;
     kinetic["memory_per_pixel_entry"] =
         s.pixel_entries > 0 ? double(s.pixel_memory_bytes) / double(s.pixel_entries) : 0.0;
+    kinetic["frames_batched"] = m_frames_batched;
     kinetic["per_frame"] = {
         {"events_s", m_events_s}, {"readout_s", m_readout_s}, {"events", m_events}};
   }
 
  private:
+  /// A planned frame rendered ahead: its buffers (swapped into the caller's frame when served)
+  /// and its share of the batch's time.
+  struct AheadFrame {
+    std::vector<uint32_t> object, prim;
+    std::vector<float> depth;
+    double events_s = 0, readout_s = 0;
+    uint64_t events = 0;
+  };
+
+  /// How many planned frames to render in the next batch, judged by the last frame's events; 0:
+  /// none. A batch keeps each band's events in cache over its frames, but its frames' buffers
+  /// are written out to memory, where one frame at a time stays in cache for the caller: worth it
+  /// when a frame has many events for its pixels. Long enough for a band's run of events to
+  /// reuse what it fetched, short enough that the bands, handed out whole, share the threads
+  /// evenly (docs/kinetic_grid.md, "Frames in batches").
+  [[nodiscard]] size_t batch_length() const {
+    const size_t pixels = size_t(m_config.width) * size_t(m_config.height);
+    const uint64_t last = m_events.empty() ? 0 : m_events.back();
+    if (last * kPixelsPerBatchedEvent < pixels) return 0;
+    const size_t fit = kAheadBytes / std::max<size_t>(1, pixels * (2 * sizeof(uint32_t) + sizeof(float)));
+    const size_t wanted = size_t(kEventsPerBatch / std::max<uint64_t>(last, 1));
+    return std::min({m_plan.size() - (m_planned - 1), std::clamp<size_t>(wanted, 2, kMaxFramesAhead),
+                     std::max<size_t>(fit, 1)});
+  }
+
+  /// The `count` planned frames from t on, in one FrustumGrid::advance_and_read_out.
+  void render_ahead(double t, size_t count) {
+    const size_t pixels = size_t(m_config.width) * size_t(m_config.height);
+    if (m_ahead.size() < count) m_ahead.resize(count);
+    std::vector<BatchFrame> batch(count);
+    for (size_t f = 0; f < count; ++f) {
+      AheadFrame& a = m_ahead[f];
+      a.object.resize(pixels);
+      a.prim.resize(pixels);
+      a.depth.resize(pixels);
+      batch[f] = {.t = m_plan[m_planned - 1 + f], .object = a.object, .prim = a.prim, .depth = a.depth};
+    }
+    KINRAY_CHECK(batch.front().t == t);
+    m_grid->advance_and_read_out(batch);
+    for (size_t f = 0; f < count; ++f) {
+      m_ahead[f].events_s = batch[f].events_s;
+      m_ahead[f].readout_s = batch[f].readout_s;
+      m_ahead[f].events = batch[f].events;
+    }
+    m_ahead_count = count;
+    m_ahead_next = 0;
+  }
+
+  /// The next frame rendered ahead into `frame`: the buffers are swapped, not copied.
+  void serve_ahead(Frame& frame) {
+    AheadFrame& a = m_ahead[m_ahead_next++];
+    frame.object.swap(a.object);
+    frame.prim.swap(a.prim);
+    frame.depth.swap(a.depth);
+    m_events_s.push_back(a.events_s);
+    m_readout_s.push_back(a.readout_s);
+    m_events.push_back(a.events);
+    ++m_frames_batched;
+  }
+
+  static constexpr size_t kAheadBytes = size_t(256) << 20;
+  static constexpr size_t kMaxFramesAhead = 64;
+  static constexpr size_t kPixelsPerBatchedEvent = 64;
+  static constexpr uint64_t kEventsPerBatch = uint64_t(1) << 18;
+
   const CameraSpaceScene& m_scene;
   BackendConfig m_config;
   FrustumGridConfig m_grid_config;
@@ -124,6 +212,11 @@ class KineticBackend final : public Backend {
   std::unique_ptr<KineticShutter> m_shutter;  ///< motion blur, made by the first render_shutter
   std::vector<double> m_events_s, m_readout_s;
   std::vector<uint64_t> m_events;
+  std::vector<double> m_plan;  ///< plan_frames' times
+  size_t m_planned = 0;        ///< how many of them render() has been asked for
+  std::vector<AheadFrame> m_ahead;  ///< the batch rendered ahead (buffers kept for the next)
+  size_t m_ahead_count = 0, m_ahead_next = 0;  ///< frames in the batch, and the next to serve
+  uint64_t m_frames_batched = 0;  ///< frames served from batches
 };
 
 }  // namespace

@@ -249,6 +249,7 @@ const RenderTimings& RenderJob::run(Backend& backend,
   frame.resize(m_params.width, m_params.height);
   // The kinetic backend is built at the first time it renders: the slice's first frame. The bar
   // is first drawn after it, so a command's note ("initialising the kinetic grid...") stays.
+  backend.plan_frames(std::span(m_frame_times).subspan(m_slice.begin, m_slice.end - m_slice.begin));
   for (size_t index = m_slice.begin; index < m_slice.end; ++index) {
     render_frame(backend, index, frame);
     const double start = now_s();

@@ -116,6 +116,8 @@ void run_diff(const DiffOptions& options) {
   FrameComparator comparator(job.camera_space());
   Progress progress(job.frame_times().size(), !params.quiet && Progress::stderr_is_terminal());
   Frame a, b;
+  tested->plan_frames(job.frame_times());
+  reference->plan_frames(job.frame_times());
   for (size_t index = 0; index < job.frame_times().size(); ++index) {
     job.render_frame(*tested, index, a);
     job.render_frame(*reference, index, b);

@@ -52,6 +52,7 @@ BackendRun run_backend(RenderJob& job, const std::function<std::unique_ptr<Backe
   run.sampled_frames.resize(sampled.size());
   const auto start = Clock::now();
   std::unique_ptr<Backend> backend = make();
+  backend->plan_frames(times);
   Frame frame;
   frame.resize(job.params().width, job.params().height);
   size_t next_sample = 0;
@@ -243,6 +244,7 @@ std::optional<double> ns_per_event_one_thread(const BenchParams& bench, const st
   std::vector<double> ns;
   for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
     std::unique_ptr<Backend> backend = job.make_backend("kinetic");
+    backend->plan_frames(job.frame_times());
     Frame frame;
     frame.resize(params.width, params.height);
     for (double t : job.frame_times()) {

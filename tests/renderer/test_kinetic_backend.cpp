@@ -113,6 +113,7 @@ TEST_P(BuiltinAgainstEmbree, EveryFrameAgreesUpToTies) {
     FrameComparator comparator(cs);
     size_t real = 0, ties = 0, pixels = 0, covered = 0;
     Frame a, b;
+    kinetic->plan_frames(times);  // rendered ahead, band by band, as the frame loops do
     for (double t : times) {
       kinetic->render(t, a);
       embree->render(t, b);
@@ -186,6 +187,49 @@ TEST(KineticBackend, FrameCountIndependence) {
     EXPECT_EQ(sa["events"], sb["events"]);
     EXPECT_GT(sa["events"]["total"].get<uint64_t>(), 100u);
   }
+}
+
+// Planned frames are rendered ahead in batches, band by band: the same frames bit for bit and the
+// same events frame by frame as without a plan, with the audit on. A time off the plan drops it
+// and is rendered as without one.
+TEST(KineticBackend, PlannedFramesAreTheUnplannedOnes) {
+  const Scene scene = make_builtin_scene("cloth", {{"triangles", 3000}, {"duration", 0.5}, {"keyrate", 12}});
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  FrameScheduleParams schedule;
+  schedule.inbetweens = 5;
+  const std::vector<double> times = frame_times(scene.key_times(), schedule);
+  ASSERT_GT(times.size(), 20u);
+  auto unplanned = make_backend("kinetic", cs, small_config(80, 60, "list", false));
+  auto planned = make_backend("kinetic", cs, small_config(80, 60, "heap", true));
+  auto dropped = make_backend("kinetic", cs, small_config(80, 60, "list", false));
+  planned->plan_frames(times);
+  dropped->plan_frames(times);
+  Frame a, b, c;
+  for (size_t f = 0; f < times.size(); ++f) {
+    unplanned->render(times[f], a);
+    planned->render(times[f], b);
+    EXPECT_EQ(b.time, times[f]);
+    EXPECT_EQ(a.object, b.object) << "t = " << times[f];
+    EXPECT_EQ(a.prim, b.prim) << "t = " << times[f];
+    EXPECT_EQ(a.depth, b.depth) << "t = " << times[f];
+    if (f < 3 || f + 1 == times.size()) {  // the plan's first frames, then its last alone
+      dropped->render(times[f], c);
+      EXPECT_EQ(a.object, c.object) << "t = " << times[f];
+      EXPECT_EQ(a.depth, c.depth) << "t = " << times[f];
+    }
+  }
+  nlohmann::json sa, sb, sc;
+  unplanned->write_stats(sa);
+  planned->write_stats(sb);
+  dropped->write_stats(sc);
+  EXPECT_EQ(sa["events"], sb["events"]);
+  EXPECT_EQ(sa["events"], sc["events"]);
+  EXPECT_EQ(sa["kinetic"]["per_frame"]["events"], sb["kinetic"]["per_frame"]["events"]);
+  EXPECT_EQ(sa["kinetic"]["frames_batched"], 0u);
+  EXPECT_GT(sb["kinetic"]["frames_batched"].get<uint64_t>(), times.size() / 2);
+  EXPECT_GT(sb["time_s"]["events"].get<double>(), 0.0);
+  EXPECT_GT(sa["events"]["total"].get<uint64_t>(), 100u);
+  EXPECT_THROW(planned->render(times.front(), b), std::invalid_argument);  // time going back
 }
 
 TEST(KineticBackend, WritesTheStatistics) {
