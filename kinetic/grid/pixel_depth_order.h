@@ -188,7 +188,6 @@ class PixelDepthKeys {
       if (a > b) c.f = -c.f;
       return c;
     }
-    // Copies: the memo may recycle the first entry while computing the second.
     const DepthPolynomials pa = m_source->depth(a, m_column, m_row, c.origin);
     const DepthPolynomials pb = m_source->depth(b, m_column, m_row, c.origin);
     const double s = now - c.origin;
