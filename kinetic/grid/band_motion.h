@@ -5,6 +5,7 @@
 // same motion gives bit-identical polynomials in initialisation, events and audits.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -21,7 +22,8 @@ class BandMotion {
       : m_scene(&scene),
         m_segments(scene.mesh_count()),
         m_vertices(scene.vertex_count()),
-        m_edges(scene.edge_count()) {}
+        m_edges(scene.edge_count()),
+        m_parts(std::bit_ceil(std::clamp<uint32_t>(scene.triangle_count(), 1, kPartsSlots))) {}
 
   [[nodiscard]] const GridScene& scene() const { return *m_scene; }
   /// Puts mesh m on `seg` and computes its vertices' motions there.
@@ -87,7 +89,8 @@ class BandMotion {
   /// back pixel after pixel along a silhouette or a fold, where only D's along(x, y) differs. The
   /// same function of the same motions, so the same bits. A fixed table indexed by the low bits of
   /// the triangle id (neighbouring triangles have neighbouring ids), so the memory does not grow
-  /// with the scene or with what a band comes to see: 16,384 slots, 1.9 MB a band. With 4,096 a
+  /// with the scene or with what a band comes to see: at most 16,384 slots, 1.9 MB a band, fewer
+  /// for a scene of fewer triangles (each band's table is zero-filled at the start). With 4,096 a
   /// band of cloth's fold rebuilt the parts at 20% of its look-ups, with 16,384 at 3%
   /// (instructions of cloth's event protocol -3.4%, wavy-sphere's unchanged).
   struct Parts {
@@ -100,7 +103,7 @@ class BandMotion {
   static constexpr uint32_t kPartsSlots = 16384;
   [[nodiscard]] const Parts& depth_parts_of(uint32_t tri, double origin,
                                             const MeshSegment& seg) const {
-    Parts& p = m_parts[tri & (kPartsSlots - 1)];
+    Parts& p = m_parts[tri & (m_parts.size() - 1)];
     if (p.tri != tri || p.stamp != m_parts_generation || p.origin != origin) {
       const DepthParts parts = depth_parts(triangle(tri).rebased(origin - seg.origin));
       p.tri = tri;
@@ -116,7 +119,7 @@ class BandMotion {
   std::vector<MeshSegment> m_segments;
   std::vector<PointMotion> m_vertices;  ///< by global vertex id
   mutable EdgeNormalCache m_edges;      ///< by global edge id
-  mutable std::vector<Parts> m_parts = std::vector<Parts>(kPartsSlots);
+  mutable std::vector<Parts> m_parts;  ///< a power of two of slots
   uint32_t m_parts_generation = 1;
 };
 
