@@ -17,7 +17,7 @@ KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int thr
       m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
       m_threads(threads) {}
 
-void KineticShutter::roll_to(FrustumGrid& grid, double open) {
+void KineticShutter::start_logging(FrustumGrid& grid) {
   if (!m_started) {
     // The fronts at the grid's time, and from now on every change is logged.
     const GridScene& scene = grid.scene();
@@ -30,7 +30,9 @@ void KineticShutter::roll_to(FrustumGrid& grid, double open) {
     grid.log_front_changes(true);
     m_started = true;
   }
-  if (open > grid.now()) grid.advance_to(open);
+}
+
+void KineticShutter::roll_to(FrustumGrid& grid, double open) {
   for (FrontChangeLog& log : grid.front_logs()) {
     auto& changes = log.changes;
     const auto end = std::find_if(changes.begin(), changes.end(),
@@ -111,8 +113,11 @@ double seconds_since(std::chrono::steady_clock::time_point& since) {
 
 void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Frame& frame) {
   auto clock = std::chrono::steady_clock::now();
-  roll_to(grid, window.open);
+  start_logging(grid);
+  // One advance through the gap since the last window and this window: each band runs its
+  // events to the close in one go, and the log says where the fronts were at the open.
   grid.advance_to(std::max(window.close, grid.now()));
+  roll_to(grid, window.open);
   m_stats.events_s += seconds_since(clock);
   const GridScene& scene = grid.scene();
   const int w = scene.width(), h = scene.height();

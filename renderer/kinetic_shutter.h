@@ -49,7 +49,10 @@ class KineticShutter {
   [[nodiscard]] int order() const { return int(m_rule.nodes.size()); }
 
  private:
-  /// Brings the fronts to time `open`: applies and drops the logged changes up to it.
+  /// On the first call: the fronts at the grid's time, and every later change logged.
+  void start_logging(FrustumGrid& grid);
+  /// Brings the fronts to time `open` (the grid is at or after it): applies and drops the logged
+  /// changes up to it.
   void roll_to(FrustumGrid& grid, double open);
   /// Calls visit(t, weight) for each quadrature node of `object` over [t0, t1], the weights
   /// shares of a window of length `length`.
