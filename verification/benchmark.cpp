@@ -243,16 +243,8 @@ std::optional<double> ns_per_event_one_thread(const BenchParams& bench, const st
   RenderJob job(params);
   std::vector<double> ns;
   for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
-    std::unique_ptr<Backend> backend = job.make_backend("kinetic");
-    backend->plan_frames(job.frame_times());
-    Frame frame;
-    frame.resize(params.width, params.height);
-    for (double t : job.frame_times()) {
-      frame.time = t;
-      backend->render(t, frame);
-    }
-    nlohmann::json stats;
-    backend->write_stats(stats);
+    const nlohmann::json stats =
+        run_backend(job, [&] { return job.make_backend("kinetic"); }, job.frame_times(), {}).stats;
     const double events = stats["events"]["total"].get<double>();
     if (events > 0) ns.push_back(1e9 * seconds_at(stats, "events") / events);
   }

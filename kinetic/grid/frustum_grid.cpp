@@ -28,6 +28,13 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Where each mesh is on its key grid at t: what a read-out at t interpolates with.
+std::vector<FlightplanMesh::KeyBlend> key_blends(const GridScene& scene, double t) {
+  std::vector<FlightplanMesh::KeyBlend> blends(scene.mesh_count());
+  for (uint32_t m = 0; m < scene.mesh_count(); ++m) blends[m] = scene.mesh(m).blend_at(t);
+  return blends;
+}
+
 /// An audit after an advance: throws std::logic_error listing the first problems, if any.
 void throw_audit_problems(const std::vector<std::string>& problems) {
   if (problems.empty()) return;
@@ -383,8 +390,7 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
   if (object.size() != n || prim.size() != n || depth.size() != n)
     throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
   // Where each mesh is on its key grid at now, once per frame.
-  std::vector<FlightplanMesh::KeyBlend> blends(m_scene.mesh_count());
-  for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) blends[m] = m_scene.mesh(m).blend_at(m_now);
+  const std::vector<FlightplanMesh::KeyBlend> blends = key_blends(m_scene, m_now);
   // Rows are handed out in blocks: a thread that starts late (the machine is shared) takes fewer,
   // and a block is long enough that the plane cache is reused from row to row.
   const size_t block_rows =
@@ -418,10 +424,7 @@ void FrustumGrid::advance_and_read_out(std::span<BatchFrame> frames) {
   const auto started = std::chrono::steady_clock::now();
   const size_t count = frames.size(), bands = size_t(m_bands->count());
   std::vector<std::vector<FlightplanMesh::KeyBlend>> blends(count);
-  for (size_t f = 0; f < count; ++f) {
-    blends[f].resize(m_scene.mesh_count());
-    for (uint32_t m = 0; m < m_scene.mesh_count(); ++m) blends[f][m] = m_scene.mesh(m).blend_at(frames[f].t);
-  }
+  for (size_t f = 0; f < count; ++f) blends[f] = key_blends(m_scene, frames[f].t);
   // Per band and frame: seconds of events and of read-out on the thread that ran it, and events.
   std::vector<double> events_s(bands * count), readout_s(bands * count);
   std::vector<uint64_t> events(bands * count);
