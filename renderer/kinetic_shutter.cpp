@@ -15,7 +15,13 @@ namespace kinray {
 KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int threads)
     : m_scene(scene),
       m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
-      m_threads(threads) {}
+      m_threads(threads) {
+  // A field of view that is the same at every camera key gives one tan_half_fov at every time
+  // (the interpolation a + alpha (a - a) is exactly a): computed once, not at each node.
+  const std::vector<double>& fov = scene.camera_fov_y;
+  if (!fov.empty() && std::all_of(fov.begin(), fov.end(), [&](double f) { return f == fov[0]; }))
+    m_fixed_tan_half_fov = scene.tan_half_fov(0.0);
+}
 
 void KineticShutter::start_logging(FrustumGrid& grid) {
   if (!m_started) {
@@ -51,10 +57,12 @@ void KineticShutter::for_each_node(uint32_t object, double t0, double t1, double
   const std::vector<double>& keys = m_scene.objects[object].key_times;
   auto key = std::upper_bound(keys.begin(), keys.end(), t0);
   for (double a = t0; a < t1;) {
+    // The piece lies in [keys[next - 1], keys[next]] (next = 0 or n: before or after the keys).
+    const size_t next = size_t(key - keys.begin());
     const double b = key != keys.end() && *key < t1 ? *key++ : t1;
     const double middle = (a + b) / 2, half = (b - a) / 2;
     for (size_t k = 0; k < m_rule.nodes.size(); ++k)
-      visit(middle + half * m_rule.nodes[k], share * (half / (t1 - t0)) * m_rule.weights[k]);
+      visit(middle + half * m_rule.nodes[k], share * (half / (t1 - t0)) * m_rule.weights[k], next);
     a = b;
   }
 }
@@ -65,10 +73,21 @@ void KineticShutter::place_window_nodes(const ShutterWindow& window) {
     std::vector<WindowNode>& nodes = m_window_nodes[object];
     nodes.clear();
     if (!(window.close > window.open)) continue;
-    for_each_node(object, window.open, window.close, window.length(), [&](double t, double w) {
-      nodes.push_back({shading_instant(m_scene, object, t), w});
-    });
+    for_each_node(object, window.open, window.close, window.length(),
+                  [&](double t, double w, size_t next) { nodes.push_back({instant(object, t, next), w}); });
   }
+}
+
+ShadingInstant KineticShutter::instant(uint32_t object, double t, size_t next) const {
+  const std::vector<double>& keys = m_scene.objects[object].key_times;
+  KeySegment at;
+  // locate()'s answer without its search where t lies strictly between the piece's keys (the
+  // first key above t is then keys[next]): the same division, so the same alpha.
+  if (next > 0 && next < keys.size() && keys[next - 1] < t && t < keys[next])
+    at = {next - 1, (t - keys[next - 1]) / (keys[next] - keys[next - 1])};
+  else
+    at = locate(keys, t);
+  return {at, m_fixed_tan_half_fov ? *m_fixed_tan_half_fov : m_scene.tan_half_fov(t)};
 }
 
 void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
@@ -80,24 +99,36 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
   }
   const uint32_t m = grid.mesh_of_triangle(front);
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
-  const PixelRays image{grid.width(), grid.height()};
-  for_each_node(object, t0, t1, length, [&](double t, double w) {
-    average.add(shade_hit(m_scene, image, i, j, object, prim, shading_instant(m_scene, object, t)),
-                w);
+  const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
+  ViewCache view;
+  for_each_node(object, t0, t1, length, [&](double t, double w, size_t next) {
+    const TriangleAtInstant triangle =
+        triangle_at_instant(m_scene, object, prim, instant(object, t, next));
+    average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), w);
   });
 }
 
 void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
-                                      ColorAverage& average) const {
+                                      FrontNodes& memo, ColorAverage& average) const {
   if (front == kNoGridHit) {
     average.add(kBackgroundColor, 1.0);
     return;
   }
   const uint32_t m = grid.mesh_of_triangle(front);
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
-  const PixelRays image{grid.width(), grid.height()};
-  for (const WindowNode& node : m_window_nodes[object])
-    average.add(shade_hit(m_scene, image, i, j, object, prim, node.instant), node.weight);
+  const std::vector<WindowNode>& nodes = m_window_nodes[object];
+  if (memo.front != front) {
+    memo.front = front;
+    memo.triangles.clear();
+    for (const WindowNode& node : nodes)
+      memo.triangles.push_back(triangle_at_instant(m_scene, object, prim, node.instant));
+  }
+  const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
+  ViewCache view;
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    const TriangleAtInstant& triangle = memo.triangles[k];
+    average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), nodes[k].weight);
+  }
 }
 
 namespace {
@@ -151,10 +182,11 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   const PixelRays image{w, h};
   parallel_for(size_t(h), m_threads, [&](size_t row) {
     const int j = int(row);
+    FrontNodes memo;  // neighbours along a row mostly share their front
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
       if (since[p] == window.open && window.close > window.open)
-        integrate_window(scene, current[p], i, j, average[p]);
+        integrate_window(scene, current[p], i, j, memo, average[p]);
       else
         integrate(scene, current[p], i, j, since[p], window.close, length, average[p]);
       frame.color[p] = average[p].result();

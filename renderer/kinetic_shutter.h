@@ -9,6 +9,8 @@
 // The timeline keeps the fronts at the open time of the last window and the grid's log of the
 // changes since, so windows may overlap (an irregular schedule): the grid only ever moves forward.
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "kinetic/core/counters.h"
@@ -54,8 +56,9 @@ class KineticShutter {
   /// Brings the fronts to time `open` (the grid is at or after it): applies and drops the logged
   /// changes up to it.
   void roll_to(FrustumGrid& grid, double open);
-  /// Calls visit(t, weight) for each quadrature node of `object` over [t0, t1], the weights
-  /// shares of a window of length `length`.
+  /// Calls visit(t, weight, next) for each quadrature node of `object` over [t0, t1], the
+  /// weights shares of a window of length `length`; the node's piece lies in [keys[next - 1],
+  /// keys[next]] of the object's key times.
   template <class Visit>
   void for_each_node(uint32_t object, double t0, double t1, double length, Visit&& visit) const;
   /// The nodes of each object over the whole window, shared by every pixel whose front stays.
@@ -63,13 +66,38 @@ class KineticShutter {
   /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`.
   void integrate(const GridScene& grid, uint32_t front, int i, int j, double t0, double t1,
                  double length, ColorAverage& average) const;
-  /// Adds the front's shading over the whole window (the nodes of place_window_nodes).
-  void integrate_window(const GridScene& grid, uint32_t front, int i, int j,
+  /// A front's triangle at each node of the window, kept while the next pixel has the same front.
+  struct FrontNodes {
+    uint32_t front = kNoGridHit;
+    std::vector<TriangleAtInstant> triangles;  ///< one per node of its object's window nodes
+  };
+  /// A pixel's view direction, computed again only when the fov changes between nodes.
+  class ViewCache {
+   public:
+    const Eigen::Vector3f& at(const Vec3& d, double tan_half_fov) {
+      if (!(tan_half_fov == m_tan)) {
+        m_tan = tan_half_fov;
+        m_view = view_direction(d, tan_half_fov);
+      }
+      return m_view;
+    }
+
+   private:
+    double m_tan = std::numeric_limits<double>::quiet_NaN();
+    Eigen::Vector3f m_view;
+  };
+  /// shading_instant(m_scene, object, t) bit for bit, for a node of for_each_node's piece
+  /// `next`: the key segment without a search, the fov's tangent from m_fixed_tan_half_fov.
+  [[nodiscard]] ShadingInstant instant(uint32_t object, double t, size_t next) const;
+  /// Adds the front's shading over the whole window (the nodes of place_window_nodes); `memo`
+  /// holds the last front's triangle at those nodes.
+  void integrate_window(const GridScene& grid, uint32_t front, int i, int j, FrontNodes& memo,
                         ColorAverage& average) const;
 
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
   int m_threads;
+  std::optional<double> m_fixed_tan_half_fov;  ///< set when the fov is the same at every key
   bool m_started = false;
   std::vector<uint32_t> m_open_front;  ///< per pixel, global triangle id at the last open time
   /// A quadrature node over the whole window: the shading instant and its weight.

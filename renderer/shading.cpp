@@ -16,45 +16,100 @@ SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image
   return surface_point(scene, image, i, j, object, prim, shading_instant(scene, object, t));
 }
 
-SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
-                           uint32_t object, uint32_t prim, const ShadingInstant& instant) {
+TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object,
+                                      uint32_t prim, const ShadingInstant& instant) {
   const KeySegment& at = instant.segment;
   const CameraSpaceObject& cs = scene.objects[object];
   const Object& source = scene.scene->objects[object];
   const Triangle& tri = source.triangles[prim];
-  SurfacePoint surface;
-  const Vec3 d = surface.ray = image.direction(i, j);
-  const Vec3 p0 = surface.p0 = cs.position(tri[0], at);
-  const Vec3 p1 = surface.p1 = cs.position(tri[1], at);
-  const Vec3 p2 = surface.p2 = cs.position(tri[2], at);
+  TriangleAtInstant t;
+  t.vertices = {tri[0], tri[1], tri[2]};
+  t.p0 = cs.position(tri[0], at);
+  t.p1 = cs.position(tri[1], at);
+  t.p2 = cs.position(tri[2], at);
+  t.e1 = t.p1 - t.p0;
+  t.e2 = t.p2 - t.p0;
+  const Vec3 tvec = -t.p0;
+  t.qvec = tvec.cross(t.e1);
+  for (size_t k = 0; k < 3; ++k) t.normals[k] = cs.normal(tri[k], at);
+  t.source = &source;
+  const Material& material = scene.scene->materials[source.material];
+  t.base = material.base_color;
+  if (material.texture >= 0 && !source.uvs.empty())
+    t.texture = &scene.scene->textures[size_t(material.texture)];
+  t.tan_half_fov = instant.tan_half_fov;
+  return t;
+}
+
+Eigen::Vector3f view_direction(const Vec3& d, double tan_half_fov) {
+  return unfold(d, tan_half_fov).normalized().cast<float>();
+}
+
+namespace {
+
+/// The interpolated unit normal and the base colour of the ray d's hit on `triangle`.
+void normal_and_base(const TriangleAtInstant& triangle, const Vec3& d, Eigen::Vector3f& normal,
+                     Color& base) {
   // Barycentrics of the ray's hit on the triangle's plane (Moller-Trumbore without the bounds
   // test: the backend has decided the hit; the fov folding is linear so they equal the true ones).
-  const Vec3 e1 = p1 - p0, e2 = p2 - p0;
-  const Vec3 pvec = d.cross(e2);
-  const double det = e1.dot(pvec);
+  const Vec3 pvec = d.cross(triangle.e2);
+  const double det = triangle.e1.dot(pvec);
   double u = 1.0 / 3.0, v = 1.0 / 3.0;
   if (std::abs(det) > 0) {
-    const Vec3 tvec = -p0;
-    const Vec3 qvec = tvec.cross(e1);
+    const Vec3 tvec = -triangle.p0;
     u = std::clamp(tvec.dot(pvec) / det, 0.0, 1.0);
-    v = std::clamp(d.dot(qvec) / det, 0.0, 1.0 - u);
+    v = std::clamp(d.dot(triangle.qvec) / det, 0.0, 1.0 - u);
   }
   const float w0 = float(1.0 - u - v), w1 = float(u), w2 = float(v);
-  Eigen::Vector3f n =
-      w0 * cs.normal(tri[0], at) + w1 * cs.normal(tri[1], at) + w2 * cs.normal(tri[2], at);
+  Eigen::Vector3f n = w0 * triangle.normals[0] + w1 * triangle.normals[1] + w2 * triangle.normals[2];
   const float length = n.norm();
-  surface.normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
-  surface.tan_half_fov = instant.tan_half_fov;
-  surface.view = unfold(d, surface.tan_half_fov).normalized().cast<float>();
-
-  const Material& material = scene.scene->materials[source.material];
-  surface.base = material.base_color;
-  if (material.texture >= 0 && !source.uvs.empty()) {
-    const Vec2f uv = w0 * source.uvs[tri[0]] + w1 * source.uvs[tri[1]] + w2 * source.uvs[tri[2]];
-    surface.base =
-        surface.base.cwiseProduct(scene.scene->textures[size_t(material.texture)].sample(uv));
+  normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
+  base = triangle.base;
+  if (triangle.texture != nullptr) {
+    const std::vector<Vec2f>& uvs = triangle.source->uvs;
+    const Vec2f uv = w0 * uvs[triangle.vertices[0]] + w1 * uvs[triangle.vertices[1]] +
+                     w2 * uvs[triangle.vertices[2]];
+    base = base.cwiseProduct(triangle.texture->sample(uv));
   }
+}
+
+Color headlight(const Eigen::Vector3f& normal, const Eigen::Vector3f& view, const Color& base) {
+  const float lambert = std::abs(normal.dot(view));
+  return base * (kAmbient + kDiffuse * lambert);
+}
+
+}  // namespace
+
+SurfacePoint surface_point(const TriangleAtInstant& triangle, const Vec3& d,
+                           const Eigen::Vector3f& view) {
+  SurfacePoint surface;
+  surface.ray = d;
+  surface.p0 = triangle.p0;
+  surface.p1 = triangle.p1;
+  surface.p2 = triangle.p2;
+  normal_and_base(triangle, d, surface.normal, surface.base);
+  surface.tan_half_fov = triangle.tan_half_fov;
+  surface.view = view;
   return surface;
+}
+
+Color headlight_color(const TriangleAtInstant& triangle, const Vec3& d,
+                      const Eigen::Vector3f& view) {
+  Eigen::Vector3f normal;
+  Color base;
+  normal_and_base(triangle, d, normal, base);
+  return headlight(normal, view, base);
+}
+
+SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
+                           uint32_t object, uint32_t prim, const ShadingInstant& instant) {
+  const Vec3 d = image.direction(i, j);
+  return surface_point(triangle_at_instant(scene, object, prim, instant), d,
+                       view_direction(d, instant.tan_half_fov));
+}
+
+Color headlight_color(const SurfacePoint& surface) {
+  return headlight(surface.normal, surface.view, surface.base);
 }
 
 Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
@@ -64,9 +119,7 @@ Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i, in
 
 Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
                 uint32_t object, uint32_t prim, const ShadingInstant& instant) {
-  const SurfacePoint surface = surface_point(scene, image, i, j, object, prim, instant);
-  const float lambert = std::abs(surface.normal.dot(surface.view));
-  return surface.base * (kAmbient + kDiffuse * lambert);
+  return headlight_color(surface_point(scene, image, i, j, object, prim, instant));
 }
 
 void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {

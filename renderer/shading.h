@@ -2,6 +2,8 @@
 // Shading shared by every backend: the backends only decide which triangle each pixel's centre
 // ray hits; the colour is computed here from (object, prim) alone, so frames whose ID buffers
 // agree have identical colours.
+#include <array>
+
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
@@ -36,6 +38,42 @@ struct ShadingInstant {
 /// The ShadingInstant of `object` at time t.
 [[nodiscard]] ShadingInstant shading_instant(const CameraSpaceScene& scene, uint32_t object,
                                              double t);
+
+/// What shading needs of one triangle at one instant, whatever the ray: its camera-space
+/// vertices, the parts of Moller-Trumbore that do not depend on the ray, its vertex normals and
+/// its material. Motion blur shades every pixel of a front at the same quadrature nodes, and
+/// builds this once per front and node rather than once per pixel; surface_point of a pixel
+/// from it is bit for bit the one built from (object, prim) at that instant.
+struct TriangleAtInstant {
+  Vec3 p0 = Vec3::Zero(), p1 = Vec3::Zero(), p2 = Vec3::Zero();
+  Vec3 e1 = Vec3::Zero(), e2 = Vec3::Zero();  ///< p1 - p0, p2 - p0
+  Vec3 qvec = Vec3::Zero();                   ///< (-p0) x e1
+  std::array<Eigen::Vector3f, 3> normals;     ///< the vertex normals at the instant
+  std::array<uint32_t, 3> vertices{};         ///< the object's vertex ids (for the uvs)
+  const Object* source = nullptr;
+  Color base = Color::Zero();                 ///< the material's base colour
+  const Texture* texture = nullptr;           ///< the material's texture, when it has uvs
+  double tan_half_fov = 1;
+};
+
+/// The TriangleAtInstant of (object, prim) at `instant`.
+[[nodiscard]] TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object,
+                                                    uint32_t prim, const ShadingInstant& instant);
+
+/// The unit view direction of the pixel direction d (true camera space): SurfacePoint::view.
+[[nodiscard]] Eigen::Vector3f view_direction(const Vec3& d, double tan_half_fov);
+
+/// The SurfacePoint of the ray d on `triangle`, its view direction view_direction(d,
+/// triangle.tan_half_fov) given (the same for every node of a pixel under a fixed fov).
+[[nodiscard]] SurfacePoint surface_point(const TriangleAtInstant& triangle, const Vec3& d,
+                                         const Eigen::Vector3f& view);
+
+/// The headlight Lambert colour of a surface point (shade_hit's).
+[[nodiscard]] Color headlight_color(const SurfacePoint& surface);
+
+/// headlight_color(surface_point(triangle, d, view)) without the rest of the SurfacePoint.
+[[nodiscard]] Color headlight_color(const TriangleAtInstant& triangle, const Vec3& d,
+                                    const Eigen::Vector3f& view);
 
 /// The SurfacePoint of pixel (i, j) hitting (object, prim) at `instant`.
 [[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image,
