@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <emmintrin.h>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -191,6 +192,21 @@ class RowReader {
     for (CachedPlane& c : m_cache) c.tri = kNoGridHit;
   }
 
+  /// Row j of the read-out into the rows of the buffers, written with non-temporal stores
+  /// through a row that stays in cache: for frames read out ahead, which nobody reads before the
+  /// batch is done. Plain stores would first fetch every line of the buffers only to overwrite
+  /// it, and evict the band's own data on the way (docs/kinetic_grid.md, "Frames in batches").
+  void read_streaming(int j, uint32_t* object, uint32_t* prim, float* depth) {
+    const size_t w = size_t(m_width);
+    m_row_object.resize(w);
+    m_row_prim.resize(w);
+    m_row_depth.resize(w);
+    read(j, m_row_object.data(), m_row_prim.data(), m_row_depth.data());
+    stream_copy(object, m_row_object.data(), w);
+    stream_copy(prim, m_row_prim.data(), w);
+    stream_copy(depth, m_row_depth.data(), w);
+  }
+
   /// Row j of the read-out into the rows of the buffers.
   void read(int j, uint32_t* object, uint32_t* prim, float* depth) {
     const uint32_t* fronts = m_bands.front_row(j);
@@ -369,6 +385,22 @@ class RowReader {
     depth = float(z);
   }
 
+  /// n four-byte values from src to dst, with non-temporal stores where dst is 16-byte aligned
+  /// (the caller fences before the buffers are handed over).
+  template <class T>
+  static void stream_copy(T* dst, const T* src, size_t n) {
+    static_assert(sizeof(T) == 4);
+    size_t k = 0;
+    for (; k < n && (reinterpret_cast<uintptr_t>(dst + k) & 15) != 0; ++k) dst[k] = src[k];
+    for (; k + 4 <= n; k += 4)
+      _mm_stream_si128(reinterpret_cast<__m128i*>(dst + k),
+                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + k)));
+    for (; k < n; ++k) dst[k] = src[k];
+  }
+
+  std::vector<uint32_t> m_row_object, m_row_prim;  ///< read_streaming's row
+  std::vector<float> m_row_depth;
+
   const GridScene& m_scene;
   const FrustumGrid::Bands& m_bands;
   std::span<const FlightplanMesh::KeyBlend> m_blends;  ///< each mesh's place on its key grid at now
@@ -445,11 +477,13 @@ void FrustumGrid::advance_and_read_out(std::span<BatchFrame> frames) {
       reader.set_blends(blends[f]);
       for (int j = first_row; j < end_row; ++j) {
         const size_t row = size_t(j) * size_t(w);
-        reader.read(j, frame.object.data() + row, frame.prim.data() + row, frame.depth.data() + row);
+        reader.read_streaming(j, frame.object.data() + row, frame.prim.data() + row,
+                              frame.depth.data() + row);
       }
       events_s[b * count + f] = std::chrono::duration<double>(advanced - start).count();
       readout_s[b * count + f] = seconds_since(advanced);
     }
+    _mm_sfence();  // the streamed rows are written before the batch is handed over
   });
   // The threads' seconds are shared out over the batch's wall-clock time, so that the frames'
   // timings add up to it as advance_to's and read_out's do.
