@@ -58,14 +58,20 @@ class BandMotion {
   void prefetch_edge_normal(uint32_t edge) const { m_edges.prefetch(edge); }
 
   /// N and D of triangle tri along pixel (column, row), in the local time of `origin`: N from the
-  /// triangle's depth parts (kept), D their normal along the pixel's ray (six products).
-  [[nodiscard]] DepthPolynomials depth(uint32_t tri, int column, int row, double origin) const {
+  /// triangle's depth parts (kept), D their normal along the pixel's ray (six products, as
+  /// EdgeNormal::along computes them).
+  [[nodiscard]] DepthCoefficients depth_coefficients(uint32_t tri, int column, int row,
+                                                             double origin) const {
     const Parts& parts = depth_parts_of(tri, origin, segment_of(tri));
-    DepthPolynomials p;
-    p.numerator.degree = 3;
-    std::copy(parts.numerator.begin(), parts.numerator.end(), p.numerator.c.begin());
-    p.denominator = parts.normal.along(m_scene->column_x(column), m_scene->row_y(row));
-    return p;
+    const double x = m_scene->column_x(column), y = m_scene->row_y(row);
+    const EdgeNormal& n = parts.normal;
+    return {parts.numerator,
+            {n.c0.x() * x + n.c0.y() * y + n.c0.z(), n.c1.x() * x + n.c1.y() * y + n.c1.z(),
+             n.c2.x() * x + n.c2.y() * y + n.c2.z()}};
+  }
+  /// The same as Polynomials (depth_polynomials of the triangle's motion, bit for bit).
+  [[nodiscard]] DepthPolynomials depth(uint32_t tri, int column, int row, double origin) const {
+    return depth_coefficients(tri, column, row, origin).polynomials();
   }
   /// Forgets the triangles' depth parts (the motions changed).
   void forget_depths() {

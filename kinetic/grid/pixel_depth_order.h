@@ -126,18 +126,18 @@ template <int kN>
 /// dependency of N on D that an interval quotient N / D would suffer, the sign `side`. The
 /// coefficients N_k - Z D_k round (at most 3 u (|N_k| + |Z D_k|) each, counted over the window
 /// as polynomial_range counts magnitudes).
-[[nodiscard]] inline bool depth_beyond(const DepthPolynomials& p, double z, double s0, double w,
+[[nodiscard]] inline bool depth_beyond(const DepthCoefficients& p, double z, double s0, double w,
                                        int side) {
-  const ValueRange d = polynomial_range<2>(p.denominator.c.data(), s0, w);
+  const ValueRange d = polynomial_range<2>(p.d.data(), s0, w);
   const int sign_d = d.lo > 0 ? 1 : (d.hi < 0 ? -1 : 0);
   if (sign_d == 0) return false;
   std::array<double, 4> c;
   const double reach = s0 + w;
   double rounding = 0;
   for (int k = 3; k >= 0; --k) {
-    const double zd = z * p.denominator.c[size_t(k)];
-    c[size_t(k)] = p.numerator.c[size_t(k)] - zd;
-    rounding = rounding * reach + (std::abs(p.numerator.c[size_t(k)]) + std::abs(zd));
+    const double zd = k < 3 ? z * p.d[size_t(k)] : z * 0.0;
+    c[size_t(k)] = p.n[size_t(k)] - zd;
+    rounding = rounding * reach + (std::abs(p.n[size_t(k)]) + std::abs(zd));
   }
   const ValueRange r = polynomial_range<3>(c.data(), s0, w);
   const double extra = 4 * 0x1p-53 * rounding;
@@ -149,12 +149,9 @@ template <int kN>
 /// (depth_beyond). Where it tells, the certificate sign(D_A D_B) (N_B D_A - N_A D_B) =
 /// |D_A D_B| (z_B - z_A) has that sign throughout, and no common root of N and D lies inside
 /// to be divided out (D keeps its sign).
-[[nodiscard]] inline int depth_order_apart(const DepthPolynomials& a, const DepthPolynomials& b,
+[[nodiscard]] inline int depth_order_apart(const DepthCoefficients& a, const DepthCoefficients& b,
                                            double s0, double s1) {
   if (!(s0 >= 0 && s0 < s1 && s1 < 0x1p20)) return 0;
-  if (a.numerator.degree > 3 || a.denominator.degree > 2 || b.numerator.degree > 3 ||
-      b.denominator.degree > 2)
-    return 0;
   const double za = a.numerator(s0) / a.denominator(s0), zb = b.numerator(s0) / b.denominator(s0);
   if (!(std::isfinite(za) && std::isfinite(zb)) || za == zb) return 0;
   const double z = 0.5 * za + 0.5 * zb;  // any double works: the tests below are the proof
@@ -162,6 +159,21 @@ template <int kN>
   const int order = za < zb ? 1 : -1;
   if (depth_beyond(a, z, s0, w, -order) && depth_beyond(b, z, s0, w, order)) return order;
   return 0;
+}
+
+/// The same for N and D as Polynomials: 0 unless their degrees are at most 3 and 2.
+[[nodiscard]] inline int depth_order_apart(const DepthPolynomials& a, const DepthPolynomials& b,
+                                           double s0, double s1) {
+  if (a.numerator.degree > 3 || a.denominator.degree > 2 || b.numerator.degree > 3 ||
+      b.denominator.degree > 2)
+    return 0;
+  auto coefficients = [](const DepthPolynomials& p) {
+    DepthCoefficients c;
+    for (size_t k = 0; k < 4; ++k) c.n[k] = p.numerator.c[k];
+    for (size_t k = 0; k < 3; ++k) c.d[k] = p.denominator.c[k];
+    return c;
+  };
+  return depth_order_apart(coefficients(a), coefficients(b), s0, s1);
 }
 
 }  // namespace detail
@@ -188,15 +200,16 @@ class PixelDepthKeys {
       if (a > b) c.f = -c.f;
       return c;
     }
-    const DepthPolynomials pa = m_source->depth(a, m_column, m_row, c.origin);
-    const DepthPolynomials pb = m_source->depth(b, m_column, m_row, c.origin);
+    const DepthCoefficients ca = m_source->depth_coefficients(a, m_column, m_row, c.origin);
+    const DepthCoefficients cb = m_source->depth_coefficients(b, m_column, m_row, c.origin);
     const double s = now - c.origin;
     // Most pairs of a pixel stay apart in depth for the rest of the segment: the certificate is
     // then the constant of their order, without products, envelopes or roots.
-    if (const int apart = detail::depth_order_apart(pa, pb, s, c.end - c.origin)) {
+    if (const int apart = detail::depth_order_apart(ca, cb, s, c.end - c.origin)) {
       c.f = Polynomial(double(apart));
       return c;
     }
+    const DepthPolynomials pa = ca.polynomials(), pb = cb.polynomials();
     Polynomial f = pb.numerator * pa.denominator - pa.numerator * pb.denominator;
     Polynomial da = pa.denominator, db = pb.denominator;
     // The common roots, in one order for (a, b) and (b, a), so that f stays exactly antisymmetric.

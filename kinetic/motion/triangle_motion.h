@@ -8,6 +8,7 @@
 //   - the depth along d is z = O / D with D = (e1 x e2) . d = E_01 + E_12 + E_20, quadratic.
 // Every caller (initialisation, events, audit) builds these the same way from the same inputs, so
 // the structure and its certificates agree bit for bit.
+#include <algorithm>
 #include <array>
 
 #include <Eigen/Core>
@@ -123,6 +124,27 @@ struct DepthPolynomials {
   Polynomial numerator;    ///< det(v0, v1, v2) = (v0 x v1) . v2, cubic
   Polynomial denominator;  ///< ((v1 - v0) x (v2 - v0)) . d, quadratic
 };
+
+/// N (cubic) and D (quadratic) of a triangle along a pixel's ray as plain coefficients, lowest
+/// first: what the apart test reads, without the zeroed Polynomials (80 bytes each) that the full
+/// certificate needs only when the test cannot decide.
+struct DepthCoefficients {
+  std::array<double, 4> n;  ///< N's
+  std::array<double, 3> d;  ///< D's
+  /// N and D as the Polynomials of depth_polynomials (degrees 3 and 2).
+  [[nodiscard]] DepthPolynomials polynomials() const {
+    DepthPolynomials p;
+    p.numerator.degree = 3;
+    std::copy(n.begin(), n.end(), p.numerator.c.begin());
+    p.denominator.degree = 2;
+    std::copy(d.begin(), d.end(), p.denominator.c.begin());
+    return p;
+  }
+  /// Horner's values, as Polynomial's operator() computes them at these degrees.
+  [[nodiscard]] double numerator(double s) const { return ((n[3] * s + n[2]) * s + n[1]) * s + n[0]; }
+  [[nodiscard]] double denominator(double s) const { return (d[2] * s + d[1]) * s + d[0]; }
+};
+
 /// The part of N and D that does not depend on the ray: N itself and the normal (e1 x e2) whose
 /// along(x, y) is D.
 struct DepthParts {
