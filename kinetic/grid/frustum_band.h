@@ -215,6 +215,10 @@ class FrustumBand {
                                 const EdgeOnRay* own = nullptr) const;
   /// Brings one column of a record to `covered` (the interval moves by one column at an end).
   void set_pixel(uint32_t rec, int column, bool covered);
+  /// The record's covered interval [lo, hi] once `column` joins (covered) or leaves it; false
+  /// when the column is not at an end of it (several columns changed at one instant).
+  [[nodiscard]] bool interval_after(const RowRecord& r, int column, bool covered, int& lo,
+                                    int& hi) const;
   /// Re-evaluates one column of a record.
   void update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
     set_pixel(rec, column, covers_now(rec, column, tn.s));

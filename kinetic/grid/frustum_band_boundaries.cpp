@@ -193,6 +193,28 @@ void FrustumBand::pass_column(uint32_t id, int column, double s, const EdgeOnRay
   std::array<bool, 2> covered = {false, false};
   for (size_t k = 0; k < 2; ++k)
     if (records[k] != kNoRecord) covered[k] = covers_now(records[k], column, s, id, &own);
+  // The usual crossing: one record loses the column at an end of its interval and the other
+  // gains it at an end of its own. The pixel's order hands the one triangle's place to the other
+  // in one change (the same order as erase then insert, without the two round trips).
+  if (records[0] != kNoRecord && records[1] != kNoRecord && covered[0] != covered[1]) {
+    const uint32_t loser = covered[0] ? records[1] : records[0];
+    const uint32_t gainer = covered[0] ? records[0] : records[1];
+    const RowRecord &l = m_records[loser], &g = m_records[gainer];
+    int l_lo, l_hi, g_lo, g_hi;
+    if (l.covers(column) && !g.covers(column) && interval_after(l, column, false, l_lo, l_hi) &&
+        interval_after(g, column, true, g_lo, g_hi)) {
+      const size_t k = pixel_index(column, l.row);
+      m_stats.coverage_changes += 2;
+      if (refresh_front(k, m_orders->hand_over(k, l.triangle, g.triangle, m_sim.now())))
+        m_front_changed = true;
+      if (m_config.audit) audit_pixel(column, l.row, m_sim.now());
+      m_records[loser].lo = l_lo;
+      m_records[loser].hi = l_hi;
+      m_records[gainer].lo = g_lo;
+      m_records[gainer].hi = g_hi;
+      return;
+    }
+  }
   for (bool gains : {false, true})
     for (size_t k = 0; k < 2; ++k)
       if (records[k] != kNoRecord && covered[k] == gains) set_pixel(records[k], column, gains);

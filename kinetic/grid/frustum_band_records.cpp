@@ -228,10 +228,10 @@ bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t bounda
   return true;
 }
 
-void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
-  const RowRecord& r = m_records[rec];
-  if (covered == r.covers(column)) return;
-  int lo = r.lo, hi = r.hi;
+bool FrustumBand::interval_after(const RowRecord& r, int column, bool covered, int& lo,
+                                 int& hi) const {
+  lo = r.lo;
+  hi = r.hi;
   if (covered) {
     if (r.empty())
       lo = hi = column;
@@ -240,7 +240,7 @@ void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
     else if (column == r.hi + 1)
       hi = column;
     else
-      lo = hi = -2;
+      return false;
   } else {
     if (r.lo == r.hi)
       lo = 0, hi = -1;
@@ -249,9 +249,16 @@ void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
     else if (column == r.hi)
       --hi;
     else
-      lo = hi = -2;
+      return false;
   }
-  if (lo == -2) {
+  return true;
+}
+
+void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
+  const RowRecord& r = m_records[rec];
+  if (covered == r.covers(column)) return;
+  int lo, hi;
+  if (!interval_after(r, column, covered, lo, hi)) {
     // Not at an end of the interval: several columns changed at one instant (degenerate).
     ++m_stats.degenerate_rebuilds;
     rebuild_record(rec, triangle_now(r.triangle), true);

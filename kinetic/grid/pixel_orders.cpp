@@ -35,6 +35,17 @@ class PixelOrdersOf final : public PixelOrders {
     --m_entries;
     return change(pixel, [&](Sort& order) { order.erase(tri, now); });
   }
+  uint32_t hand_over(size_t pixel, uint32_t from, uint32_t to, double now) override {
+    if constexpr (requires(Sort& order) { order.rename_sole(to); }) {
+      Sort& order = m_cells_of[pixel].order;
+      if (order.size() == 1 && order.front() == from) {
+        order.rename_sole(to);  // the same bytes: one member before and after
+        return to;
+      }
+    }
+    erase(pixel, from, now);
+    return insert(pixel, to, now);
+  }
   uint32_t replace_motions(size_t pixel, const std::vector<uint8_t>& switched,
                            double now) override {
     Sort& order = m_cells_of[pixel].order;

@@ -102,6 +102,13 @@ class KineticSortedList {
     if (m_core.audit_on()) audit(now);
   }
 
+  /// The only object becomes `id` (no pair, so no certificate changes): one erase and one
+  /// insert, as a pixel's sole triangle hands over to its neighbour across the edge.
+  void rename_sole(uint32_t id) {
+    KINRAY_CHECK(m_entries.size() == 1);
+    m_entries[0].id = id;
+  }
+
   /// The motion of id changed from now on: recompute its (at most two) certificates. Pairs that
   /// are out of order now get events at now, processed next by the queue's owner.
   void replace_motion(uint32_t id, double now) {
