@@ -216,9 +216,33 @@ class FrustumBand {
   /// Brings one column of a record to `covered` (the interval moves by one column at an end).
   void set_pixel(uint32_t rec, int column, bool covered);
   /// The record's covered interval [lo, hi] once `column` joins (covered) or leaves it; false
-  /// when the column is not at an end of it (several columns changed at one instant).
-  [[nodiscard]] bool interval_after(const RowRecord& r, int column, bool covered, int& lo,
-                                    int& hi) const;
+  /// when the column is not at an end of it (several columns changed at one instant). Inline:
+  /// every boundary event asks it twice.
+  [[nodiscard]] static bool interval_after(const RowRecord& r, int column, bool covered, int& lo,
+                                           int& hi) {
+    lo = r.lo;
+    hi = r.hi;
+    if (covered) {
+      if (r.empty())
+        lo = hi = column;
+      else if (column == r.lo - 1)
+        lo = column;
+      else if (column == r.hi + 1)
+        hi = column;
+      else
+        return false;
+    } else {
+      if (r.lo == r.hi)
+        lo = 0, hi = -1;
+      else if (column == r.lo)
+        ++lo;
+      else if (column == r.hi)
+        --hi;
+      else
+        return false;
+    }
+    return true;
+  }
   /// Re-evaluates one column of a record.
   void update_pixel(uint32_t rec, int column, const TriangleNow& tn) {
     set_pixel(rec, column, covers_now(rec, column, tn.s));

@@ -228,32 +228,6 @@ bool FrustumBand::covers_now(uint32_t rec, int column, double s, uint32_t bounda
   return true;
 }
 
-bool FrustumBand::interval_after(const RowRecord& r, int column, bool covered, int& lo,
-                                 int& hi) const {
-  lo = r.lo;
-  hi = r.hi;
-  if (covered) {
-    if (r.empty())
-      lo = hi = column;
-    else if (column == r.lo - 1)
-      lo = column;
-    else if (column == r.hi + 1)
-      hi = column;
-    else
-      return false;
-  } else {
-    if (r.lo == r.hi)
-      lo = 0, hi = -1;
-    else if (column == r.lo)
-      ++lo;
-    else if (column == r.hi)
-      --hi;
-    else
-      return false;
-  }
-  return true;
-}
-
 void FrustumBand::set_pixel(uint32_t rec, int column, bool covered) {
   const RowRecord& r = m_records[rec];
   if (covered == r.covers(column)) return;
