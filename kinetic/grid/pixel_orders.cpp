@@ -36,11 +36,19 @@ class PixelOrdersOf final : public PixelOrders {
     return change(pixel, [&](Sort& order) { order.erase(tri, now); });
   }
   uint32_t hand_over(size_t pixel, uint32_t from, uint32_t to, double now) override {
-    if constexpr (requires(Sort& order) { order.rename_sole(to); }) {
+    if constexpr (requires(Sort& order) {
+                    order.rename_sole(to);
+                    order.replace_in_pair(from, to, now);
+                  }) {
+      // The same bytes and members before and after, but for the one handed over.
       Sort& order = m_cells_of[pixel].order;
       if (order.size() == 1 && order.front() == from) {
-        order.rename_sole(to);  // the same bytes: one member before and after
+        order.rename_sole(to);
         return to;
+      }
+      if (order.size() == 2 && order.contains(from)) {
+        order.replace_in_pair(from, to, now);
+        return order.front().value_or(kNoFront);
       }
     }
     erase(pixel, from, now);

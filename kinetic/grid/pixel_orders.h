@@ -43,8 +43,9 @@ class PixelOrders {
   virtual uint32_t erase(size_t pixel, uint32_t tri, double now) = 0;
   /// `from` leaves the pixel and `to` enters it at now (a boundary crossed the pixel's centre:
   /// the two triangles share the edge, and meet the ray at one depth there): erase then insert,
-  /// but where `from` is the only member (most pixels of a closed surface), `to` takes its place
-  /// without any certificate. The front after both.
+  /// with the same certificates and events, but done in place where `from` is the only member
+  /// (most pixels of a closed surface: no certificate) or one of two (a folded sheet: the pair's
+  /// event moves). The front after both.
   virtual uint32_t hand_over(size_t pixel, uint32_t from, uint32_t to, double now) = 0;
   /// The motions of the members whose mesh is marked in `switched` changed at now (a flightplan
   /// update): the certificates they take part in are computed afresh, each once.

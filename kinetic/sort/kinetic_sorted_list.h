@@ -109,6 +109,28 @@ class KineticSortedList {
     m_entries[0].id = id;
   }
 
+  /// Of two objects, `from` leaves and `to` enters at now: what erase(from) then insert(to) do,
+  /// the one certificate insert computes (of the other object and `to`), and the pair's event
+  /// moved to its time rather than cancelled and pushed again.
+  void replace_in_pair(uint32_t from, uint32_t to, double now) {
+    KINRAY_CHECK(m_entries.size() == 2);
+    const size_t p = m_entries[0].id == from ? 0 : 1;
+    KINRAY_CHECK_MSG(m_entries[p].id == from, "id not in the kinetic sorted list");
+    const uint32_t other = m_entries[1 - p].id;
+    OrderCertificate c = m_core.certificate(other, to, now);
+    if (detail::order_sign(c, now, other, to) > 0) {
+      m_entries[0].id = other;
+      m_entries[1].id = to;
+      m_core.schedule(m_entries[0].event, c, other, to, now, 2, 0);
+    } else {
+      m_entries[0].id = to;
+      m_entries[1].id = other;
+      c.negate();
+      m_core.schedule(m_entries[0].event, c, to, other, now, 2, 0);
+    }
+    if (m_core.audit_on()) audit(now);
+  }
+
   /// The motion of id changed from now on: recompute its (at most two) certificates. Pairs that
   /// are out of order now get events at now, processed next by the queue's owner.
   void replace_motion(uint32_t id, double now) {
