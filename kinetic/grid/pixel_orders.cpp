@@ -121,6 +121,10 @@ std::unique_ptr<PixelOrders> PixelOrders::make(DepthSortKind sort, const BandMot
   config.event_kind = event_kind;
   config.audit = false;  // the band audits at consistent points (not mid flightplan batch)
   config.shared_stats = &stats;
+  // A certificate's segment ends at a flightplan update of one of its triangles' meshes, an event
+  // of kind kGridFlightplan (0, first at its time), whose handler recomputes every certificate of
+  // the pixels holding that mesh's triangles (FrustumBand::handle_flightplans): no renewal events.
+  config.renew_at_segment_end = false;
   switch (sort) {
     case DepthSortKind::kList:
       return std::make_unique<PixelOrdersOf<KineticSortedList<PixelDepthKeys>>>(motion, width, row_begin,

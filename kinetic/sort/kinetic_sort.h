@@ -65,6 +65,11 @@ struct KineticSortConfig {
   /// When non-null the structure adds its counters here instead of keeping its own (many small
   /// instances, one total); stats() then returns this object.
   KineticSortStats* shared_stats = nullptr;
+  /// A certificate that holds to the end of its motions' segment gets a renewal event there.
+  /// An owner that recomputes every certificate of a switched motion at that instant, before any
+  /// event of the structure at the same time, sets this false: the renewal would never be popped,
+  /// only pushed, moved and cancelled.
+  bool renew_at_segment_end = true;
 };
 
 // X(member, "stats key") of KineticSortStats.
@@ -194,7 +199,7 @@ class SortCore {
  public:
   SortCore(const Keys& keys, EventQueue& queue, uint32_t owner, const KineticSortConfig& config)
       : m_keys(&keys), m_queue(&queue), m_owner(owner), m_kind(config.event_kind),
-        m_audit(config.audit) {
+        m_audit(config.audit), m_renew(config.renew_at_segment_end) {
     if (config.shared_stats) {
       m_stats = config.shared_stats;
     } else {
@@ -231,6 +236,8 @@ class SortCore {
                 double now, size_t n, uint64_t payload) {
     Schedule s = schedule_certificate(c, now, a, b, /*defer_exact=*/true);
     if (s.recheck) ++m_stats->exact_deferred;
+    if (!m_renew && !s.failure && !s.recheck && !s.degenerate)
+      s.time = std::numeric_limits<double>::infinity();  // the owner renews it (the config)
     if (s.failure && s.time == now && now == m_instant_time && m_instant_events > budget(n)) {
       s = schedule_degenerate(c, now, a, b);
       ++m_stats->degenerate;
@@ -297,6 +304,7 @@ class SortCore {
   uint32_t m_owner;
   uint32_t m_kind;
   bool m_audit;
+  bool m_renew;  ///< KineticSortConfig::renew_at_segment_end
   uint32_t m_instant_events = 0;
   double m_instant_time = -std::numeric_limits<double>::infinity();
   double m_tolerate_until = -std::numeric_limits<double>::infinity();
