@@ -92,11 +92,17 @@ Schedule schedule_certificate(const OrderCertificate& c, double now, uint32_t a,
       return s;
     }
   }
-  // holds_through decides only where first_failure would find no failure (the same answer).
-  const auto r = c.exact ? exact_first_failure(*c.exact, s_now, c.end - c.origin)
-                 : holds_through(c.f, s_now, c.end - c.origin)
+  // holds_through decides only where first_failure would find no failure (the same answer); a
+  // positive constant (a pixel order's pair apart in depth) is what it decides first, read here
+  // without its margins: its margin is 16 eps |c0|.
+  const double s_end = c.end - c.origin;
+  const bool positive_constant = !c.exact && c.f.degree == 0 && c.f.c[0] > 0 &&
+                                 std::isfinite(c.f.c[0]) && std::isfinite(s_now) &&
+                                 std::isfinite(s_end) && s_end >= s_now;
+  const auto r = c.exact ? exact_first_failure(*c.exact, s_now, s_end)
+                 : positive_constant || holds_through(c.f, s_now, s_end)
                      ? std::nullopt
-                     : first_failure(c.f, s_now, c.end - c.origin);
+                     : first_failure(c.f, s_now, s_end);
   if (!r) {
     // Renewal at the end of validity. A certificate that ends at (or before) now is stale: the
     // keys have not switched to the next motion yet, and renewing at now would loop; the owner
