@@ -61,13 +61,10 @@ class BandMotion {
   /// triangle's depth parts (kept), D their normal along the pixel's ray (six products, as
   /// EdgeNormal::along computes them).
   [[nodiscard]] DepthCoefficients depth_coefficients(uint32_t tri, int column, int row,
-                                                             double origin) const {
+                                                     double origin) const {
     const Parts& parts = depth_parts_of(tri, origin, segment_of(tri));
-    const double x = m_scene->column_x(column), y = m_scene->row_y(row);
-    const EdgeNormal& n = parts.normal;
     return {parts.numerator,
-            {n.c0.x() * x + n.c0.y() * y + n.c0.z(), n.c1.x() * x + n.c1.y() * y + n.c1.z(),
-             n.c2.x() * x + n.c2.y() * y + n.c2.z()}};
+            parts.normal.along_coefficients(m_scene->column_x(column), m_scene->row_y(row))};
   }
   /// The same as Polynomials (depth_polynomials of the triangle's motion, bit for bit).
   [[nodiscard]] DepthPolynomials depth(uint32_t tri, int column, int row, double origin) const {

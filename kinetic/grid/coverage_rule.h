@@ -113,6 +113,8 @@ namespace kinray {
 /// (FrustumBand::edge_failure_time) and to the coverage test of the column it crossed.
 struct EdgeOnRay {
   double x, c0, c1, c2, v;
+  // c0, c1, c2 are EdgeNormal::along_coefficients(x, y), written out: built through that array
+  // the boundary events cost 0.25% more instructions (wavy-sphere's event protocol).
   EdgeOnRay(const EdgeNormal& n, double x_, double y, double s)
       : x(x_),
         c0(n.c0.x() * x_ + n.c0.y() * y + n.c0.z()),

@@ -29,13 +29,18 @@ struct PointMotion {
 struct EdgeNormal {
   Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c1 = Eigen::Vector3d::Zero(),
                   c2 = Eigen::Vector3d::Zero();
+  /// E(d)'s coefficients (lowest first) for d = (x, y, 1): every user of an edge function along
+  /// a ray forms them so, and gets the same bits.
+  [[nodiscard]] std::array<double, 3> along_coefficients(double x, double y) const {
+    return {c0.x() * x + c0.y() * y + c0.z(), c1.x() * x + c1.y() * y + c1.z(),
+            c2.x() * x + c2.y() * y + c2.z()};
+  }
   /// E(d) for d = (x, y, 1), a quadratic in s.
   [[nodiscard]] Polynomial along(double x, double y) const {
+    const std::array<double, 3> e = along_coefficients(x, y);
     Polynomial f;
     f.degree = 2;
-    f.c[0] = c0.x() * x + c0.y() * y + c0.z();
-    f.c[1] = c1.x() * x + c1.y() * y + c1.z();
-    f.c[2] = c2.x() * x + c2.y() * y + c2.z();
+    std::copy(e.begin(), e.end(), f.c.begin());
     return f;
   }
   /// Component k (0: x, 1: y, 2: z) of p x q, a quadratic in s.
