@@ -36,6 +36,14 @@ std::vector<FlightplanMesh::KeyBlend> key_blends(const GridScene& scene, double 
   return blends;
 }
 
+/// A read-out's buffers hold the image's pixels each: else std::invalid_argument.
+void check_buffers(const GridScene& scene, std::span<const uint32_t> object,
+                   std::span<const uint32_t> prim, std::span<const float> depth) {
+  const size_t n = size_t(scene.width()) * size_t(scene.height());
+  if (object.size() != n || prim.size() != n || depth.size() != n)
+    throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
+}
+
 /// An audit after an advance: throws std::logic_error listing the first problems, if any.
 void throw_audit_problems(const std::vector<std::string>& problems) {
   if (problems.empty()) return;
@@ -417,10 +425,8 @@ class RowReader {
 void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
                            std::span<float> depth) const {
   const auto started = std::chrono::steady_clock::now();
+  check_buffers(m_scene, object, prim, depth);
   const int w = m_scene.width(), h = m_scene.height();
-  const size_t n = size_t(w) * size_t(h);
-  if (object.size() != n || prim.size() != n || depth.size() != n)
-    throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
   // Where each mesh is on its key grid at now, once per frame.
   const std::vector<FlightplanMesh::KeyBlend> blends = key_blends(m_scene, m_now);
   // Rows are handed out in blocks: a thread that starts late (the machine is shared) takes fewer,
@@ -444,13 +450,12 @@ void FrustumGrid::read_out(std::span<uint32_t> object, std::span<uint32_t> prim,
 
 void FrustumGrid::advance_and_read_out(std::span<BatchFrame> frames) {
   if (frames.empty()) return;
-  const int w = m_scene.width(), h = m_scene.height();
-  const size_t n = size_t(w) * size_t(h);
+  const int w = m_scene.width();
   double previous = m_now;
   for (const BatchFrame& f : frames) {
-    if (!(f.t >= previous)) throw std::invalid_argument("kinetic grid: frame times must not decrease");
-    if (f.object.size() != n || f.prim.size() != n || f.depth.size() != n)
-      throw std::invalid_argument("kinetic grid read-out: buffers must have width x height pixels");
+    if (!(f.t >= previous))
+      throw std::invalid_argument("kinetic grid: frame times must not decrease");
+    check_buffers(m_scene, f.object, f.prim, f.depth);
     previous = f.t;
   }
   const auto started = std::chrono::steady_clock::now();
