@@ -15,13 +15,8 @@ namespace kinray {
 KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int threads)
     : m_scene(scene),
       m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
-      m_threads(threads) {
-  // A field of view that is the same at every camera key gives one tan_half_fov at every time
-  // (the interpolation a + alpha (a - a) is exactly a): computed once, not at each node.
-  const std::vector<double>& fov = scene.camera_fov_y;
-  if (!fov.empty() && std::all_of(fov.begin(), fov.end(), [&](double f) { return f == fov[0]; }))
-    m_fixed_tan_half_fov = scene.tan_half_fov(0.0);
-}
+      m_threads(threads),
+      m_fixed_tan_half_fov(scene.fixed_tan_half_fov()) {}
 
 void KineticShutter::start_logging(FrustumGrid& grid) {
   if (!m_started) {
@@ -74,20 +69,15 @@ void KineticShutter::place_window_nodes(const ShutterWindow& window) {
     nodes.clear();
     if (!(window.close > window.open)) continue;
     for_each_node(object, window.open, window.close, window.length(),
-                  [&](double t, double w, size_t next) { nodes.push_back({instant(object, t, next), w}); });
+                  [&](double t, double w, size_t next) {
+                    nodes.push_back({instant(object, t, next), w});
+                  });
   }
 }
 
 ShadingInstant KineticShutter::instant(uint32_t object, double t, size_t next) const {
-  const std::vector<double>& keys = m_scene.objects[object].key_times;
-  KeySegment at;
-  // locate()'s answer without its search where t lies strictly between the piece's keys (the
-  // first key above t is then keys[next]): the same division, so the same alpha.
-  if (next > 0 && next < keys.size() && keys[next - 1] < t && t < keys[next])
-    at = {next - 1, (t - keys[next - 1]) / (keys[next] - keys[next - 1])};
-  else
-    at = locate(keys, t);
-  return {at, m_fixed_tan_half_fov ? *m_fixed_tan_half_fov : m_scene.tan_half_fov(t)};
+  return {locate(m_scene.objects[object].key_times, t, next),
+          m_fixed_tan_half_fov ? *m_fixed_tan_half_fov : m_scene.tan_half_fov(t)};
 }
 
 void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,

@@ -15,6 +15,12 @@ KeySegment locate(std::span<const double> key_times, double t) {
   return {k, (t - key_times[k]) / (key_times[k + 1] - key_times[k])};
 }
 
+KeySegment locate(std::span<const double> key_times, double t, size_t next) {
+  if (next > 0 && next < key_times.size() && key_times[next - 1] < t && t < key_times[next])
+    return {next - 1, (t - key_times[next - 1]) / (key_times[next] - key_times[next - 1])};
+  return locate(key_times, t);
+}
+
 Vec3 CameraSpaceObject::position(uint32_t v, double t) const {
   if (key_times.size() < 2) return positions[v];
   return position(v, locate(key_times, t));
@@ -135,6 +141,13 @@ double CameraSpaceScene::tan_half_fov(double t) const {
     fov_y = camera_fov_y[s.k] + s.alpha * (camera_fov_y[s.k + 1] - camera_fov_y[s.k]);
   }
   return std::tan(fov_y * M_PI / 360.0);
+}
+
+std::optional<double> CameraSpaceScene::fixed_tan_half_fov() const {
+  const auto& fov = camera_fov_y;
+  if (fov.empty() || !std::all_of(fov.begin(), fov.end(), [&](double f) { return f == fov[0]; }))
+    return std::nullopt;
+  return tan_half_fov(camera_key_times.front());
 }
 
 size_t CameraSpaceScene::triangle_count() const { return scene->triangle_count(); }

@@ -5,6 +5,7 @@
 // motion piecewise linear. The field of view is folded into the positions (x and y scaled by
 // 1 / tan(fov_y / 2)), so the pixel-centre rays d_ij = (x_i, y_j, 1) never change, even when the
 // fov is animated; the ray parameter of a hit is still the camera-space depth z.
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -21,6 +22,10 @@ struct KeySegment {
   double alpha = 0;
 };
 [[nodiscard]] KeySegment locate(std::span<const double> key_times, double t);
+/// locate(key_times, t) for a t already known to lie in [key_times[next - 1], key_times[next]]
+/// (next = 0 or the key count: before or after them): without the search where t lies strictly
+/// inside, else by the search. The same segment and alpha, bit for bit.
+[[nodiscard]] KeySegment locate(std::span<const double> key_times, double t, size_t next);
 
 /// One object's camera-space flightplans.
 struct CameraSpaceObject {
@@ -59,6 +64,9 @@ struct CameraSpaceScene {
   /// tan(fov_y / 2) of the camera at t: undoes the fov folding for shading (the fov of
   /// Camera::at(t), bit for bit, without its allocation and slerp: shading calls it per sample).
   [[nodiscard]] double tan_half_fov(double t) const;
+  /// tan_half_fov(t) for every t when the fov is the same at every camera key (the
+  /// interpolation a + alpha (a - a) is exactly a), else nothing.
+  [[nodiscard]] std::optional<double> fixed_tan_half_fov() const;
   [[nodiscard]] size_t triangle_count() const;
   [[nodiscard]] const std::vector<Triangle>& triangles(size_t object) const {
     return scene->objects[object].triangles;

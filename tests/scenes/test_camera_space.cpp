@@ -125,6 +125,30 @@ TEST(CameraSpace, ShortcutsForShadingAgreeBitForBitWithTheFullEvaluation) {
     }
   }
   EXPECT_NE(cs.tan_half_fov(0.35), cs.tan_half_fov(1.0));  // the fov does move
+  EXPECT_FALSE(cs.fixed_tan_half_fov());
+
+  // One fov at every key: its tangent at every time, bit for bit.
+  for (auto& key : camera.keys) key.fov_y_degrees = 47;
+  const CameraSpaceScene still_fov = CameraSpaceScene::build(
+      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), camera));
+  ASSERT_TRUE(still_fov.fixed_tan_half_fov());
+  for (double t : {-1.0, 0.0, 0.35, 0.7, 1.0, 2.0})
+    EXPECT_EQ(*still_fov.fixed_tan_half_fov(), still_fov.tan_half_fov(t)) << t;
+}
+
+TEST(CameraSpace, LocateWithTheFirstKeyAboveGivenIsLocate) {
+  // Motion blur's nodes know the piece of the key grid they lie in (for_each_node): the segment
+  // and alpha are locate()'s, bit for bit, inside the piece, at its keys and beyond the grid.
+  const std::vector<double> times = {0, 0.1, 1.0 / 3, 1, 3};
+  for (size_t next = 0; next <= times.size(); ++next) {
+    const double lo = next == 0 ? -1 : times[next - 1], hi = next == times.size() ? 4 : times[next];
+    for (int k = 0; k <= 16; ++k) {
+      const double t = lo + (hi - lo) * k / 16;
+      const KeySegment expected = locate(times, t), got = locate(times, t, next);
+      EXPECT_EQ(got.k, expected.k) << t;
+      EXPECT_EQ(got.alpha, expected.alpha) << t;
+    }
+  }
 }
 
 TEST(CameraSpace, KeyGridIsTheUnionOfObjectAndCameraKeys) {
