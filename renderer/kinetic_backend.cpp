@@ -151,9 +151,9 @@ class KineticBackend final : public Backend {
   /// none. A batch keeps each band's events in cache over its frames, but its frames' buffers
   /// are written out to memory (streamed), where one frame at a time stays in cache for the
   /// caller: worth it when a frame has many events for its pixels (at least one per 192: on
-  /// wavy-sphere at 512x512 one per 128 pays, one per 256 does not). Long enough for a band's run of events to
-  /// reuse what it fetched, short enough that the bands, handed out whole, share the threads
-  /// evenly (docs/kinetic_grid.md, "Frames in batches").
+  /// wavy-sphere at 512x512 one per 128 pays, one per 256 does not). Long enough for a band's
+  /// run of events to reuse what it fetched, short enough that the bands, handed out whole,
+  /// share the threads evenly (docs/kinetic_grid.md, "Frames in batches").
   [[nodiscard]] size_t batch_length() const {
     const size_t pixels = size_t(m_config.width) * size_t(m_config.height);
     const uint64_t last = m_events.empty() ? 0 : m_events.back();

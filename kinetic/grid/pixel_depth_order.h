@@ -135,6 +135,7 @@ template <int kN>
   const double reach = s0 + w;
   double rounding = 0;
   for (int k = 3; k >= 0; --k) {
+    // D has no cubic term: Z times its zero (a signed zero, as when D was a Polynomial).
     const double zd = k < 3 ? z * p.d[size_t(k)] : z * 0.0;
     c[size_t(k)] = p.n[size_t(k)] - zd;
     rounding = rounding * reach + (std::abs(p.n[size_t(k)]) + std::abs(zd));
