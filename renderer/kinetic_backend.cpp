@@ -158,10 +158,11 @@ class KineticBackend final : public Backend {
     const size_t pixels = size_t(m_config.width) * size_t(m_config.height);
     const uint64_t last = m_events.empty() ? 0 : m_events.back();
     if (last * kPixelsPerBatchedEvent < pixels) return 0;
-    const size_t fit = kAheadBytes / std::max<size_t>(1, pixels * (2 * sizeof(uint32_t) + sizeof(float)));
+    const size_t fit =
+        kAheadBytes / std::max<size_t>(1, pixels * (2 * sizeof(uint32_t) + sizeof(float)));
     const size_t wanted = size_t(kEventsPerBatch / std::max<uint64_t>(last, 1));
-    return std::min({m_plan.size() - (m_planned - 1), std::clamp<size_t>(wanted, 2, kMaxFramesAhead),
-                     std::max<size_t>(fit, 1)});
+    return std::min({m_plan.size() - (m_planned - 1),
+                     std::clamp<size_t>(wanted, 2, kMaxFramesAhead), std::max<size_t>(fit, 1)});
   }
 
   /// The `count` planned frames from t on, in one FrustumGrid::advance_and_read_out.
@@ -174,7 +175,8 @@ class KineticBackend final : public Backend {
       a.object.resize(pixels);
       a.prim.resize(pixels);
       a.depth.resize(pixels);
-      batch[f] = {.t = m_plan[m_planned - 1 + f], .object = a.object, .prim = a.prim, .depth = a.depth};
+      batch[f] = {
+          .t = m_plan[m_planned - 1 + f], .object = a.object, .prim = a.prim, .depth = a.depth};
     }
     KINRAY_CHECK(batch.front().t == t);
     m_grid->advance_and_read_out(batch);
@@ -213,11 +215,11 @@ class KineticBackend final : public Backend {
   std::unique_ptr<KineticShutter> m_shutter;  ///< motion blur, made by the first render_shutter
   std::vector<double> m_events_s, m_readout_s;
   std::vector<uint64_t> m_events;
-  std::vector<double> m_plan;  ///< plan_frames' times
-  size_t m_planned = 0;        ///< how many of them render() has been asked for
+  std::vector<double> m_plan;       ///< plan_frames' times
+  size_t m_planned = 0;             ///< how many of them render() has been asked for
   std::vector<AheadFrame> m_ahead;  ///< the batch rendered ahead (buffers kept for the next)
   size_t m_ahead_count = 0, m_ahead_next = 0;  ///< frames in the batch, and the next to serve
-  uint64_t m_frames_batched = 0;  ///< frames served from batches
+  uint64_t m_frames_batched = 0;               ///< frames served from batches
 };
 
 }  // namespace

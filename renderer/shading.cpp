@@ -16,8 +16,8 @@ SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image
   return surface_point(scene, image, i, j, object, prim, shading_instant(scene, object, t));
 }
 
-TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object,
-                                      uint32_t prim, const ShadingInstant& instant) {
+TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object, uint32_t prim,
+                                      const ShadingInstant& instant) {
   const KeySegment& at = instant.segment;
   const CameraSpaceObject& cs = scene.objects[object];
   const Object& source = scene.scene->objects[object];
@@ -61,7 +61,8 @@ void normal_and_base(const TriangleAtInstant& triangle, const Vec3& d, Eigen::Ve
     v = std::clamp(d.dot(triangle.qvec) / det, 0.0, 1.0 - u);
   }
   const float w0 = float(1.0 - u - v), w1 = float(u), w2 = float(v);
-  Eigen::Vector3f n = w0 * triangle.normals[0] + w1 * triangle.normals[1] + w2 * triangle.normals[2];
+  Eigen::Vector3f n =
+      w0 * triangle.normals[0] + w1 * triangle.normals[1] + w2 * triangle.normals[2];
   const float length = n.norm();
   normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
   base = triangle.base;

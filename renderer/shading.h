@@ -51,8 +51,8 @@ struct TriangleAtInstant {
   std::array<Eigen::Vector3f, 3> normals;     ///< the vertex normals at the instant
   std::array<uint32_t, 3> vertices{};         ///< the object's vertex ids (for the uvs)
   const Object* source = nullptr;
-  Color base = Color::Zero();                 ///< the material's base colour
-  const Texture* texture = nullptr;           ///< the material's texture, when it has uvs
+  Color base = Color::Zero();        ///< the material's base colour
+  const Texture* texture = nullptr;  ///< the material's texture, when it has uvs
   double tan_half_fov = 1;
 };
 

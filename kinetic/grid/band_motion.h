@@ -122,7 +122,7 @@ class BandMotion {
   std::vector<MeshSegment> m_segments;
   std::vector<PointMotion> m_vertices;  ///< by global vertex id
   mutable EdgeNormalCache m_edges;      ///< by global edge id
-  mutable std::vector<Parts> m_parts;  ///< a power of two of slots
+  mutable std::vector<Parts> m_parts;   ///< a power of two of slots
   uint32_t m_parts_generation = 1;
 };
 

@@ -106,7 +106,9 @@ class FrustumGrid::Bands {
   [[nodiscard]] int count() const { return int(m_bands.size()); }
   [[nodiscard]] FrustumBand& band(size_t b) { return *m_bands[b]; }
   /// The rows [first, second) of band b.
-  [[nodiscard]] std::pair<int, int> rows(size_t b) const { return {m_row_begin[b], m_row_begin[b + 1]}; }
+  [[nodiscard]] std::pair<int, int> rows(size_t b) const {
+    return {m_row_begin[b], m_row_begin[b + 1]};
+  }
   /// Band b logs its front changes into logs[b] (logs == nullptr: no band logs).
   void set_front_logs(FrontChangeLog* logs) {
     for (size_t b = 0; b < m_bands.size(); ++b) m_bands[b]->set_front_log(logs ? &logs[b] : nullptr);

@@ -146,7 +146,9 @@ struct DepthCoefficients {
     return p;
   }
   /// Horner's values, as Polynomial's operator() computes them at these degrees.
-  [[nodiscard]] double numerator(double s) const { return ((n[3] * s + n[2]) * s + n[1]) * s + n[0]; }
+  [[nodiscard]] double numerator(double s) const {
+    return ((n[3] * s + n[2]) * s + n[1]) * s + n[0];
+  }
   [[nodiscard]] double denominator(double s) const { return (d[2] * s + d[1]) * s + d[0]; }
 };
 

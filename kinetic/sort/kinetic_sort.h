@@ -198,8 +198,12 @@ template <class Keys>
 class SortCore {
  public:
   SortCore(const Keys& keys, EventQueue& queue, uint32_t owner, const KineticSortConfig& config)
-      : m_keys(&keys), m_queue(&queue), m_owner(owner), m_kind(config.event_kind),
-        m_audit(config.audit), m_renew(config.renew_at_segment_end) {
+      : m_keys(&keys),
+        m_queue(&queue),
+        m_owner(owner),
+        m_kind(config.event_kind),
+        m_audit(config.audit),
+        m_renew(config.renew_at_segment_end) {
     if (config.shared_stats) {
       m_stats = config.shared_stats;
     } else {

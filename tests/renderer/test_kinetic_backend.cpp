@@ -193,7 +193,8 @@ TEST(KineticBackend, FrameCountIndependence) {
 // same events frame by frame as without a plan, with the audit on. A time off the plan drops it
 // and is rendered as without one.
 TEST(KineticBackend, PlannedFramesAreTheUnplannedOnes) {
-  const Scene scene = make_builtin_scene("cloth", {{"triangles", 3000}, {"duration", 0.5}, {"keyrate", 12}});
+  const Scene scene =
+      make_builtin_scene("cloth", {{"triangles", 3000}, {"duration", 0.5}, {"keyrate", 12}});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   FrameScheduleParams schedule;
   schedule.inbetweens = 5;

@@ -44,7 +44,8 @@ Color headlight_reference(const CameraSpaceScene& scene, const PixelRays& image,
   Eigen::Vector3f n =
       w0 * cs.normal(tri[0], at) + w1 * cs.normal(tri[1], at) + w2 * cs.normal(tri[2], at);
   const float length = n.norm();
-  const Eigen::Vector3f normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
+  const Eigen::Vector3f normal =
+      length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
   const Eigen::Vector3f view = unfold(d, scene.tan_half_fov(t)).normalized().cast<float>();
   const Material& material = scene.scene->materials[source.material];
   Color base = material.base_color;
@@ -55,7 +56,9 @@ Color headlight_reference(const CameraSpaceScene& scene, const PixelRays& image,
   return base * (kAmbient + kDiffuse * std::abs(normal.dot(view)));
 }
 
-bool same_bits(const Color& a, const Color& b) { return std::memcmp(a.data(), b.data(), sizeof(float) * 3) == 0; }
+bool same_bits(const Color& a, const Color& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(float) * 3) == 0;
+}
 
 void check_scene(const Scene& scene, int checks) {
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);

@@ -129,8 +129,8 @@ TEST(CameraSpace, ShortcutsForShadingAgreeBitForBitWithTheFullEvaluation) {
 
   // One fov at every key: its tangent at every time, bit for bit.
   for (auto& key : camera.keys) key.fov_y_degrees = 47;
-  const CameraSpaceScene still_fov = CameraSpaceScene::build(
-      triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), camera));
+  const CameraSpaceScene still_fov =
+      CameraSpaceScene::build(triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), camera));
   ASSERT_TRUE(still_fov.fixed_tan_half_fov());
   for (double t : {-1.0, 0.0, 0.35, 0.7, 1.0, 2.0})
     EXPECT_EQ(*still_fov.fixed_tan_half_fov(), still_fov.tan_half_fov(t)) << t;

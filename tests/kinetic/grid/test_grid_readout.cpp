@@ -140,7 +140,8 @@ TEST(GridReadout, InBatchesIsFrameByFrameBitForBit) {
   const GridInput in = scene.input();
   const std::vector<double> times = {0.0625, 0.125, 0.25, 0.375, 0.5, 0.5, 0.625, 0.75, 0.875, 1.0};
   const size_t n = in.rays.pixel_count();
-  for (const DepthSortKind sort : {DepthSortKind::kList, DepthSortKind::kTournament, DepthSortKind::kHeap})
+  for (const DepthSortKind sort :
+       {DepthSortKind::kList, DepthSortKind::kTournament, DepthSortKind::kHeap})
     for (const int threads : {1, 2}) {
       FrustumGridConfig config;
       config.threads = threads;
@@ -148,7 +149,8 @@ TEST(GridReadout, InBatchesIsFrameByFrameBitForBit) {
       config.sort = sort;
       config.audit = true;
       FrustumGrid reference(in, 0.0, config);
-      std::vector<std::vector<uint32_t>> object(times.size(), std::vector<uint32_t>(n)), prim = object;
+      std::vector<std::vector<uint32_t>> object(times.size(), std::vector<uint32_t>(n)),
+          prim = object;
       std::vector<std::vector<float>> depth(times.size(), std::vector<float>(n));
       std::vector<uint64_t> events;
       for (size_t f = 0; f < times.size(); ++f) {
@@ -173,15 +175,16 @@ TEST(GridReadout, InBatchesIsFrameByFrameBitForBit) {
           EXPECT_EQ(grid.now(), frames.back().t);
           for (size_t k = 0; k < frames.size(); ++k) {
             const size_t f = first + k;
-            const std::string where = std::string(depth_sort_name(sort)) + ", " + std::to_string(threads) +
-                                      " threads, batches of " + std::to_string(batch) + ", t " +
-                                      std::to_string(times[f]);
+            const std::string where = std::string(depth_sort_name(sort)) + ", " +
+                                      std::to_string(threads) + " threads, batches of " +
+                                      std::to_string(batch) + ", t " + std::to_string(times[f]);
             EXPECT_EQ(frames[k].events, events[f]) << where;
             EXPECT_GE(frames[k].events_s, 0.0);
             EXPECT_GE(frames[k].readout_s, 0.0);
             EXPECT_TRUE(std::equal(object[f].begin(), object[f].end(), o.begin() + f * n)) << where;
             EXPECT_TRUE(std::equal(prim[f].begin(), prim[f].end(), p.begin() + f * n)) << where;
-            EXPECT_EQ(std::memcmp(depth[f].data(), d.data() + f * n, n * sizeof(float)), 0) << where;
+            EXPECT_EQ(std::memcmp(depth[f].data(), d.data() + f * n, n * sizeof(float)), 0)
+                << where;
           }
         }
         EXPECT_EQ(grid.event_count(), reference.event_count());
