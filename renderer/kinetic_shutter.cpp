@@ -81,7 +81,8 @@ ShadingInstant KineticShutter::instant(uint32_t object, double t, size_t next) c
 }
 
 void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
-                               double t1, double length, ColorAverage& average) const {
+                               double t1, double length, SegmentCache& cache,
+                               ColorAverage& average) const {
   if (!(t1 > t0)) return;
   if (front == kNoGridHit) {
     average.add(kBackgroundColor, (t1 - t0) / length);
@@ -92,14 +93,15 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
   const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
   ViewCache view;
   for_each_node(object, t0, t1, length, [&](double t, double w, size_t next) {
-    const TriangleAtInstant triangle =
-        triangle_at_instant(m_scene, object, prim, instant(object, t, next));
+    const ShadingInstant at = instant(object, t, next);
+    const TriangleAtInstant triangle = cache.get(m_scene, object, prim, at.segment.k).at(at);
     average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), w);
   });
 }
 
 void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
-                                      FrontNodes& memo, ColorAverage& average) const {
+                                      FrontNodes& memo, SegmentCache& cache,
+                                      ColorAverage& average) const {
   if (front == kNoGridHit) {
     average.add(kBackgroundColor, 1.0);
     return;
@@ -111,7 +113,8 @@ void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int
     memo.front = front;
     memo.triangles.clear();
     for (const WindowNode& node : nodes)
-      memo.triangles.push_back(triangle_at_instant(m_scene, object, prim, node.instant));
+      memo.triangles.push_back(
+          cache.get(m_scene, object, prim, node.instant.segment.k).at(node.instant));
   }
   const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
   ViewCache view;
@@ -149,23 +152,35 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   place_window_nodes(window);
 
   // Each band's log touches only its own rows' pixels, so the logs are walked in parallel: each
-  // change closes the pixel's current interval and opens the next.
-  std::vector<uint32_t> current(m_open_front), at_time(m_open_front);
-  std::vector<double> since(n, window.open);
-  std::vector<ColorAverage> average(n);
-  std::vector<uint8_t> split(n, 0);
+  // change closes the pixel's current interval and opens the next. A pixel's open interval and
+  // its average so far live in one SplitPixel (one cache line), made at its first change: the
+  // changes come in time order, at pixels all over the band, and five per-pixel arrays were five
+  // cache misses per change. Band b's SplitPixels take the slots from its offset on (a band has
+  // at most as many split pixels as changes).
   const std::span<FrontChangeLog> logs = grid.front_logs();
+  std::vector<size_t> offset(logs.size() + 1, 0);
+  for (size_t b = 0; b < logs.size(); ++b) offset[b + 1] = offset[b] + logs[b].changes.size();
+  if (m_split.size() < offset.back()) m_split.resize(offset.back());
+  if (m_split_index.size() != n) m_split_index.assign(n, kNotSplit);
+  std::vector<size_t> split_end(offset.begin(), offset.end() - 1);
   std::atomic<uint64_t> changes{0};
   parallel_for_dynamic(logs.size(), m_threads, [&](size_t b) {
+    SegmentCache cache;
+    size_t& end = split_end[b];
     for (const FrontChange& c : logs[b].changes) {
       if (c.time > window.close) break;
       const size_t p = c.pixel;
       const int i = int(p % size_t(w)), j = int(p / size_t(w));
-      integrate(scene, current[p], i, j, since[p], c.time, length, average[p]);
-      current[p] = c.front;
-      since[p] = c.time;
-      split[p] = 1;
-      if (c.time <= window.time) at_time[p] = c.front;
+      uint32_t& index = m_split_index[p];
+      if (index == kNotSplit) {
+        index = uint32_t(end);
+        m_split[end++] = SplitPixel{ColorAverage{}, window.open, m_open_front[p], m_open_front[p]};
+      }
+      SplitPixel& s = m_split[index];
+      integrate(scene, s.front, i, j, s.since, c.time, length, cache, s.average);
+      s.front = c.front;
+      s.since = c.time;
+      if (c.time <= window.time) s.at_time = c.front;
     }
     changes.fetch_add(logs[b].changes.size(), std::memory_order_relaxed);
   });
@@ -173,13 +188,22 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   parallel_for(size_t(h), m_threads, [&](size_t row) {
     const int j = int(row);
     FrontNodes memo;  // neighbours along a row mostly share their front
+    SegmentCache cache;
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
-      if (since[p] == window.open && window.close > window.open)
-        integrate_window(scene, current[p], i, j, memo, average[p]);
+      const uint32_t index = m_split_index[p];
+      if (index != kNotSplit) {
+        SplitPixel& s = m_split[index];
+        integrate(scene, s.front, i, j, s.since, window.close, length, cache, s.average);
+        frame.color[p] = s.average.result();
+        continue;
+      }
+      ColorAverage average;
+      if (window.close > window.open)
+        integrate_window(scene, m_open_front[p], i, j, memo, cache, average);
       else
-        integrate(scene, current[p], i, j, since[p], window.close, length, average[p]);
-      frame.color[p] = average[p].result();
+        integrate(scene, m_open_front[p], i, j, window.open, window.close, length, cache, average);
+      frame.color[p] = average.result();
     }
   });
   m_stats.integrate_s += seconds_since(clock);
@@ -188,7 +212,8 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
     const int j = int(row);
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
-      const uint32_t front = at_time[p];
+      const uint32_t index = m_split_index[p];
+      const uint32_t front = index == kNotSplit ? m_open_front[p] : m_split[index].at_time;
       if (front == kNoGridHit) {
         frame.object[p] = frame.prim[p] = kNoHit;
         frame.depth[p] = std::numeric_limits<float>::infinity();
@@ -201,8 +226,15 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
                                          image.direction(i, j), window.time);
     }
   });
+  // The split pixels' slots are free again for the next window.
   uint64_t split_count = 0;
-  for (uint8_t s : split) split_count += s;
+  for (size_t b = 0; b < logs.size(); ++b) {
+    split_count += split_end[b] - offset[b];
+    for (const FrontChange& c : logs[b].changes) {
+      if (c.time > window.close) break;
+      m_split_index[c.pixel] = kNotSplit;
+    }
+  }
   m_stats.front_changes += changes.load();
   m_stats.pixels_split += split_count;
   m_stats.shading_nodes += (n + changes.load()) * m_rule.nodes.size();

@@ -8,6 +8,7 @@
 //
 // The timeline keeps the fronts at the open time of the last window and the grid's log of the
 // changes since, so windows may overlap (an irregular schedule): the grid only ever moves forward.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -63,9 +64,25 @@ class KineticShutter {
   void for_each_node(uint32_t object, double t0, double t1, double length, Visit&& visit) const;
   /// The nodes of each object over the whole window, shared by every pixel whose front stays.
   void place_window_nodes(const ShutterWindow& window);
+  /// The triangles over key segments built last, in a small direct-mapped table (one per
+  /// thread): the fronts whose intervals close near each other in a band's log, or along a row,
+  /// are few, and each shades four nodes per interval from one TriangleOverSegment.
+  class SegmentCache {
+   public:
+    [[nodiscard]] const TriangleOverSegment& get(const CameraSpaceScene& scene, uint32_t object,
+                                                 uint32_t prim, size_t k) {
+      TriangleOverSegment& slot = m_slots[(prim * 0x9E3779B1u + object * 31u + k) % kSlots];
+      if (!slot.holds(object, prim, k)) slot = TriangleOverSegment(scene, object, prim, k);
+      return slot;
+    }
+
+   private:
+    static constexpr size_t kSlots = 64;
+    std::array<TriangleOverSegment, kSlots> m_slots;
+  };
   /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`.
   void integrate(const GridScene& grid, uint32_t front, int i, int j, double t0, double t1,
-                 double length, ColorAverage& average) const;
+                 double length, SegmentCache& cache, ColorAverage& average) const;
   /// A front's triangle at each node of the window, kept while the next pixel has the same front.
   struct FrontNodes {
     uint32_t front = kNoGridHit;
@@ -92,7 +109,7 @@ class KineticShutter {
   /// Adds the front's shading over the whole window (the nodes of place_window_nodes); `memo`
   /// holds the last front's triangle at those nodes.
   void integrate_window(const GridScene& grid, uint32_t front, int i, int j, FrontNodes& memo,
-                        ColorAverage& average) const;
+                        SegmentCache& cache, ColorAverage& average) const;
 
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
@@ -106,6 +123,17 @@ class KineticShutter {
     double weight = 0;
   };
   std::vector<std::vector<WindowNode>> m_window_nodes;  ///< per object, for the current window
+  /// A pixel whose front changes inside the window: its open interval (the front since `since`),
+  /// the average of the intervals closed so far, and its front at the frame time.
+  struct alignas(64) SplitPixel {
+    ColorAverage average;
+    double since = 0;
+    uint32_t front = 0;
+    uint32_t at_time = 0;
+  };
+  static constexpr uint32_t kNotSplit = ~0u;
+  std::vector<SplitPixel> m_split;      ///< the window's split pixels, kept across windows
+  std::vector<uint32_t> m_split_index;  ///< per pixel, its SplitPixel or kNotSplit
   KineticShutterStats m_stats;
 };
 

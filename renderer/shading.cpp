@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "util/check.h"
 #include "util/parallel.h"
 
 namespace kinray {
@@ -16,29 +17,67 @@ SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image
   return surface_point(scene, image, i, j, object, prim, shading_instant(scene, object, t));
 }
 
-TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object, uint32_t prim,
-                                      const ShadingInstant& instant) {
-  const KeySegment& at = instant.segment;
+TriangleOverSegment::TriangleOverSegment(const CameraSpaceScene& scene, uint32_t object,
+                                         uint32_t prim, size_t k)
+    : m_object(object), m_prim(prim), m_k(k) {
   const CameraSpaceObject& cs = scene.objects[object];
   const Object& source = scene.scene->objects[object];
   const Triangle& tri = source.triangles[prim];
+  // CameraSpaceObject::position and normal: a + alpha (b - a) between keys k and k + 1, the key
+  // positions themselves for an object without keys to blend.
+  m_moving = cs.key_times.size() >= 2;
+  const size_t n = cs.vertex_count;
+  for (size_t v = 0; v < 3; ++v) {
+    m_vertices[v] = tri[v];
+    if (!m_moving) {
+      m_start[v] = cs.positions[tri[v]];
+      m_normal_start[v] = cs.normals[tri[v]];
+      continue;
+    }
+    const Vec3 &a = cs.positions[k * n + tri[v]], &b = cs.positions[(k + 1) * n + tri[v]];
+    m_start[v] = a;
+    m_step[v] = b - a;
+    const Eigen::Vector3f &na = cs.normals[k * n + tri[v]], &nb = cs.normals[(k + 1) * n + tri[v]];
+    m_normal_start[v] = na;
+    m_normal_step[v] = nb - na;
+  }
+  m_source = &source;
+  const Material& material = scene.scene->materials[source.material];
+  m_base = material.base_color;
+  if (material.texture >= 0 && !source.uvs.empty())
+    m_texture = &scene.scene->textures[size_t(material.texture)];
+}
+
+TriangleAtInstant TriangleOverSegment::at(const ShadingInstant& instant) const {
+  KINRAY_DCHECK(!m_moving || instant.segment.k == m_k);
   TriangleAtInstant t;
-  t.vertices = {tri[0], tri[1], tri[2]};
-  t.p0 = cs.position(tri[0], at);
-  t.p1 = cs.position(tri[1], at);
-  t.p2 = cs.position(tri[2], at);
+  t.vertices = m_vertices;
+  if (m_moving) {
+    const double alpha = instant.segment.alpha;
+    t.p0 = m_start[0] + alpha * m_step[0];
+    t.p1 = m_start[1] + alpha * m_step[1];
+    t.p2 = m_start[2] + alpha * m_step[2];
+    for (size_t k = 0; k < 3; ++k) t.normals[k] = m_normal_start[k] + float(alpha) * m_normal_step[k];
+  } else {
+    t.p0 = m_start[0];
+    t.p1 = m_start[1];
+    t.p2 = m_start[2];
+    t.normals = m_normal_start;
+  }
   t.e1 = t.p1 - t.p0;
   t.e2 = t.p2 - t.p0;
   const Vec3 tvec = -t.p0;
   t.qvec = tvec.cross(t.e1);
-  for (size_t k = 0; k < 3; ++k) t.normals[k] = cs.normal(tri[k], at);
-  t.source = &source;
-  const Material& material = scene.scene->materials[source.material];
-  t.base = material.base_color;
-  if (material.texture >= 0 && !source.uvs.empty())
-    t.texture = &scene.scene->textures[size_t(material.texture)];
+  t.source = m_source;
+  t.base = m_base;
+  t.texture = m_texture;
   t.tan_half_fov = instant.tan_half_fov;
   return t;
+}
+
+TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object, uint32_t prim,
+                                      const ShadingInstant& instant) {
+  return TriangleOverSegment(scene, object, prim, instant.segment.k).at(instant);
 }
 
 Eigen::Vector3f view_direction(const Vec3& d, double tan_half_fov) {

@@ -56,7 +56,38 @@ struct TriangleAtInstant {
   double tan_half_fov = 1;
 };
 
-/// The TriangleAtInstant of (object, prim) at `instant`.
+/// One triangle over one key segment of its object (the keys k and k + 1): its vertices and
+/// vertex normals at key k, their steps to key k + 1, and its material. At any instant of the
+/// segment its TriangleAtInstant is then one blend per vertex, the operations of
+/// CameraSpaceObject::position and normal on the same values, so bit for bit the same. Motion
+/// blur shades a front at four nodes of each interval, and there the key lookups and loads were
+/// most of the work of building the triangle at each node.
+class TriangleOverSegment {
+ public:
+  /// An empty triangle (holds() nothing), to be assigned.
+  TriangleOverSegment() = default;
+  TriangleOverSegment(const CameraSpaceScene& scene, uint32_t object, uint32_t prim, size_t k);
+  /// Built for (object, prim) on key segment k.
+  [[nodiscard]] bool holds(uint32_t object, uint32_t prim, size_t k) const {
+    return m_source != nullptr && m_object == object && m_prim == prim && m_k == k;
+  }
+  /// The triangle at `instant`, whose segment must be this one's (instant.segment.k == k).
+  [[nodiscard]] TriangleAtInstant at(const ShadingInstant& instant) const;
+
+ private:
+  std::array<Vec3, 3> m_start, m_step;  ///< positions at key k, key k + 1 minus key k
+  std::array<Eigen::Vector3f, 3> m_normal_start, m_normal_step;
+  bool m_moving = false;  ///< the object has keys to blend (else m_start is the position)
+  std::array<uint32_t, 3> m_vertices{};
+  const Object* m_source = nullptr;
+  Color m_base = Color::Zero();
+  const Texture* m_texture = nullptr;
+  uint32_t m_object = 0, m_prim = 0;
+  size_t m_k = 0;
+};
+
+/// The TriangleAtInstant of (object, prim) at `instant`:
+/// TriangleOverSegment(scene, object, prim, instant.segment.k).at(instant).
 [[nodiscard]] TriangleAtInstant triangle_at_instant(const CameraSpaceScene& scene, uint32_t object,
                                                     uint32_t prim, const ShadingInstant& instant);
 
