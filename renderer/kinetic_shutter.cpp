@@ -81,7 +81,7 @@ ShadingInstant KineticShutter::instant(uint32_t object, double t, size_t next) c
 }
 
 void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
-                               double t1, double length, SegmentCache& cache,
+                               double t1, double length, SegmentCache& cache, uint64_t& nodes,
                                ColorAverage& average) const {
   if (!(t1 > t0)) return;
   if (front == kNoGridHit) {
@@ -95,13 +95,14 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
   for_each_node(object, t0, t1, length, [&](double t, double w, size_t next) {
     const ShadingInstant at = instant(object, t, next);
     const TriangleAtInstant triangle = cache.get(m_scene, object, prim, at.segment.k).at(at);
+    ++nodes;
     average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), w);
   });
 }
 
 void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
                                       FrontNodes& memo, SegmentCache& cache,
-                                      ColorAverage& average) const {
+                                      uint64_t& node_count, ColorAverage& average) const {
   if (front == kNoGridHit) {
     average.add(kBackgroundColor, 1.0);
     return;
@@ -118,6 +119,7 @@ void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int
   }
   const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
   ViewCache view;
+  node_count += nodes.size();
   for (size_t k = 0; k < nodes.size(); ++k) {
     const TriangleAtInstant& triangle = memo.triangles[k];
     average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), nodes[k].weight);
@@ -163,9 +165,10 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   if (m_split.size() < offset.back()) m_split.resize(offset.back());
   if (m_split_index.size() != n) m_split_index.assign(n, kNotSplit);
   std::vector<size_t> split_end(offset.begin(), offset.end() - 1);
-  std::atomic<uint64_t> changes{0};
+  std::atomic<uint64_t> changes{0}, nodes{0};
   parallel_for_dynamic(logs.size(), m_threads, [&](size_t b) {
     SegmentCache cache;
+    uint64_t band_nodes = 0;
     size_t& end = split_end[b];
     for (const FrontChange& c : logs[b].changes) {
       if (c.time > window.close) break;
@@ -177,34 +180,39 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
         m_split[end++] = SplitPixel{ColorAverage{}, window.open, m_open_front[p], m_open_front[p]};
       }
       SplitPixel& s = m_split[index];
-      integrate(scene, s.front, i, j, s.since, c.time, length, cache, s.average);
+      integrate(scene, s.front, i, j, s.since, c.time, length, cache, band_nodes, s.average);
       s.front = c.front;
       s.since = c.time;
       if (c.time <= window.time) s.at_time = c.front;
     }
     changes.fetch_add(logs[b].changes.size(), std::memory_order_relaxed);
+    nodes.fetch_add(band_nodes, std::memory_order_relaxed);
   });
   const PixelRays image{w, h};
   parallel_for(size_t(h), m_threads, [&](size_t row) {
     const int j = int(row);
     FrontNodes memo;  // neighbours along a row mostly share their front
     SegmentCache cache;
+    uint64_t row_nodes = 0;
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
       const uint32_t index = m_split_index[p];
       if (index != kNotSplit) {
         SplitPixel& s = m_split[index];
-        integrate(scene, s.front, i, j, s.since, window.close, length, cache, s.average);
+        integrate(scene, s.front, i, j, s.since, window.close, length, cache, row_nodes,
+                  s.average);
         frame.color[p] = s.average.result();
         continue;
       }
       ColorAverage average;
       if (window.close > window.open)
-        integrate_window(scene, m_open_front[p], i, j, memo, cache, average);
+        integrate_window(scene, m_open_front[p], i, j, memo, cache, row_nodes, average);
       else
-        integrate(scene, m_open_front[p], i, j, window.open, window.close, length, cache, average);
+        integrate(scene, m_open_front[p], i, j, window.open, window.close, length, cache,
+                  row_nodes, average);
       frame.color[p] = average.result();
     }
+    nodes.fetch_add(row_nodes, std::memory_order_relaxed);
   });
   m_stats.integrate_s += seconds_since(clock);
   // The id and depth buffers: the front at the frame time, as the sharp frame has it.
@@ -237,7 +245,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   }
   m_stats.front_changes += changes.load();
   m_stats.pixels_split += split_count;
-  m_stats.shading_nodes += (n + changes.load()) * m_rule.nodes.size();
+  m_stats.shading_nodes += nodes.load();
   m_stats.readout_s += seconds_since(clock);
 }
 

@@ -27,7 +27,7 @@ namespace kinray {
 #define KINRAY_SHUTTER_COUNTERS(X)                                                   \
   X(front_changes, "front_changes") /* logged changes inside the windows */         \
   X(pixels_split, "pixels_split")   /* pixels whose window has several intervals */ \
-  X(shading_nodes, "shading_nodes") /* shade_hit calls */
+  X(shading_nodes, "shading_nodes") /* shadings of a front at a node (background excluded) */
 
 /// Counters and timings of the blurred frames, for --stats ("shutter").
 struct KineticShutterStats {
@@ -80,9 +80,11 @@ class KineticShutter {
     static constexpr size_t kSlots = 64;
     std::array<TriangleOverSegment, kSlots> m_slots;
   };
-  /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`.
+  /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`, and
+  /// the nodes it shaded to `nodes`.
   void integrate(const GridScene& grid, uint32_t front, int i, int j, double t0, double t1,
-                 double length, SegmentCache& cache, ColorAverage& average) const;
+                 double length, SegmentCache& cache, uint64_t& nodes,
+                 ColorAverage& average) const;
   /// A front's triangle at each node of the window, kept while the next pixel has the same front.
   struct FrontNodes {
     uint32_t front = kNoGridHit;
@@ -109,7 +111,7 @@ class KineticShutter {
   /// Adds the front's shading over the whole window (the nodes of place_window_nodes); `memo`
   /// holds the last front's triangle at those nodes.
   void integrate_window(const GridScene& grid, uint32_t front, int i, int j, FrontNodes& memo,
-                        SegmentCache& cache, ColorAverage& average) const;
+                        SegmentCache& cache, uint64_t& node_count, ColorAverage& average) const;
 
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
