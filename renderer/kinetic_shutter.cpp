@@ -163,7 +163,10 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   std::vector<size_t> offset(logs.size() + 1, 0);
   for (size_t b = 0; b < logs.size(); ++b) offset[b + 1] = offset[b] + logs[b].changes.size();
   if (m_split.size() < offset.back()) m_split.resize(offset.back());
-  if (m_split_index.size() != n) m_split_index.assign(n, kNotSplit);
+  if (m_split_index.size() != n) {
+    m_split_index.assign(n, kNotSplit);
+    m_split_at_time.assign(n, kNoGridHit);
+  }
   std::vector<size_t> split_end(offset.begin(), offset.end() - 1);
   std::atomic<uint64_t> changes{0}, nodes{0};
   parallel_for_dynamic(logs.size(), m_threads, [&](size_t b) {
@@ -202,6 +205,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
         integrate(scene, s.front, i, j, s.since, window.close, length, cache, row_nodes,
                   s.average);
         frame.color[p] = s.average.result();
+        m_split_at_time[p] = s.at_time;  // for the read-out, in pixel order
         continue;
       }
       ColorAverage average;
@@ -220,8 +224,11 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
     const int j = int(row);
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
-      const uint32_t index = m_split_index[p];
-      const uint32_t front = index == kNotSplit ? m_open_front[p] : m_split[index].at_time;
+      uint32_t front = m_open_front[p];
+      if (uint32_t& index = m_split_index[p]; index != kNotSplit) {
+        front = m_split_at_time[p];
+        index = kNotSplit;  // free for the next window
+      }
       if (front == kNoGridHit) {
         frame.object[p] = frame.prim[p] = kNoHit;
         frame.depth[p] = std::numeric_limits<float>::infinity();
@@ -234,15 +241,8 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
                                          image.direction(i, j), window.time);
     }
   });
-  // The split pixels' slots are free again for the next window.
   uint64_t split_count = 0;
-  for (size_t b = 0; b < logs.size(); ++b) {
-    split_count += split_end[b] - offset[b];
-    for (const FrontChange& c : logs[b].changes) {
-      if (c.time > window.close) break;
-      m_split_index[c.pixel] = kNotSplit;
-    }
-  }
+  for (size_t b = 0; b < logs.size(); ++b) split_count += split_end[b] - offset[b];
   m_stats.front_changes += changes.load();
   m_stats.pixels_split += split_count;
   m_stats.shading_nodes += nodes.load();
