@@ -243,6 +243,26 @@ double close_crossing(const Polynomial& close, double low, double hi) {
   return b;
 }
 
+/// F > 0 on all of (s_now, s_end] for an F that holds just after s_now >= 0, shown by two
+/// filters: the lower bound on F's slope, `rising`, positive on [s_now, mid] (F increases from
+/// its positive start) and the lower envelope positive on [mid, s_end] (both as real
+/// polynomials: they bound F' and F coefficient by coefficient for s >= 0). A certificate
+/// rebuilt by its own event (a pixel order's pair just swapped) starts at its root, where the
+/// envelopes straddle zero and the searches below split the window's left end down to the
+/// noise level before they can say "no failure"; mid is tried from an eighth of the window
+/// down. False means undecided.
+bool rising_then_clear(const Polynomial& rising, const Polynomial& lower, double s_now,
+                       double s_end) {
+  const double width = s_end - s_now;
+  if (!(s_now >= 0 && width > 0 && std::isfinite(width))) return false;
+  for (const double fraction : {0x1p-3, 0x1p-7, 0x1p-12, 0x1p-18}) {
+    const double mid = s_now + width * fraction;
+    if (!(mid > s_now)) break;
+    if (holds_through(rising, s_now, mid) && holds_through(lower, mid, s_end)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 const ExactPolynomial::Envelopes& ExactPolynomial::envelopes() const {
@@ -315,6 +335,7 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   const Polynomial& upper = e.upper;
   const Polynomial rising = with_error(e.close.derivative(), e.close_error.derivative(), -2);
   const Polynomial falling = -with_error(e.close.derivative(), e.close_error.derivative(), 2);
+  if (rising_then_clear(rising, lower, s_now, s_end)) return std::nullopt;
   double from = s_now;
   auto negative = [&](double t) { return exact_sign_after(F, t) < 0; };
   // The proofs below read "no failure before" from Bernstein searches on the envelopes and the

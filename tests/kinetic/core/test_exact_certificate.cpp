@@ -303,6 +303,44 @@ TEST(ExactCertificate, CleanCrossingsMatchExactIsolation) {
   EXPECT_GT(undecided, 500);
 }
 
+// A pair of a pixel order that has just swapped gets the negated certificate, scheduled from its
+// failure: it starts at its root, where the envelopes straddle zero. Depths that cross once or
+// twice in the window: the swapped certificate's failure (none, or the second crossing) must be
+// the one exact isolation finds, whether the slope and the lower envelope decide it or the
+// search does.
+TEST(ExactCertificate, ASwappedPairFromItsRootMatchesExactIsolation) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> coef(-2, 2), unit(0, 1);
+  int swapped = 0, again = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Polynomial p1{coef(rng), coef(rng), coef(rng), coef(rng)};
+    const Polynomial q1{1 + unit(rng), unit(rng) * 0.3, unit(rng) * 0.3};
+    const double r0 = unit(rng), r1 = unit(rng), slope = coef(rng);
+    // One crossing (at r0), or two (r0 and r1): p2 / q2 - p1 / q1 = slope (s - r0) [(s - r1)].
+    const Polynomial gap = i % 2 == 0 ? Polynomial{-r0 * slope, slope}
+                                      : Polynomial{-r0 * slope, slope} * Polynomial{-r1, 1};
+    const Polynomial p2 = p1 + gap * q1;
+    const Polynomial q2 = i % 3 == 0 ? q1 : q1 + Polynomial{0, 1e-3 * unit(rng)};
+    const double s_now = unit(rng) * 0.2, end = 1.0 + unit(rng);
+    for (int sign : {1, -1}) {
+      const RationalPolynomial ref = reference(p1, q1, p2, q2, sign);
+      if (ref.is_zero()) continue;
+      const auto exact = exact_product_difference(p1, q1, p2, q2, sign);
+      const std::optional<double> first = exact_first_failure(*exact, s_now, end);
+      if (!first || *first == s_now) continue;
+      // The swap at `first`: the negated certificate from there.
+      const auto after = exact_negated(*exact);
+      const std::optional<double> got = exact_first_failure(*after, *first, end);
+      ASSERT_EQ(got, reference_failure(RationalPolynomial{} - ref, *first, end))
+          << i << " sign " << sign;
+      ++swapped;
+      again += got.has_value();
+    }
+  }
+  EXPECT_GT(swapped, 500);
+  EXPECT_GT(again, 100);  // second crossings found, not only "holds to the end"
+}
+
 // A structure that defers the exact search (schedule_certificate's defer_exact) looks at the pair
 // again at the recheck, where the certificate must still hold, and from there finds the failure
 // the exact search would have found at once: deferring never moves an event. Depth certificates
