@@ -243,24 +243,33 @@ double close_crossing(const Polynomial& close, double low, double hi) {
   return b;
 }
 
-/// F > 0 on all of (s_now, s_end] for an F that holds just after s_now >= 0, shown by two
-/// filters: the lower bound on F's slope, `rising`, positive on [s_now, mid] (F increases from
-/// its positive start) and the lower envelope positive on [mid, s_end] (both as real
-/// polynomials: they bound F' and F coefficient by coefficient for s >= 0). A certificate
-/// rebuilt by its own event (a pixel order's pair just swapped) starts at its root, where the
-/// envelopes straddle zero and the searches below split the window's left end down to the
-/// noise level before they can say "no failure"; mid is tried from an eighth of the window
-/// down. False means undecided.
-bool rising_then_clear(const Polynomial& rising, const Polynomial& lower, double s_now,
-                       double s_end) {
+/// How far F > 0 is shown from s_now on by two filters, for an F that holds just after
+/// s_now >= 0: the lower bound on F's slope, `rising`, positive on [s_now, mid] (F increases from
+/// its positive start, so it is positive on (s_now, mid]), and the lower envelope positive on
+/// [mid, s_end] (both as real polynomials: they bound F' and F coefficient by coefficient for
+/// s >= 0). A certificate rebuilt by its own event (a pixel order's pair just swapped) starts at
+/// its root, where the envelopes straddle zero and the searches of exact_first_failure split the
+/// window's left end down to the noise level; mid is tried from an eighth of the window down.
+struct RisingStart {
+  bool clear = false;  ///< F > 0 on all of (s_now, s_end]: no failure
+  double from = 0;     ///< else F > 0 on (s_now, from] (from = s_now: nothing shown)
+};
+RisingStart rising_start(const Polynomial& rising, const Polynomial& lower, double s_now,
+                         double s_end) {
+  RisingStart out{false, s_now};
   const double width = s_end - s_now;
-  if (!(s_now >= 0 && width > 0 && std::isfinite(width))) return false;
+  if (!(s_now >= 0 && width > 0 && std::isfinite(width))) return out;
   for (const double fraction : {0x1p-3, 0x1p-7, 0x1p-12, 0x1p-18}) {
     const double mid = s_now + width * fraction;
     if (!(mid > s_now)) break;
-    if (holds_through(rising, s_now, mid) && holds_through(lower, mid, s_end)) return true;
+    if (!holds_through(rising, s_now, mid)) continue;
+    if (out.from == s_now) out.from = mid;  // the furthest mid the slope holds to
+    if (holds_through(lower, mid, s_end)) {
+      out.clear = true;
+      return out;
+    }
   }
-  return false;
+  return out;
 }
 
 }  // namespace
@@ -335,8 +344,10 @@ std::optional<double> exact_first_failure(const ExactPolynomial& F, double s_now
   const Polynomial& upper = e.upper;
   const Polynomial rising = with_error(e.close.derivative(), e.close_error.derivative(), -2);
   const Polynomial falling = -with_error(e.close.derivative(), e.close_error.derivative(), 2);
-  if (rising_then_clear(rising, lower, s_now, s_end)) return std::nullopt;
-  double from = s_now;
+  // From a root the search starts where F is shown positive up to, past the noise.
+  const RisingStart start = rising_start(rising, lower, s_now, s_end);
+  if (start.clear) return std::nullopt;
+  double from = start.from;
   auto negative = [&](double t) { return exact_sign_after(F, t) < 0; };
   // The proofs below read "no failure before" from Bernstein searches on the envelopes and the
   // slope's; a search that passed over a stretch at its noise level proves nothing there (the
