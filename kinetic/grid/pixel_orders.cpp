@@ -39,6 +39,7 @@ class PixelOrdersOf final : public PixelOrders {
     if constexpr (requires(Sort& order) {
                     order.rename_sole(to);
                     order.replace_in_pair(from, to, now);
+                    order.replace_in_place(from, to, now);
                   }) {
       // The same bytes and members before and after, but for the one handed over.
       Sort& order = m_cells_of[pixel].order;
@@ -50,6 +51,9 @@ class PixelOrdersOf final : public PixelOrders {
         order.replace_in_pair(from, to, now);
         return order.front().value_or(kNoFront);
       }
+      // Deeper orders: `to` at `from`'s place when its two neighbours agree.
+      if (order.size() > 2 && order.contains(from) && order.replace_in_place(from, to, now))
+        return order.front().value_or(kNoFront);
     }
     erase(pixel, from, now);
     return insert(pixel, to, now);

@@ -131,6 +131,38 @@ class KineticSortedList {
     if (m_core.audit_on()) audit(now);
   }
 
+  /// `from` leaves and `to` takes its place at now, where `to` is at `from`'s key (a pixel's
+  /// triangle handing over to its neighbour across the edge the ray crosses: both planes hold
+  /// the edge's point on the ray). When the certificates of `to` with `from`'s two neighbours
+  /// keep them on their sides, those two are scheduled (the ones erase then insert would leave:
+  /// insert's last comparison on each side is with the new neighbours) and the erase's
+  /// certificate between the two neighbours, and insert's comparisons beyond them, are spared;
+  /// true. Otherwise nothing changes and false: the caller erases and inserts.
+  bool replace_in_place(uint32_t from, uint32_t to, double now) {
+    const size_t p = position(from);
+    const size_t n = m_entries.size();
+    OrderCertificate with_front, with_back;
+    if (p > 0) {
+      const uint32_t front = m_entries[p - 1].id;
+      with_front = m_core.certificate(front, to, now);
+      if (detail::order_sign(with_front, now, front, to) <= 0) return false;
+    }
+    if (p + 1 < n) {
+      const uint32_t back = m_entries[p + 1].id;
+      with_back = m_core.certificate(back, to, now);
+      if (detail::order_sign(with_back, now, back, to) > 0) return false;
+    }
+    m_entries[p].id = to;
+    if (p > 0)
+      m_core.schedule(m_entries[p - 1].event, with_front, m_entries[p - 1].id, to, now, n, p - 1);
+    if (p + 1 < n) {
+      with_back.negate();
+      m_core.schedule(m_entries[p].event, with_back, to, m_entries[p + 1].id, now, n, p);
+    }
+    if (m_core.audit_on()) audit(now);
+    return true;
+  }
+
   /// The motion of id changed from now on: recompute its (at most two) certificates. Pairs that
   /// are out of order now get events at now, processed next by the queue's owner.
   void replace_motion(uint32_t id, double now) {

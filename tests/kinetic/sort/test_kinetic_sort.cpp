@@ -512,6 +512,63 @@ TEST(KineticSortLinear, SortedListWithLinearMotionKeys) {
   EXPECT_GT(list.stats().events(), 1000u);
 }
 
+// A pixel's triangle handing over to its neighbour across an edge (the grid's boundary events):
+// replace_in_place puts the new object at the old one's place when both neighbours' certificates
+// agree, and must leave the list as erase then insert would, then and at every later event; when
+// they disagree it changes nothing. New objects at the old one's value (the hand-over) and
+// anywhere (the disagreeing case), against a second list that always erases and inserts.
+TEST(KineticSortLinear, ReplaceInPlaceIsEraseThenInsert) {
+  LinearMotionKeys keys;
+  Simulator sim_a, sim_b;
+  KineticSortedList<LinearMotionKeys> a(keys, sim_a.queue(), 0, {0, true});
+  KineticSortedList<LinearMotionKeys> b(keys, sim_b.queue(), 0, {0, true});
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<uint32_t> members;
+  for (int i = 0; i < 7; ++i) {
+    members.push_back(keys.add(4 * u(rng), u(rng)));
+    a.insert(members.back(), 0);
+    b.insert(members.back(), 0);
+  }
+  auto order = [](const KineticSortedList<LinearMotionKeys>& list) {
+    std::vector<uint32_t> ids;
+    list.for_each_in_order([&](uint32_t id) { ids.push_back(id); });
+    return ids;
+  };
+  int in_place = 0, refused = 0;
+  for (int step = 1; step <= 400; ++step) {
+    const double t = 0.05 * step;
+    sim_a.advance_to(t, [&](const EventKey&, uint64_t payload) { a.handle_event(payload, t); });
+    sim_b.advance_to(t, [&](const EventKey&, uint64_t payload) { b.handle_event(payload, t); });
+    ASSERT_EQ(order(a), order(b)) << "t = " << t;
+    const size_t k = size_t(rng() % members.size());
+    const uint32_t from = members[k];
+    // At from's value now (a hand-over), or at a random value (mostly out of place).
+    const double v = u(rng), at = step % 3 == 0 ? 4 * u(rng) : keys.value(from, t);
+    const uint32_t to = keys.add(at - v * t, v);
+    const std::vector<uint32_t> before = order(a);
+    if (a.replace_in_place(from, to, t)) {
+      ++in_place;
+    } else {
+      ++refused;
+      ASSERT_EQ(order(a), before);
+      a.erase(from, t);
+      a.insert(to, t);
+    }
+    b.erase(from, t);
+    b.insert(to, t);
+    members[k] = to;
+    ASSERT_EQ(order(a), order(b)) << "t = " << t;
+    ASSERT_EQ(sim_a.queue().size(), sim_b.queue().size());
+    if (!sim_a.queue().empty()) {
+      ASSERT_EQ(sim_a.queue().top_key().time, sim_b.queue().top_key().time);
+    }
+  }
+  EXPECT_EQ(a.stats().events(), b.stats().events());
+  EXPECT_GT(in_place, 200);
+  EXPECT_GT(refused, 50);
+}
+
 // A broken order is reported as an exception naming the pair, the key values and the
 // certificate (the grid adds the band, pixel and time), not an abort.
 TEST(KineticSortAudit, FailureIsAnExceptionWithThePairAndTheKeyValues) {
