@@ -208,12 +208,10 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
         m_split_at_time[p] = s.at_time;  // for the read-out, in pixel order
         continue;
       }
+      // A window of length zero has no intervals: its pixels average nothing.
       ColorAverage average;
       if (window.close > window.open)
         integrate_window(scene, m_open_front[p], i, j, memo, cache, row_nodes, average);
-      else
-        integrate(scene, m_open_front[p], i, j, window.open, window.close, length, cache,
-                  row_nodes, average);
       frame.color[p] = average.result();
     }
     nodes.fetch_add(row_nodes, std::memory_order_relaxed);

@@ -51,8 +51,9 @@ class PixelOrdersOf final : public PixelOrders {
         order.replace_in_pair(from, to, now);
         return order.front().value_or(kNoFront);
       }
-      // Deeper orders: `to` at `from`'s place when its two neighbours agree.
-      if (order.size() > 2 && order.contains(from) && order.replace_in_place(from, to, now))
+      // Deeper orders: `to` at `from`'s place when its two neighbours agree (from must be a
+      // member, as erase below requires: replace_in_place checks it as erase does).
+      if (order.size() > 2 && order.replace_in_place(from, to, now))
         return order.front().value_or(kNoFront);
     }
     erase(pixel, from, now);
