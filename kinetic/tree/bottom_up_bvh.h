@@ -27,6 +27,8 @@ class BottomUpBvh {
   [[nodiscard]] const TreeMeshes& meshes() const { return m_meshes; }
   [[nodiscard]] const BvhTopology& topology() const { return m_topology; }
   [[nodiscard]] const Aabb& box(uint32_t node) const { return m_boxes[node]; }
+  /// Vertex v at the last update (TreeMeshes::position's arithmetic).
+  [[nodiscard]] const Eigen::Vector3d& position(uint32_t v) const { return m_positions[v]; }
   [[nodiscard]] size_t memory_bytes() const;
 
   /// tree_query.h's box source: the stored boxes, padded like the kinetic trees' boxes.

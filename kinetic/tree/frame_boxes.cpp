@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "kinetic/tree/ray_triangle_filter.h"
 #include "kinetic/tree/wide_slab_test.h"
 #include "util/check.h"
 
@@ -301,6 +302,12 @@ void FrameBoxes::fill(const BottomUpBvh& tree, const TreeFrame& frame) {
   m_kinetic = nullptr;
   m_bottom_up = &tree;
   prepare(tree.topology(), tree.meshes(), frame);
+  m_vertex_point.resize(tree.meshes().vertex_count());
+  for (uint32_t v = 0; v < m_vertex_point.size(); ++v) {
+    const Eigen::Vector3d& p = tree.position(v);
+    _mm_store_ps(m_vertex_point[v].c, _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(p.data())),
+                                                    _mm_cvtpd_ps(_mm_set1_pd(p.z()))));
+  }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, kEverywhere));
 }
 
@@ -323,10 +330,12 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
   double s_max = ray.s_max;
   float s_high = wide.scaled_up(s_max);
   // The triangle of a leaf link: true when it is hit before s_max (which then shrinks to it).
+  const RayTriangleFilter filter(ray.origin, ray.direction, meshes.scale(), boxes.frame().pad);
   auto hits = [&](uint32_t link) {
     const uint32_t tri = link & ~FrameBoxes::kLeaf;
     if (tri == ray.skip) return false;
     const auto& v = meshes.triangle(tri);
+    if (filter.misses(boxes.point(v[0]), boxes.point(v[1]), boxes.point(v[2]))) return false;
     const std::optional<double> s = ray_triangle(ray.origin, ray.direction, boxes.position(v[0]),
                                                  boxes.position(v[1]), boxes.position(v[2]));
     if (!(s && *s > ray.s_min && *s < s_max)) return false;

@@ -78,7 +78,11 @@ class FrameBoxes {
   [[nodiscard]] Eigen::Vector3d position(uint32_t v) const {
     return m_meshes->position(v, m_frame->blends);
   }
+  /// Vertex v at the frame's time to the nearest floats (x, y, z, unused): within 2^-24 of each
+  /// coordinate and a few double ulps, which RayTriangleFilter allows for.
+  [[nodiscard]] const float* point(uint32_t v) const { return m_vertex_point[v].c; }
   [[nodiscard]] const TreeMeshes& meshes() const { return *m_meshes; }
+  [[nodiscard]] const TreeFrame& frame() const { return *m_frame; }
   [[nodiscard]] size_t memory_bytes() const {
     return m_nodes.capacity() * sizeof(Node) + m_slot.capacity() * sizeof(uint32_t) +
            m_children.capacity() * sizeof(m_children[0]) +
@@ -111,9 +115,10 @@ class FrameBoxes {
   uint32_t m_root_link = kNoLink;
   uint32_t m_stamp = 0;  ///< even, one per fill: the nodes evaluated for this frame hold it
   const TreeFrame* m_frame = nullptr;  ///< the frame filled (it must outlive the queries)
-  /// Kinetic trees: per vertex, its coordinates a + b (t - o) this frame rounded to the nearest
-  /// floats (x, y, z and one unused lane); a side is such a float moved outward by margin()
-  /// when a node is evaluated. Evaluated for every vertex in one sequential pass, as the
+  /// Per vertex, its coordinates this frame rounded to the nearest floats (x, y, z and one
+  /// unused lane): a + b (t - o) for the kinetic trees, whose sides are such floats moved outward
+  /// by margin() when a node is evaluated; the bottom-up tree's positions. The triangle tests'
+  /// rejection reads them too. Evaluated for every vertex in one sequential pass, as the
   /// realizers of the nodes a frame visits are spread over all. 16 bytes a vertex, not a padded
   /// low and high corner's 32: the pass writes half as much and more of it is still in cache
   /// when the nodes read it.
