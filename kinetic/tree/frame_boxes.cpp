@@ -329,8 +329,9 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
   std::optional<TreeHit> best;
   double s_max = ray.s_max;
   float s_high = wide.scaled_up(s_max);
-  // The triangle of a leaf link: true when it is hit before s_max (which then shrinks to it).
+  // Most triangles a ray reaches it misses: decided from the frame's float points where certain.
   const RayTriangleFilter filter(ray.origin, ray.direction, meshes.scale(), boxes.frame().pad);
+  // The triangle of a leaf link: true when it is hit before s_max (which then shrinks to it).
   auto hits = [&](uint32_t link) {
     const uint32_t tri = link & ~FrameBoxes::kLeaf;
     if (tri == ray.skip) return false;

@@ -78,8 +78,8 @@ class FrameBoxes {
   [[nodiscard]] Eigen::Vector3d position(uint32_t v) const {
     return m_meshes->position(v, m_frame->blends);
   }
-  /// Vertex v at the frame's time to the nearest floats (x, y, z, unused): within 2^-24 of each
-  /// coordinate and a few double ulps, which RayTriangleFilter allows for.
+  /// Vertex v at the frame's time to the nearest floats (x, y, z, unused): each coordinate within
+  /// 2^-24 of itself and the frame's pad of position(v), which RayTriangleFilter allows for.
   [[nodiscard]] const float* point(uint32_t v) const { return m_vertex_point[v].c; }
   [[nodiscard]] const TreeMeshes& meshes() const { return *m_meshes; }
   [[nodiscard]] const TreeFrame& frame() const { return *m_frame; }
