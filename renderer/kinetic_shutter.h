@@ -136,7 +136,7 @@ class KineticShutter {
   static constexpr uint32_t kNotSplit = ~0u;
   std::vector<SplitPixel> m_split;      ///< the window's split pixels, kept across windows
   std::vector<uint32_t> m_split_index;  ///< per pixel, its SplitPixel or kNotSplit
-  std::vector<uint32_t> m_split_at_time;  ///< per split pixel, its SplitPixel's at_time
+  std::vector<uint32_t> m_split_at_time;  ///< per pixel: a split pixel's at_time (row pass)
   KineticShutterStats m_stats;
 };
 

@@ -19,6 +19,11 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::array<float, 6> kEmpty = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
 constexpr std::array<float, 6> kEverywhere = {-kInf, -kInf, -kInf, kInf, kInf, kInf};
 
+/// The nearest floats of (x, y) and z, lanes x, y, z, z: a vertex point (the fourth lane unused).
+__m128 nearest_floats(__m128d xy, __m128d zz) {
+  return _mm_movelh_ps(_mm_cvtpd_ps(xy), _mm_cvtpd_ps(zz));
+}
+
 /// Floats >= (x, y, z) + pad (kUp) or <= (x, y, z) - pad, lanes x, y, z and one unused,
 /// without branches: the nearest float f is within half an ulp of its double, and |f| 2^-22 is
 /// at least an ulp of f (1e-30 covers the values that round to 0), so a float box contains the
@@ -26,8 +31,7 @@ constexpr std::array<float, 6> kEverywhere = {-kInf, -kInf, -kInf, kInf, kInf, k
 template <bool kUp>
 __m128 round_outward(__m128d xy, __m128d zz, double pad) {
   const __m128d p = _mm_set1_pd(kUp ? pad : -pad);  // x - pad is exactly x + (-pad)
-  const __m128 f =
-      _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(xy, p)), _mm_cvtpd_ps(_mm_add_pd(zz, p)));
+  const __m128 f = nearest_floats(_mm_add_pd(xy, p), _mm_add_pd(zz, p));
   const __m128 ulp = _mm_add_ps(
       _mm_mul_ps(_mm_andnot_ps(_mm_set1_ps(-0.0f), f), _mm_set1_ps(0x1p-22f)), _mm_set1_ps(1e-30f));
   return kUp ? _mm_add_ps(f, ulp) : _mm_sub_ps(f, ulp);
@@ -292,7 +296,7 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
       const __m128d xy =
           _mm_add_pd(_mm_loadu_pd(a[i].data()), _mm_mul_pd(_mm_loadu_pd(b[i].data()), dt2));
       const __m128d zz = _mm_set1_pd(a[i].z() + b[i].z() * dt);
-      _mm_store_ps(out[begin + i].c, _mm_movelh_ps(_mm_cvtpd_ps(xy), _mm_cvtpd_ps(zz)));
+      _mm_store_ps(out[begin + i].c, nearest_floats(xy, zz));
     }
   }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, rounded(tree.root_box(frame), 0)));
@@ -305,8 +309,7 @@ void FrameBoxes::fill(const BottomUpBvh& tree, const TreeFrame& frame) {
   m_vertex_point.resize(tree.meshes().vertex_count());
   for (uint32_t v = 0; v < m_vertex_point.size(); ++v) {
     const Eigen::Vector3d& p = tree.position(v);
-    _mm_store_ps(m_vertex_point[v].c, _mm_movelh_ps(_mm_cvtpd_ps(_mm_loadu_pd(p.data())),
-                                                    _mm_cvtpd_ps(_mm_set1_pd(p.z()))));
+    _mm_store_ps(m_vertex_point[v].c, nearest_floats(_mm_loadu_pd(p.data()), _mm_set1_pd(p.z())));
   }
   if (!tree.topology().nodes.empty()) set_root_box(box(0, kEverywhere));
 }
