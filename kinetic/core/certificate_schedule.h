@@ -4,6 +4,7 @@
 // (root_finding.h, exact_certificate.h) into the absolute event time that the owner pushes, such
 // that the handler, evaluating at that double time, sees the change. The sorts, the grid's pixel
 // orders and their audits share it.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -25,10 +26,19 @@ struct OrderCertificate {
   /// With `exact`: how long the rounded envelopes were seen to decide the sign, so that the exact
   /// failure search can wait (schedule_certificate's defer_exact).
   EnvelopeVouch vouched;
+  /// A key value that one key of the pair stays below and the other above through the
+  /// certificate's window, when the keys proved the pair apart with it (f's sign says which is
+  /// which); NaN otherwise. A certificate of one of the two with the other's replacement then
+  /// needs only the replacement's side of it (order_certificate_beside, kinetic_sort.h). A float:
+  /// the sorted list keeps one per adjacent pair.
+  float separator = std::numeric_limits<float>::quiet_NaN();
 
-  /// The certificate of the swapped pair: -f (exactly, as the keys contract requires).
+  /// The certificate of the swapped pair: -f (exactly, as the keys contract requires). The
+  /// separator stays: the sides swap with f's sign.
   void negate() {
-    f = -f;
+    // In place, coefficient by coefficient as operator- negates (a copy of the whole array cost
+    // a pixel order's hand-over more than the negation).
+    for (int k = 0; k <= f.degree; ++k) f.c[size_t(k)] = -f.c[size_t(k)];
     if (exact) exact = exact_negated(*exact);
     vouched.orientation = -vouched.orientation;
   }

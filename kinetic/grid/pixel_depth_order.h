@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -145,21 +146,38 @@ template <int kN>
   return side * sign_d > 0 ? r.lo - extra > 0 : r.hi + extra < 0;
 }
 
+/// The window depth_order_apart proves over, from local s0 to at least s1, and its limits.
+[[nodiscard]] inline bool apart_window(double s0, double s1) {
+  return s0 >= 0 && s0 < s1 && s1 < 0x1p20;
+}
+[[nodiscard]] inline double apart_width(double s0, double s1) {
+  return (s1 - s0) * (1 + 0x1p-50);  // at least s1 - s0
+}
+
 /// +1 when z_A < z_B at every instant of local [s0, s1], -1 when z_A > z_B there, 0 when the
 /// bounds cannot tell: a depth Z between the two at s0 separates them throughout
 /// (depth_beyond). Where it tells, the certificate sign(D_A D_B) (N_B D_A - N_A D_B) =
 /// |D_A D_B| (z_B - z_A) has that sign throughout, and no common root of N and D lies inside
-/// to be divided out (D keeps its sign).
+/// to be divided out (D keeps its sign). Z is a float where one lies strictly between the two
+/// depths (the sorted list keeps it as the certificate's separator, `separator` here; NaN when
+/// not apart or Z is not a float).
 [[nodiscard]] inline int depth_order_apart(const DepthCoefficients& a, const DepthCoefficients& b,
-                                           double s0, double s1) {
-  if (!(s0 >= 0 && s0 < s1 && s1 < 0x1p20)) return 0;
+                                           double s0, double s1, float* separator = nullptr) {
+  if (separator != nullptr) *separator = std::numeric_limits<float>::quiet_NaN();
+  if (!apart_window(s0, s1)) return 0;
   const double za = a.numerator(s0) / a.denominator(s0), zb = b.numerator(s0) / b.denominator(s0);
   if (!(std::isfinite(za) && std::isfinite(zb)) || za == zb) return 0;
-  const double z = 0.5 * za + 0.5 * zb;  // any double works: the tests below are the proof
-  const double w = (s1 - s0) * (1 + 0x1p-50);  // at least s1 - s0
+  // Any depth works: the tests below are the proof. The midpoint, rounded to a float when that
+  // stays strictly between (symmetric in a and b, as the certificate's antisymmetry needs).
+  const double mid = 0.5 * za + 0.5 * zb;
+  const double rounded = double(float(mid));
+  const bool storable = std::min(za, zb) < rounded && rounded < std::max(za, zb);
+  const double z = storable ? rounded : mid;
+  const double w = apart_width(s0, s1);
   const int order = za < zb ? 1 : -1;
-  if (depth_beyond(a, z, s0, w, -order) && depth_beyond(b, z, s0, w, order)) return order;
-  return 0;
+  if (!(depth_beyond(a, z, s0, w, -order) && depth_beyond(b, z, s0, w, order))) return 0;
+  if (separator != nullptr && storable) *separator = float(z);
+  return order;
 }
 
 /// The same for N and D as Polynomials: 0 unless their degrees are at most 3 and 2.
@@ -206,7 +224,7 @@ class PixelDepthKeys {
     const double s = now - c.origin;
     // Most pairs of a pixel stay apart in depth for the rest of the segment: the certificate is
     // then the constant of their order, without products, envelopes or roots.
-    if (const int apart = detail::depth_order_apart(ca, cb, s, c.end - c.origin)) {
+    if (const int apart = detail::depth_order_apart(ca, cb, s, c.end - c.origin, &c.separator)) {
       c.f = Polynomial(double(apart));
       return c;
     }
@@ -239,6 +257,35 @@ class PixelDepthKeys {
                            &c.vouched))
         c.exact = exact_product_difference(nb, da, na, db, sigma);
     }
+    return c;
+  }
+
+  /// The certificate of (kept, to) from the separator of (kept, from)'s (kinetic_sort.h's
+  /// SeparatorKeys): `to` takes `from`'s place across their shared edge, so at `from`'s depth now
+  /// and on `from`'s side of the separator, where it mostly stays. `kept`'s side was proved for
+  /// the window of (kept, from)'s certificate; when (kept, to)'s is the same (from and to move on
+  /// one segment) only `to`'s side is left to prove, by depth_order_apart's test. std::nullopt
+  /// when it does not hold or a pair sharing an edge takes its fold certificate.
+  [[nodiscard]] std::optional<OrderCertificate> order_certificate_beside(
+      uint32_t kept, uint32_t from, uint32_t to, double now, float separator, int side) const {
+    const MeshSegment& sk = m_source->segment_of(kept);
+    const MeshSegment& sf = m_source->segment_of(from);
+    const MeshSegment& st = m_source->segment_of(to);
+    if (st.origin != sf.origin || st.end != sf.end) return std::nullopt;
+    OrderCertificate c;
+    c.origin = std::max(sk.origin, st.origin);
+    c.end = std::min(sk.end, st.end);
+    const double s0 = now - c.origin, s1 = c.end - c.origin;
+    if (!detail::apart_window(s0, s1)) return std::nullopt;
+    const GridScene& scene = m_source->scene();
+    if (shared_edge(scene.triangle_vertices(std::min(kept, to)),
+                    scene.triangle_vertices(std::max(kept, to))))
+      return std::nullopt;
+    const DepthCoefficients ct = m_source->depth_coefficients(to, m_column, m_row, c.origin);
+    if (!detail::depth_beyond(ct, separator, s0, detail::apart_width(s0, s1), side))
+      return std::nullopt;
+    c.f = Polynomial(double(side));
+    c.separator = separator;
     return c;
   }
 
@@ -295,6 +342,6 @@ class PixelDepthKeys {
   int32_t m_column, m_row;
 };
 
-static_assert(KineticKeys<PixelDepthKeys>);
+static_assert(SeparatorKeys<PixelDepthKeys>);
 
 }  // namespace kinray

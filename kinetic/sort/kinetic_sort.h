@@ -46,6 +46,22 @@ concept KineticKeys = requires(const K& k, uint32_t a, uint32_t b, double t) {
   { k.value(a, t) } -> std::convertible_to<double>;  // the key at time t, for audit / brute force
 };
 
+/// Keys may also hand on a proof of order (OrderCertificate::separator): when `to` replaces
+/// `from` in a sort (a pixel's triangle handing over to its neighbour across an edge) and the
+/// certificate of `kept` and `from` carried a separator, order_certificate_beside(kept, from, to,
+/// now, separator, side) returns the certificate of (kept, to) if `to` provably stays on `side` of
+/// the separator (+1: after it, so kept before to; -1: before it) through the window of (kept,
+/// from)'s certificate, which must be (kept, to)'s too; std::nullopt when it cannot tell, and the
+/// sort computes order_certificate(kept, to, now). `kept`'s side was proved with the separator for
+/// that whole window, so its motion is not looked at.
+template <class K>
+concept SeparatorKeys = KineticKeys<K> &&
+    requires(const K& k, uint32_t a, double t, float separator, int side) {
+  {
+    k.order_certificate_beside(a, a, a, t, separator, side)
+    } -> std::same_as<std::optional<OrderCertificate>>;
+};
+
 /// Keys may also say that two keys are equal at t although their values, evaluated in double,
 /// differ beyond the audit's tolerance (`bool tied(a, b, t) const`): the audit then accepts
 /// either order of that pair at t.
@@ -220,6 +236,21 @@ class SortCore {
   OrderCertificate certificate(uint32_t a, uint32_t b, double now) const {
     ++m_stats->work;
     return m_keys->order_certificate(a, b, now);
+  }
+  /// The certificate of (kept, to) where `to` replaces `from`, whose certificate with `kept`
+  /// carried `separator` and put `to`'s side at `side`: from the separator when the keys can
+  /// (SeparatorKeys), else computed. Counted as work either way.
+  OrderCertificate certificate_replacing(uint32_t kept, uint32_t from, uint32_t to, float separator,
+                                         int side, double now) const {
+    if constexpr (SeparatorKeys<Keys>) {
+      if (!std::isnan(separator))
+        if (std::optional<OrderCertificate> c =
+                m_keys->order_certificate_beside(kept, from, to, now, separator, side)) {
+          ++m_stats->work;
+          return *std::move(c);
+        }
+    }
+    return certificate(kept, to, now);
   }
   /// "a before b" just after now (the id rule for identical motions).
   bool before(uint32_t a, uint32_t b, double now) const {

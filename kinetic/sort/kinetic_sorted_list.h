@@ -4,9 +4,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <optional>
-#include <string>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -57,12 +58,10 @@ class KineticSortedList {
     m_entries.insert(m_entries.begin() + static_cast<std::ptrdiff_t>(lo), Entry{id, kNoEvent});
     renumber(lo + 1);
     if (n > 0) ++m_core.stats().certificates_live;
-    const size_t size = m_entries.size();
-    if (lo > 0)
-      m_core.schedule(m_entries[lo - 1].event, with_front, m_entries[lo - 1].id, id, now, size, lo - 1);
+    if (lo > 0) schedule(lo - 1, with_front, now);
     if (lo < n) {
       with_back.negate();
-      m_core.schedule(m_entries[lo].event, with_back, id, m_entries[lo + 1].id, now, size, lo);
+      schedule(lo, with_back, now);
     }
     if (m_core.audit_on()) audit(now);
   }
@@ -117,17 +116,18 @@ class KineticSortedList {
     const size_t p = m_entries[0].id == from ? 0 : 1;
     KINRAY_CHECK_MSG(m_entries[p].id == from, "id not in the kinetic sorted list");
     const uint32_t other = m_entries[1 - p].id;
-    OrderCertificate c = m_core.certificate(other, to, now);
+    // The pair's certificate put `from` after its separator when `from` was second.
+    OrderCertificate c =
+        m_core.certificate_replacing(other, from, to, m_entries[0].separator, p == 1 ? 1 : -1, now);
     if (detail::order_sign(c, now, other, to) > 0) {
       m_entries[0].id = other;
       m_entries[1].id = to;
-      m_core.schedule(m_entries[0].event, c, other, to, now, 2, 0);
     } else {
       m_entries[0].id = to;
       m_entries[1].id = other;
       c.negate();
-      m_core.schedule(m_entries[0].event, c, to, other, now, 2, 0);
     }
+    schedule(0, c, now);
     if (m_core.audit_on()) audit(now);
   }
 
@@ -142,22 +142,23 @@ class KineticSortedList {
     const size_t p = position(from);
     const size_t n = m_entries.size();
     OrderCertificate with_front, with_back;
+    // `from` is after the separator of its pair with the front, before that with the back.
     if (p > 0) {
       const uint32_t front = m_entries[p - 1].id;
-      with_front = m_core.certificate(front, to, now);
+      with_front =
+          m_core.certificate_replacing(front, from, to, m_entries[p - 1].separator, 1, now);
       if (detail::order_sign(with_front, now, front, to) <= 0) return false;
     }
     if (p + 1 < n) {
       const uint32_t back = m_entries[p + 1].id;
-      with_back = m_core.certificate(back, to, now);
+      with_back = m_core.certificate_replacing(back, from, to, m_entries[p].separator, -1, now);
       if (detail::order_sign(with_back, now, back, to) > 0) return false;
     }
     m_entries[p].id = to;
-    if (p > 0)
-      m_core.schedule(m_entries[p - 1].event, with_front, m_entries[p - 1].id, to, now, n, p - 1);
+    if (p > 0) schedule(p - 1, with_front, now);
     if (p + 1 < n) {
       with_back.negate();
-      m_core.schedule(m_entries[p].event, with_back, to, m_entries[p + 1].id, now, n, p);
+      schedule(p, with_back, now);
     }
     if (m_core.audit_on()) audit(now);
     return true;
@@ -195,11 +196,11 @@ class KineticSortedList {
     KineticSortStats& st = m_core.stats();
     if (detail::order_sign(c, now, a, b) > 0) {
       ++st.events_renewal;
-      m_core.schedule(m_entries[i].event, c, a, b, now, m_entries.size(), i);
+      schedule(i, c, now);
     } else {
       std::swap(m_entries[i].id, m_entries[i + 1].id);
       c.negate();
-      m_core.schedule(m_entries[i].event, c, b, a, now, m_entries.size(), i);
+      schedule(i, c, now);
       if (i > 0) schedule(i - 1, now);
       if (i + 2 < m_entries.size()) schedule(i + 1, now);
       ++(i == 0 ? st.events_external : st.events_internal);
@@ -268,6 +269,8 @@ class KineticSortedList {
   struct Entry {
     uint32_t id;
     EventHandle event;  ///< event of the certificate (this, next), or kNoEvent
+    /// That certificate's separator (NaN when none): a replacement of either is compared with it.
+    float separator = std::numeric_limits<float>::quiet_NaN();
   };
 
   size_t position(uint32_t id) const {
@@ -281,8 +284,12 @@ class KineticSortedList {
       if (m_entries[j].event != kNoEvent) m_core.queue().set_payload(m_entries[j].event, j);
   }
   void schedule(size_t i, double now) {
-    const uint32_t a = m_entries[i].id, b = m_entries[i + 1].id;
-    m_core.schedule(m_entries[i].event, m_core.certificate(a, b, now), a, b, now,
+    schedule(i, m_core.certificate(m_entries[i].id, m_entries[i + 1].id, now), now);
+  }
+  /// Schedules c, the certificate of entries i and i + 1, and keeps its separator.
+  void schedule(size_t i, const OrderCertificate& c, double now) {
+    m_entries[i].separator = c.separator;
+    m_core.schedule(m_entries[i].event, c, m_entries[i].id, m_entries[i + 1].id, now,
                     m_entries.size(), i);
   }
 

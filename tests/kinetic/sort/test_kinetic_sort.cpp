@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -567,6 +568,133 @@ TEST(KineticSortLinear, ReplaceInPlaceIsEraseThenInsert) {
   EXPECT_EQ(a.stats().events(), b.stats().events());
   EXPECT_GT(in_place, 200);
   EXPECT_GT(refused, 50);
+}
+
+// Lines x0 + v t whose certificates all end at a horizon: a pair whose ranges over [now, horizon]
+// do not overlap is apart, with the float midpoint of the gap as its separator (the pixel
+// orders' depth_order_apart, in one dimension), and a replacement is compared with a separator
+// alone (SeparatorKeys).
+class HorizonLineKeys {
+ public:
+  explicit HorizonLineKeys(double horizon) : m_horizon(horizon) {}
+  uint32_t add(double x0, double v) {
+    m_lines.push_back({x0, v});
+    return uint32_t(m_lines.size() - 1);
+  }
+  [[nodiscard]] OrderCertificate order_certificate(uint32_t a, uint32_t b, double now) const {
+    OrderCertificate c;
+    c.end = m_horizon;
+    const auto [a_lo, a_hi] = range(a, now);
+    const auto [b_lo, b_hi] = range(b, now);
+    // The lower one's top and the upper one's bottom, in one order for (a, b) and (b, a).
+    const bool a_below = a_hi < b_lo, b_below = b_hi < a_lo;
+    const float z = a_below ? midpoint(a_hi, b_lo) : midpoint(b_hi, a_lo);
+    if ((a_below || b_below) && std::min(a_lo, b_lo) < z && z < std::max(a_hi, b_hi) &&
+        (a_below ? a_hi < z && z < b_lo : b_hi < z && z < a_lo)) {
+      c.f = Polynomial(a_below ? 1.0 : -1.0);
+      c.separator = z;
+      return c;
+    }
+    c.f.c[0] = m_lines[b].x0 - m_lines[a].x0;
+    c.f.c[1] = m_lines[b].v - m_lines[a].v;
+    c.f.degree = 1;
+    return c;
+  }
+  [[nodiscard]] std::optional<OrderCertificate> order_certificate_beside(uint32_t /*kept*/,
+                                                                         uint32_t /*from*/,
+                                                                         uint32_t to, double now,
+                                                                         float separator,
+                                                                         int side) const {
+    ++beside_calls;
+    const auto [lo, hi] = range(to, now);
+    if (!(side > 0 ? lo > separator : hi < separator)) return std::nullopt;
+    ++beside_proved;
+    OrderCertificate c;
+    c.end = m_horizon;
+    c.f = Polynomial(double(side));
+    c.separator = separator;
+    return c;
+  }
+  [[nodiscard]] double value(uint32_t a, double t) const {
+    return m_lines[a].x0 + m_lines[a].v * t;
+  }
+  mutable int beside_calls = 0, beside_proved = 0;
+
+ private:
+  struct Line {
+    double x0, v;
+  };
+  [[nodiscard]] std::pair<double, double> range(uint32_t a, double now) const {
+    const double x = value(a, now), y = value(a, m_horizon);
+    return {std::min(x, y), std::max(x, y)};
+  }
+  static float midpoint(double lo, double hi) { return float(0.5 * lo + 0.5 * hi); }
+  double m_horizon;
+  std::vector<Line> m_lines;
+};
+static_assert(SeparatorKeys<HorizonLineKeys>);
+static_assert(!SeparatorKeys<LinearMotionKeys>);
+
+// The hand-overs of ReplaceInPlaceIsEraseThenInsert with separators: a pair (replace_in_pair) and
+// seven (replace_in_place) whose certificates of a replacement come from the separators where
+// they can, against a list that erases and inserts (and computes every certificate), with the
+// audit on. Most replacements are proved from a separator; the orders, the next event and the
+// events stay those of erase then insert.
+TEST(KineticSortLinear, ReplacementsFromSeparatorsAreEraseThenInsert) {
+  for (const int size : {2, 7}) {
+    HorizonLineKeys keys(21);
+    Simulator sim_a, sim_b;
+    KineticSortedList<HorizonLineKeys> a(keys, sim_a.queue(), 0, {0, true});
+    KineticSortedList<HorizonLineKeys> b(keys, sim_b.queue(), 0, {0, true});
+    std::mt19937_64 rng(size);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<uint32_t> members;
+    for (int i = 0; i < size; ++i) {
+      members.push_back(keys.add(0.5 * size * u(rng), 0.1 * u(rng)));
+      a.insert(members.back(), 0);
+      b.insert(members.back(), 0);
+    }
+    auto order = [](const KineticSortedList<HorizonLineKeys>& list) {
+      std::vector<uint32_t> ids;
+      list.for_each_in_order([&](uint32_t id) { ids.push_back(id); });
+      return ids;
+    };
+    int replacements = 0;
+    for (int step = 1; step <= 400; ++step) {
+      const double t = 0.05 * step;
+      sim_a.advance_to(t, [&](const EventKey&, uint64_t payload) { a.handle_event(payload, t); });
+      sim_b.advance_to(t, [&](const EventKey&, uint64_t payload) { b.handle_event(payload, t); });
+      ASSERT_EQ(order(a), order(b)) << "t = " << t;
+      const size_t k = size_t(rng() % members.size());
+      const uint32_t from = members[k];
+      // At from's value now, mostly moving as slowly (a hand-over), now and then fast.
+      const double v = (step % 5 == 0 ? 1.0 : 0.1) * u(rng);
+      const uint32_t to = keys.add(keys.value(from, t) - v * t, v);
+      if (size == 2) {
+        a.replace_in_pair(from, to, t);
+        ++replacements;
+      } else if (a.replace_in_place(from, to, t)) {
+        ++replacements;
+      } else {
+        a.erase(from, t);
+        a.insert(to, t);
+      }
+      b.erase(from, t);
+      b.insert(to, t);
+      members[k] = to;
+      ASSERT_EQ(order(a), order(b)) << "t = " << t;
+      ASSERT_EQ(sim_a.queue().size(), sim_b.queue().size());
+      if (!sim_a.queue().empty()) {
+        ASSERT_EQ(sim_a.queue().top_key().time, sim_b.queue().top_key().time) << "t = " << t;
+      }
+    }
+    EXPECT_EQ(a.stats().events(), b.stats().events()) << size;
+    if (size > 2) EXPECT_GT(a.stats().events(), 5u);  // swaps between the hand-overs
+    EXPECT_GT(replacements, 300) << size;
+    // A pair is apart about half of the time (its separator then serves), seven mostly.
+    EXPECT_GT(keys.beside_proved, size == 2 ? 80 : 300) << size;
+    EXPECT_LT(keys.beside_proved, keys.beside_calls) << size;  // some fail and are computed
+  }
 }
 
 // A broken order is reported as an exception naming the pair, the key values and the
