@@ -513,6 +513,42 @@ TEST(KineticSortLinear, SortedListWithLinearMotionKeys) {
   EXPECT_GT(list.stats().events(), 1000u);
 }
 
+// Two sorted lists of the same keys, each on its own simulator with the audit on: `a` takes
+// replacements in place, `b` always erases and inserts. After every step both must hold the same
+// order and the same next event.
+template <class Keys>
+struct TwinLists {
+  explicit TwinLists(const Keys& keys)
+      : a(keys, sim_a.queue(), 0, {0, true}), b(keys, sim_b.queue(), 0, {0, true}) {}
+  void insert(uint32_t id) {
+    a.insert(id, 0);
+    b.insert(id, 0);
+  }
+  static std::vector<uint32_t> order(const KineticSortedList<Keys>& list) {
+    std::vector<uint32_t> ids;
+    list.for_each_in_order([&](uint32_t id) { ids.push_back(id); });
+    return ids;
+  }
+  void advance_to(double t) {
+    sim_a.advance_to(t, [&](const EventKey&, uint64_t payload) { a.handle_event(payload, t); });
+    sim_b.advance_to(t, [&](const EventKey&, uint64_t payload) { b.handle_event(payload, t); });
+    ASSERT_EQ(order(a), order(b)) << "t = " << t;
+  }
+  /// `a` has replaced `from` by `to` at t (in place, or by erase and insert): `b` erases and
+  /// inserts, and the two must agree.
+  void expect_replaced(uint32_t from, uint32_t to, double t) {
+    b.erase(from, t);
+    b.insert(to, t);
+    ASSERT_EQ(order(a), order(b)) << "t = " << t;
+    ASSERT_EQ(sim_a.queue().size(), sim_b.queue().size());
+    if (!sim_a.queue().empty()) {
+      ASSERT_EQ(sim_a.queue().top_key().time, sim_b.queue().top_key().time) << "t = " << t;
+    }
+  }
+  Simulator sim_a, sim_b;
+  KineticSortedList<Keys> a, b;
+};
+
 // A pixel's triangle handing over to its neighbour across an edge (the grid's boundary events):
 // replace_in_place puts the new object at the old one's place when both neighbours' certificates
 // agree, and must leave the list as erase then insert would, then and at every later event; when
@@ -520,52 +556,36 @@ TEST(KineticSortLinear, SortedListWithLinearMotionKeys) {
 // anywhere (the disagreeing case), against a second list that always erases and inserts.
 TEST(KineticSortLinear, ReplaceInPlaceIsEraseThenInsert) {
   LinearMotionKeys keys;
-  Simulator sim_a, sim_b;
-  KineticSortedList<LinearMotionKeys> a(keys, sim_a.queue(), 0, {0, true});
-  KineticSortedList<LinearMotionKeys> b(keys, sim_b.queue(), 0, {0, true});
+  TwinLists<LinearMotionKeys> lists(keys);
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<uint32_t> members;
   for (int i = 0; i < 7; ++i) {
     members.push_back(keys.add(4 * u(rng), u(rng)));
-    a.insert(members.back(), 0);
-    b.insert(members.back(), 0);
+    lists.insert(members.back());
   }
-  auto order = [](const KineticSortedList<LinearMotionKeys>& list) {
-    std::vector<uint32_t> ids;
-    list.for_each_in_order([&](uint32_t id) { ids.push_back(id); });
-    return ids;
-  };
   int in_place = 0, refused = 0;
   for (int step = 1; step <= 400; ++step) {
     const double t = 0.05 * step;
-    sim_a.advance_to(t, [&](const EventKey&, uint64_t payload) { a.handle_event(payload, t); });
-    sim_b.advance_to(t, [&](const EventKey&, uint64_t payload) { b.handle_event(payload, t); });
-    ASSERT_EQ(order(a), order(b)) << "t = " << t;
+    ASSERT_NO_FATAL_FAILURE(lists.advance_to(t));
     const size_t k = size_t(rng() % members.size());
     const uint32_t from = members[k];
     // At from's value now (a hand-over), or at a random value (mostly out of place).
     const double v = u(rng), at = step % 3 == 0 ? 4 * u(rng) : keys.value(from, t);
     const uint32_t to = keys.add(at - v * t, v);
-    const std::vector<uint32_t> before = order(a);
-    if (a.replace_in_place(from, to, t)) {
+    const std::vector<uint32_t> before = lists.order(lists.a);
+    if (lists.a.replace_in_place(from, to, t)) {
       ++in_place;
     } else {
       ++refused;
-      ASSERT_EQ(order(a), before);
-      a.erase(from, t);
-      a.insert(to, t);
+      ASSERT_EQ(lists.order(lists.a), before);
+      lists.a.erase(from, t);
+      lists.a.insert(to, t);
     }
-    b.erase(from, t);
-    b.insert(to, t);
     members[k] = to;
-    ASSERT_EQ(order(a), order(b)) << "t = " << t;
-    ASSERT_EQ(sim_a.queue().size(), sim_b.queue().size());
-    if (!sim_a.queue().empty()) {
-      ASSERT_EQ(sim_a.queue().top_key().time, sim_b.queue().top_key().time);
-    }
+    ASSERT_NO_FATAL_FAILURE(lists.expect_replaced(from, to, t));
   }
-  EXPECT_EQ(a.stats().events(), b.stats().events());
+  EXPECT_EQ(lists.a.stats().events(), lists.b.stats().events());
   EXPECT_GT(in_place, 200);
   EXPECT_GT(refused, 50);
 }
@@ -643,53 +663,37 @@ static_assert(!SeparatorKeys<LinearMotionKeys>);
 TEST(KineticSortLinear, ReplacementsFromSeparatorsAreEraseThenInsert) {
   for (const int size : {2, 7}) {
     HorizonLineKeys keys(21);
-    Simulator sim_a, sim_b;
-    KineticSortedList<HorizonLineKeys> a(keys, sim_a.queue(), 0, {0, true});
-    KineticSortedList<HorizonLineKeys> b(keys, sim_b.queue(), 0, {0, true});
+    TwinLists<HorizonLineKeys> lists(keys);
     std::mt19937_64 rng(size);
     std::uniform_real_distribution<double> u(-1, 1);
     std::vector<uint32_t> members;
     for (int i = 0; i < size; ++i) {
       members.push_back(keys.add(0.5 * size * u(rng), 0.1 * u(rng)));
-      a.insert(members.back(), 0);
-      b.insert(members.back(), 0);
+      lists.insert(members.back());
     }
-    auto order = [](const KineticSortedList<HorizonLineKeys>& list) {
-      std::vector<uint32_t> ids;
-      list.for_each_in_order([&](uint32_t id) { ids.push_back(id); });
-      return ids;
-    };
     int replacements = 0;
     for (int step = 1; step <= 400; ++step) {
       const double t = 0.05 * step;
-      sim_a.advance_to(t, [&](const EventKey&, uint64_t payload) { a.handle_event(payload, t); });
-      sim_b.advance_to(t, [&](const EventKey&, uint64_t payload) { b.handle_event(payload, t); });
-      ASSERT_EQ(order(a), order(b)) << "t = " << t;
+      ASSERT_NO_FATAL_FAILURE(lists.advance_to(t));
       const size_t k = size_t(rng() % members.size());
       const uint32_t from = members[k];
       // At from's value now, mostly moving as slowly (a hand-over), now and then fast.
       const double v = (step % 5 == 0 ? 1.0 : 0.1) * u(rng);
       const uint32_t to = keys.add(keys.value(from, t) - v * t, v);
       if (size == 2) {
-        a.replace_in_pair(from, to, t);
+        lists.a.replace_in_pair(from, to, t);
         ++replacements;
-      } else if (a.replace_in_place(from, to, t)) {
+      } else if (lists.a.replace_in_place(from, to, t)) {
         ++replacements;
       } else {
-        a.erase(from, t);
-        a.insert(to, t);
+        lists.a.erase(from, t);
+        lists.a.insert(to, t);
       }
-      b.erase(from, t);
-      b.insert(to, t);
       members[k] = to;
-      ASSERT_EQ(order(a), order(b)) << "t = " << t;
-      ASSERT_EQ(sim_a.queue().size(), sim_b.queue().size());
-      if (!sim_a.queue().empty()) {
-        ASSERT_EQ(sim_a.queue().top_key().time, sim_b.queue().top_key().time) << "t = " << t;
-      }
+      ASSERT_NO_FATAL_FAILURE(lists.expect_replaced(from, to, t));
     }
-    EXPECT_EQ(a.stats().events(), b.stats().events()) << size;
-    if (size > 2) EXPECT_GT(a.stats().events(), 5u);  // swaps between the hand-overs
+    EXPECT_EQ(lists.a.stats().events(), lists.b.stats().events()) << size;
+    if (size > 2) EXPECT_GT(lists.a.stats().events(), 5u);  // swaps between the hand-overs
     EXPECT_GT(replacements, 300) << size;
     // A pair is apart about half of the time (its separator then serves), seven mostly.
     EXPECT_GT(keys.beside_proved, size == 2 ? 80 : 300) << size;
