@@ -204,17 +204,11 @@ class PixelDepthKeys {
       : m_source(source), m_column(column), m_row(row) {}
 
   [[nodiscard]] OrderCertificate order_certificate(uint32_t a, uint32_t b, double now) const {
-    const MeshSegment& sa = m_source->segment_of(a);
-    const MeshSegment& sb = m_source->segment_of(b);
-    OrderCertificate c;
-    c.origin = std::max(sa.origin, sb.origin);
-    c.end = std::min(sa.end, sb.end);
+    OrderCertificate c = window_of(a, b);
     // A fold's certificate is built for the lower id first and negated for the other order, so
     // that it is exactly antisymmetric.
-    const GridScene& scene = m_source->scene();
     const uint32_t first = std::min(a, b), second = std::max(a, b);
-    if (const std::optional<SharedEdge> edge =
-            shared_edge(scene.triangle_vertices(first), scene.triangle_vertices(second))) {
+    if (const std::optional<SharedEdge> edge = shared_edge_of(a, b)) {
       c = fold_certificate(first, second, *edge, now, c);
       if (a > b) c.f = -c.f;
       return c;
@@ -268,19 +262,12 @@ class PixelDepthKeys {
   /// when it does not hold or a pair sharing an edge takes its fold certificate.
   [[nodiscard]] std::optional<OrderCertificate> order_certificate_beside(
       uint32_t kept, uint32_t from, uint32_t to, double now, float separator, int side) const {
-    const MeshSegment& sk = m_source->segment_of(kept);
     const MeshSegment& sf = m_source->segment_of(from);
     const MeshSegment& st = m_source->segment_of(to);
     if (st.origin != sf.origin || st.end != sf.end) return std::nullopt;
-    OrderCertificate c;
-    c.origin = std::max(sk.origin, st.origin);
-    c.end = std::min(sk.end, st.end);
+    OrderCertificate c = window_of(kept, to);  // (kept, from)'s window, as order_certificate's
     const double s0 = now - c.origin, s1 = c.end - c.origin;
-    if (!detail::apart_window(s0, s1)) return std::nullopt;
-    const GridScene& scene = m_source->scene();
-    if (shared_edge(scene.triangle_vertices(std::min(kept, to)),
-                    scene.triangle_vertices(std::max(kept, to))))
-      return std::nullopt;
+    if (!detail::apart_window(s0, s1) || shared_edge_of(kept, to)) return std::nullopt;
     const DepthCoefficients ct = m_source->depth_coefficients(to, m_column, m_row, c.origin);
     if (!detail::depth_beyond(ct, separator, s0, detail::apart_width(s0, s1), side))
       return std::nullopt;
@@ -338,6 +325,24 @@ class PixelDepthKeys {
   [[nodiscard]] int row() const { return m_row; }
 
  private:
+  /// A certificate of (a, b) with no polynomial yet: from the later of their segments' starts to
+  /// the earlier of their ends.
+  [[nodiscard]] OrderCertificate window_of(uint32_t a, uint32_t b) const {
+    const MeshSegment& sa = m_source->segment_of(a);
+    const MeshSegment& sb = m_source->segment_of(b);
+    OrderCertificate c;
+    c.origin = std::max(sa.origin, sb.origin);
+    c.end = std::min(sa.end, sb.end);
+    return c;
+  }
+  /// The edge two triangles share (fold_certificate.h), looked up in one order for (a, b) and
+  /// (b, a): the lower id's triangle first.
+  [[nodiscard]] std::optional<SharedEdge> shared_edge_of(uint32_t a, uint32_t b) const {
+    const GridScene& scene = m_source->scene();
+    return shared_edge(scene.triangle_vertices(std::min(a, b)),
+                       scene.triangle_vertices(std::max(a, b)));
+  }
+
   const BandMotion* m_source;
   int32_t m_column, m_row;
 };

@@ -606,14 +606,17 @@ class HorizonLineKeys {
     c.end = m_horizon;
     const auto [a_lo, a_hi] = range(a, now);
     const auto [b_lo, b_hi] = range(b, now);
-    // The lower one's top and the upper one's bottom, in one order for (a, b) and (b, a).
-    const bool a_below = a_hi < b_lo, b_below = b_hi < a_lo;
-    const float z = a_below ? midpoint(a_hi, b_lo) : midpoint(b_hi, a_lo);
-    if ((a_below || b_below) && std::min(a_lo, b_lo) < z && z < std::max(a_hi, b_hi) &&
-        (a_below ? a_hi < z && z < b_lo : b_hi < z && z < a_lo)) {
-      c.f = Polynomial(a_below ? 1.0 : -1.0);
-      c.separator = z;
-      return c;
+    // The gap between the lower one's top and the upper one's bottom, the same for (a, b) and
+    // (b, a); its float midpoint separates them when it lies strictly inside.
+    const bool a_below = a_hi < b_lo;
+    if (a_below || b_hi < a_lo) {
+      const double gap_lo = a_below ? a_hi : b_hi, gap_hi = a_below ? b_lo : a_lo;
+      const float z = midpoint(gap_lo, gap_hi);
+      if (gap_lo < z && z < gap_hi) {
+        c.f = Polynomial(a_below ? 1.0 : -1.0);
+        c.separator = z;
+        return c;
+      }
     }
     c.f.c[0] = m_lines[b].x0 - m_lines[a].x0;
     c.f.c[1] = m_lines[b].v - m_lines[a].v;
