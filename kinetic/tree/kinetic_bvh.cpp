@@ -38,15 +38,20 @@ KineticBvh::KineticBvh(std::vector<FlightplanMesh> meshes, double t, const Confi
                                         m_meshes.coordinate(v, 2, t)));
   m_topology = build_binned_sah(boxes);
   const size_t nodes = m_topology.nodes.size();
-  m_sides = tracked_sides(m_topology, config.shape);
-  m_realizer.assign(nodes, {kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex, kNoVertex});
-  m_event.assign(nodes, {kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent});
-  m_active.assign(nodes, 0);
+  m_node.resize(nodes);
+  const std::vector<uint8_t> sides = tracked_sides(m_topology, config.shape);
+  for (size_t i = 0; i < nodes; ++i) m_node[i].sides = sides[i];
+  m_node_mesh.assign(nodes, kMixedMeshes);
+  for (uint32_t i = uint32_t(nodes); i-- > 0;) {
+    const BvhNode& n = m_topology.nodes[i];
+    m_node_mesh[i] = n.leaf() ? m_meshes.mesh_of_triangle(n.triangle)
+                     : m_node_mesh[n.left] == m_node_mesh[n.right] ? m_node_mesh[n.left]
+                                                                   : kMixedMeshes;
+  }
   m_leaf_vertices.assign(nodes, {kNoVertex, kNoVertex, kNoVertex});
   for (uint32_t i = 0; i < nodes; ++i)
     if (m_topology.nodes[i].leaf())
       m_leaf_vertices[i] = m_meshes.triangle(m_topology.nodes[i].triangle);
-  m_live.assign(nodes * 6, 0);
   m_key_margin = 1e-12 * m_meshes.scale();
 
   // Per mesh, the nodes above its leaves (descending, so children come before parents).
@@ -69,10 +74,10 @@ KineticBvh::KineticBvh(std::vector<FlightplanMesh> meshes, double t, const Confi
 
   for (uint32_t i = uint32_t(nodes); i-- > 0;) {
     const BvhNode& n = m_topology.nodes[i];
-    m_active[i] = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
-                           : uint8_t(m_active[n.left] | m_active[n.right]);
+    m_node[i].active = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
+                                : uint8_t(m_node[n.left].active | m_node[n.right].active);
     for (int s = 0; s < 6; ++s)
-      if ((m_sides[i] >> s) & 1) update_side(i, s);
+      if ((m_node[i].sides >> s) & 1) update_side(i, s);
   }
   m_mesh_event.assign(mesh_count, kNoEvent);
   for (uint32_t m = 0; m < mesh_count; ++m) schedule_mesh(m);
@@ -85,7 +90,7 @@ bool KineticBvh::update_side(uint32_t node, int s) {
   const BvhNode& n = m_topology.nodes[node];
   const int axis = side_axis(s), sign = side_sign(s);
   const double now = m_sim.now();
-  uint32_t& realizer = m_realizer[node][size_t(s)];
+  uint32_t& realizer = m_node[node].realizer[size_t(s)];
   const uint32_t before = realizer;
   double failure = kInfinityTime;
   uint8_t live = 0;
@@ -97,7 +102,7 @@ bool KineticBvh::update_side(uint32_t node, int s) {
     c = c.negated();
     return q;
   };
-  if (!m_active[node]) {
+  if (!m_node[node].active) {
     realizer = kNoVertex;
   } else if (n.leaf()) {
     const auto& v = m_meshes.triangle(n.triangle);
@@ -116,7 +121,7 @@ bool KineticBvh::update_side(uint32_t node, int s) {
       ++live;
     }
   } else {
-    const uint32_t l = m_realizer[n.left][size_t(s)], r = m_realizer[n.right][size_t(s)];
+    const uint32_t l = m_node[n.left].realizer[size_t(s)], r = m_node[n.right].realizer[size_t(s)];
     if (l == kNoVertex || r == kNoVertex) {
       realizer = l == kNoVertex ? r : l;
     } else if (l == r) {
@@ -128,7 +133,11 @@ bool KineticBvh::update_side(uint32_t node, int s) {
       live = 1;
     }
   }
-  uint8_t& counted = m_live[size_t(node) * 6 + size_t(s)];
+  // Recomputed: the key pass compares this side at both keys again, and a parent whose
+  // competitor this realizer is, too.
+  m_node[node].verified &= uint8_t(~(1u << s));
+  if (realizer != before && n.parent != kNoNode) m_node[n.parent].verified &= uint8_t(~(1u << s));
+  uint8_t& counted = m_node[node].live[size_t(s)];
   m_live_total += uint64_t(live) - uint64_t(counted);
   counted = live;
   schedule(node, s, failure);
@@ -142,7 +151,7 @@ void KineticBvh::schedule(uint32_t node, int s, double time) {
   KINRAY_CHECK_MSG(time >= m_sim.now(), "kinetic tree: certificate already broken");
   const EventKey key{time, m_topology.nodes[node].leaf() ? kLeafKind : kTreeKind, node,
                      uint64_t(s)};
-  m_sim.queue().schedule(m_event[node][size_t(s)], key, uint64_t(node) * 8 + uint64_t(s));
+  m_sim.queue().schedule(m_node[node].event[size_t(s)], key, uint64_t(node) * 8 + uint64_t(s));
 }
 
 void KineticBvh::schedule_mesh(uint32_t m) {
@@ -164,7 +173,7 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
   }
   const auto node = uint32_t(payload >> 3);
   const int s = int(payload & 7);
-  m_event[node][size_t(s)] = kNoEvent;
+  m_node[node].event[size_t(s)] = kNoEvent;
   ++(key.kind == kLeafKind ? m_stats.events.leaf : m_stats.events.tree);
   if (!update_side(node, s)) {  // a failure at the level of rounding: the same vertex still wins
     ++m_stats.events_internal;
@@ -175,8 +184,8 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
   m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
   // Climb while the parents track this side and their realizers change; a parent whose realizer
   // stays has its certificate recomputed all the same (its other competitor changed).
-  for (uint32_t p = m_topology.nodes[node].parent; p != kNoNode && ((m_sides[p] >> s) & 1) != 0;
-       p = m_topology.nodes[p].parent) {
+  for (uint32_t p = m_topology.nodes[node].parent;
+       p != kNoNode && ((m_node[p].sides >> s) & 1) != 0; p = m_topology.nodes[p].parent) {
     if (!update_side(p, s)) break;
     ++m_stats.realizer_changes;
   }
@@ -205,14 +214,15 @@ void KineticBvh::handle_mesh(uint32_t m) {
 uint64_t KineticBvh::live_certificates() const {
   uint64_t live = 0;
   for (uint32_t i = 0; i < m_topology.nodes.size(); ++i) {
-    if (!m_active[i]) continue;
+    if (!m_node[i].active) continue;
     const BvhNode& n = m_topology.nodes[i];
     for (int s = 0; s < 6; ++s) {
-      if (((m_sides[i] >> s) & 1) == 0) continue;
+      if (((m_node[i].sides >> s) & 1) == 0) continue;
       if (n.leaf()) {
-        for (uint32_t q : m_meshes.triangle(n.triangle)) live += q != m_realizer[i][size_t(s)];
+        for (uint32_t q : m_meshes.triangle(n.triangle)) live += q != m_node[i].realizer[size_t(s)];
       } else {
-        const uint32_t l = m_realizer[n.left][size_t(s)], r = m_realizer[n.right][size_t(s)];
+        const uint32_t l = m_node[n.left].realizer[size_t(s)],
+                       r = m_node[n.right].realizer[size_t(s)];
         live += l != kNoVertex && r != kNoVertex && l != r;
       }
     }
@@ -227,7 +237,7 @@ TreeStats KineticBvh::stats() const {
   s.nodes = m_topology.nodes.size();
   s.height = m_topology.height();
   s.node_sides = 0;
-  for (uint8_t sides : m_sides) s.node_sides += uint64_t(std::popcount(sides));
+  for (const NodeState& node : m_node) s.node_sides += uint64_t(std::popcount(node.sides));
   s.triangles = m_meshes.triangle_count();
   s.triangles_present = 0;
   for (uint32_t m = 0; m < m_meshes.mesh_count(); ++m)
@@ -238,9 +248,8 @@ TreeStats KineticBvh::stats() const {
 }
 
 size_t KineticBvh::memory_bytes() const {
-  return m_topology.nodes.capacity() * sizeof(BvhNode) +
-         m_realizer.capacity() * sizeof(m_realizer[0]) + m_event.capacity() * sizeof(m_event[0]) +
-         m_sides.capacity() + m_active.capacity() +
+  return m_topology.nodes.capacity() * sizeof(BvhNode) + m_node.capacity() * sizeof(NodeState) +
+         m_node_mesh.capacity() * sizeof(uint32_t) +
          m_leaf_vertices.capacity() * sizeof(m_leaf_vertices[0]) +
          m_mesh_nodes.capacity() * sizeof(uint32_t) + m_sim.queue().memory_bytes() +
          size_t(m_meshes.vertex_count()) * 2 * sizeof(Eigen::Vector3d) +

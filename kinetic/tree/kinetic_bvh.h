@@ -74,13 +74,13 @@ class KineticBvh {
   [[nodiscard]] TreeShape shape() const { return m_config.shape; }
   /// The vertex realizing side s of a node (kNoVertex when untracked or the node is empty).
   [[nodiscard]] uint32_t realizer(uint32_t node, int s) const {
-    return m_realizer[node][size_t(s)];
+    return m_node[node].realizer[size_t(s)];
   }
   /// Some triangle below the node is present now.
-  [[nodiscard]] bool active(uint32_t node) const { return m_active[node] != 0; }
+  [[nodiscard]] bool active(uint32_t node) const { return m_node[node].active != 0; }
   /// Side s of the node at t, from its realizer (t within the current segments).
   [[nodiscard]] double side_value(uint32_t node, int s, double t) const {
-    return m_meshes.coordinate(m_realizer[node][size_t(s)], side_axis(s), t);
+    return m_meshes.coordinate(m_node[node].realizer[size_t(s)], side_axis(s), t);
   }
 
   /// The queries' boxes (tree_query.h) at the frame's time, from the realizers. AABB tree: a
@@ -89,7 +89,7 @@ class KineticBvh {
   /// child's min along the split axis) and the planes its other ancestors need, which are its own
   /// extremes too.
   [[nodiscard]] Aabb root_box(const TreeFrame& frame) const {
-    if (m_topology.nodes.empty() || !m_active[0]) return Aabb{};
+    if (m_topology.nodes.empty() || !m_node[0].active) return Aabb{};
     if (m_config.shape == TreeShape::boxtree) {
       Aabb all;  // no side of the root is tracked: the box of the whole shot bounds it
       all.lo = m_meshes.shot_lo().array() - frame.pad;
@@ -126,12 +126,12 @@ class KineticBvh {
   /// whether its realizer changed.
   bool update_side(uint32_t node, int s);
   void tighten(uint32_t node, const TreeFrame& frame, Aabb& b) const {
-    if (!m_active[node]) {
+    if (!m_node[node].active) {
       b = Aabb{};
       return;
     }
     for (int s = 0; s < 6; ++s) {
-      if (((m_sides[node] >> s) & 1) == 0) continue;
+      if (((m_node[node].sides >> s) & 1) == 0) continue;
       const int a = side_axis(s);
       const double v = side_value(node, s, frame.t);
       if (side_sign(s) > 0)
@@ -142,7 +142,7 @@ class KineticBvh {
   }
   [[nodiscard]] Aabb own_box(uint32_t node, const TreeFrame& frame) const {
     Aabb b;
-    if (!m_active[node]) return b;
+    if (!m_node[node].active) return b;
     for (int a = 0; a < 3; ++a) {
       b.hi[a] = side_value(node, side_of(a, true), frame.t) + frame.pad;
       b.lo[a] = side_value(node, side_of(a, false), frame.t) - frame.pad;
@@ -179,13 +179,30 @@ class KineticBvh {
   TreeMeshes m_meshes;
   BvhTopology m_topology;
   Simulator m_sim;
-  std::vector<std::array<uint32_t, 6>> m_realizer;
-  std::vector<std::array<EventHandle, 6>> m_event;
-  std::vector<uint8_t> m_sides;  ///< per node: bit s set when side s is tracked
+  /// What an event or a key reads and writes of a node, in one cache line: update_side touched
+  /// five arrays per node (realizers, event handles, live counts, tracked sides, presence), so a
+  /// failure climbing ~2.4 parents missed the cache five times a node.
+  struct alignas(64) NodeState {
+    std::array<uint32_t, 6> realizer{kNoVertex, kNoVertex, kNoVertex,
+                                     kNoVertex, kNoVertex, kNoVertex};
+    std::array<EventHandle, 6> event{kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent, kNoEvent};
+    std::array<uint8_t, 6> live{};  ///< per side: its live certificates (leaf 0-2, inner 0-1)
+    uint8_t sides = 0;              ///< bit s set when side s is tracked
+    uint8_t active = 0;             ///< some triangle below the node is present
+    /// Bit s set when the last key pass settled side s by the margin at both keys of the current
+    /// segment, and nothing has recomputed it or changed a child's realizer since: the realizer
+    /// and its competitors are the ones it compared. At the next key the segment's start key is
+    /// the end key it compared, so the pass compares at the end key only.
+    uint8_t verified = 0;
+  };
+  static_assert(sizeof(NodeState) == 64);
+  std::vector<NodeState> m_node;
+  /// per node: the mesh every leaf below it belongs to (kMixedMeshes when there are several): a
+  /// key of that mesh finds all the node's realizers and competitors among its own vertices
+  std::vector<uint32_t> m_node_mesh;
+  static constexpr uint32_t kMixedMeshes = ~0u;
   std::vector<std::array<uint32_t, 3>>
-      m_leaf_vertices;            ///< per node: a leaf's triangle, in node order
-  std::vector<uint8_t> m_active;  ///< per node
-  std::vector<uint8_t> m_live;    ///< per node side: its live certificates (leaf 0-2, inner 0-1)
+      m_leaf_vertices;  ///< per node: a leaf's triangle, in node order
   uint64_t m_live_total = 0;
   double m_key_margin = 0;  ///< far above the rounding of a + b (t - o) against the key positions
   std::vector<uint32_t> m_mesh_node_begin, m_mesh_nodes;  ///< per mesh: its nodes, descending

@@ -34,8 +34,9 @@ void KineticBvh::audit_node(uint32_t i, double t,
                             std::vector<std::array<AuditExtreme, 6>>& extreme) const {
   const BvhNode& n = m_topology.nodes[i];
   const bool present = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
-                                : (m_active[n.left] | m_active[n.right]) != 0;
-  KINRAY_CHECK_MSG(present == (m_active[i] != 0), "kinetic tree audit: wrong presence of a node");
+                                : (m_node[n.left].active | m_node[n.right].active) != 0;
+  KINRAY_CHECK_MSG(present == (m_node[i].active != 0),
+                   "kinetic tree audit: wrong presence of a node");
   // Two coordinates a + b (t - o) of vertices whose exact motions cross within the rounding of
   // that evaluation (about 2 eps scale each: |a| and |b (t - o)| are at most about 2 scale) can
   // come out in the other order: the tree orders vertices by its certificates, c0 + c1 (t - o)
@@ -60,10 +61,11 @@ void KineticBvh::audit_node(uint32_t i, double t,
       e = {winner(l.vertex, rr.vertex), std::max(l.largest, rr.largest)};
     }
     extreme[i][size_t(s)] = e;
-    const uint32_t r = m_realizer[i][size_t(s)];
-    const EventHandle h = m_event[i][size_t(s)];
-    if (((m_sides[i] >> s) & 1) == 0 || !present) {
-      KINRAY_CHECK_MSG(r == kNoVertex && h == kNoEvent,
+    const uint32_t r = m_node[i].realizer[size_t(s)];
+    const EventHandle h = m_node[i].event[size_t(s)];
+    const bool verified = ((m_node[i].verified >> s) & 1) != 0;
+    if (((m_node[i].sides >> s) & 1) == 0 || !present) {
+      KINRAY_CHECK_MSG(r == kNoVertex && h == kNoEvent && !verified,
                        "kinetic tree audit: an untracked side has a realizer");
       continue;
     }
@@ -82,12 +84,28 @@ void KineticBvh::audit_node(uint32_t i, double t,
       KINRAY_CHECK_MSG(c.sign_after(t) >= 0, "kinetic tree audit: a certificate does not hold");
       failure = std::min(failure, c.failure_time(m_sim.now()));
     };
+    // A verified side (the key pass compares it at the segment's end key only) holds by the
+    // margin at both keys of the current segment against each competitor.
+    bool by_margin = m_node_mesh[i] != kMixedMeshes;
+    auto check_key = [&](uint32_t q) {
+      by_margin = by_margin && (q == kNoVertex || q == r ||
+                                m_meshes.beyond_at_both_keys(r, q, axis, sign, m_key_margin));
+    };
     if (n.leaf()) {
-      for (uint32_t q : m_meshes.triangle(n.triangle)) check(q);
+      for (uint32_t q : m_meshes.triangle(n.triangle)) {
+        check(q);
+        check_key(q);
+      }
     } else {
-      check(m_realizer[n.left][size_t(s)]);
-      check(m_realizer[n.right][size_t(s)]);
+      for (const uint32_t q :
+           {m_node[n.left].realizer[size_t(s)], m_node[n.right].realizer[size_t(s)]}) {
+        check(q);
+        check_key(q);
+      }
     }
+    KINRAY_CHECK_MSG(
+        !verified || by_margin,
+        "kinetic tree audit: a verified side does not hold by the margin at both keys");
     if (h == kNoEvent) {
       KINRAY_CHECK_MSG(!std::isfinite(failure),
                        "kinetic tree audit: a failing certificate has no event");

@@ -30,10 +30,11 @@ void KineticBvh::refresh_mesh(uint32_t m) {
   for (uint32_t k = m_mesh_node_begin[m]; k < m_mesh_node_begin[m + 1]; ++k) {
     const uint32_t i = m_mesh_nodes[k];
     const BvhNode& n = m_topology.nodes[i];
-    m_active[i] = n.leaf() ? m_meshes.present(m) : uint8_t(m_active[n.left] | m_active[n.right]);
+    m_node[i].active =
+        n.leaf() ? m_meshes.present(m) : uint8_t(m_node[n.left].active | m_node[n.right].active);
     const uint8_t settled = moving ? settle_at_key(i) : 0;
     settled_total += kSidesIn[settled & 63u];
-    const uint8_t rest = uint8_t(m_sides[i] & ~settled);
+    const uint8_t rest = uint8_t(m_node[i].sides & ~settled);
     if (rest == 0) continue;
     for (int s = 0; s < 6; ++s)
       if (((rest >> s) & 1) != 0 && update_side(i, s)) ++m_stats.realizer_changes;
@@ -43,8 +44,8 @@ void KineticBvh::refresh_mesh(uint32_t m) {
 }
 
 void KineticBvh::settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live) {
-  uint8_t* counted = &m_live[size_t(node) * 6];
-  std::array<EventHandle, 6>& events = m_event[node];
+  uint8_t* counted = m_node[node].live.data();
+  std::array<EventHandle, 6>& events = m_node[node].event;
   // The common case at a key: every side settled as it was, no event pending (kNoEvent is all
   // ones, so the handles' AND is kNoEvent only when none is pending). Nothing to change.
   if (sides == 0x3F && std::memcmp(counted, live.data(), 6) == 0 &&
@@ -61,22 +62,27 @@ void KineticBvh::settle_sides(uint32_t node, uint8_t sides, const std::array<uin
 }
 
 uint8_t KineticBvh::settle_at_key(uint32_t node) {
-  const uint8_t tracked = m_sides[node];
-  if (!m_active[node] || tracked == 0) return 0;
+  NodeState& state = m_node[node];
+  const uint8_t tracked = state.sides;
+  if (!state.active || tracked == 0) return 0;
   const BvhNode& n = m_topology.nodes[node];
-  const std::array<uint32_t, 6>& realizer = m_realizer[node];
+  const std::array<uint32_t, 6>& realizer = state.realizer;
   const double margin = m_key_margin;
-  uint8_t settled = 0;
+  // A verified side held by the margin at the key that starts this segment (NodeState::verified):
+  // only its end key is compared.
+  const uint8_t verified = state.verified;
+  uint8_t settled = 0, by_margin = 0;
   std::array<uint8_t, 6> live{};
   if (n.leaf()) {
     const std::array<uint32_t, 3>& v = m_leaf_vertices[node];  // node order: no random load
-    // The key positions, axis-major: p[key][axis][corner].
+    // The key positions, axis-major: p[key][axis][corner]; the start key's only when a side
+    // needs it.
     double p[2][3][3];
     for (int c = 0; c < 3; ++c)
-      for (int a = 0; a < 3; ++a) {
-        p[0][a][c] = m_meshes.key_start(v[size_t(c)])[a];
-        p[1][a][c] = m_meshes.key_end(v[size_t(c)])[a];
-      }
+      for (int a = 0; a < 3; ++a) p[1][a][c] = m_meshes.key_end(v[size_t(c)])[a];
+    if ((verified & tracked) != tracked)
+      for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) p[0][a][c] = m_meshes.key_start(v[size_t(c)])[a];
     for (int s = 0; s < 6; ++s) {
       const uint32_t r = realizer[size_t(s)];
       const int k = r == v[0] ? 0 : r == v[1] ? 1 : 2;
@@ -84,17 +90,21 @@ uint8_t KineticBvh::settle_at_key(uint32_t node) {
       const int a = side_axis(s);
       const double sign = side_sign(s);
       const int j1 = k == 0 ? 1 : 0, j2 = k == 2 ? 1 : 2;  // the two other corners
-      const bool beyond = sign * (p[0][a][k] - p[0][a][j1]) > margin &&
-                          sign * (p[0][a][k] - p[0][a][j2]) > margin &&
-                          sign * (p[1][a][k] - p[1][a][j1]) > margin &&
-                          sign * (p[1][a][k] - p[1][a][j2]) > margin;
-      if (!beyond) continue;
+      const auto beyond_at = [&](int key) {
+        return sign * (p[key][a][k] - p[key][a][j1]) > margin &&
+               sign * (p[key][a][k] - p[key][a][j2]) > margin;
+      };
+      if (!beyond_at(1) || (((verified >> s) & 1) == 0 && !beyond_at(0))) continue;
       live[size_t(s)] = 2;
       settled |= uint8_t(1u << s);
     }
+    by_margin = settled;
   } else {
-    const std::array<uint32_t, 6>& left = m_realizer[n.left];
-    const std::array<uint32_t, 6>& right = m_realizer[n.right];
+    // Below a node of one mesh every realizer and competitor is a vertex of the moving mesh being
+    // refreshed, so beyond_at_both_keys needs no mesh test.
+    const bool one_mesh = m_node_mesh[node] != kMixedMeshes;
+    const std::array<uint32_t, 6>& left = m_node[n.left].realizer;
+    const std::array<uint32_t, 6>& right = m_node[n.right].realizer;
     for (int s = 0; s < 6; ++s) {
       const uint32_t r = realizer[size_t(s)], l = left[size_t(s)], rr = right[size_t(s)];
       if (((tracked >> s) & 1) == 0 || r == kNoVertex) continue;
@@ -104,13 +114,26 @@ uint8_t KineticBvh::settle_at_key(uint32_t node) {
         if (r != (l == kNoVertex ? rr : l)) continue;
       } else {
         if (r != l && r != rr) continue;
-        if (!m_meshes.beyond_at_both_keys(r, r == l ? rr : l, side_axis(s), side_sign(s), margin))
+        const uint32_t q = r == l ? rr : l;
+        const int axis = side_axis(s), sign = side_sign(s);
+        if (one_mesh) {
+          const auto beyond_at = [&](const Eigen::Vector3d& pr, const Eigen::Vector3d& pq) {
+            return sign * (pr[axis] - pq[axis]) > margin;
+          };
+          if (!beyond_at(m_meshes.key_end(r), m_meshes.key_end(q)) ||
+              (((verified >> s) & 1) == 0 &&
+               !beyond_at(m_meshes.key_start(r), m_meshes.key_start(q))))
+            continue;
+          by_margin |= uint8_t(1u << s);
+        } else if (!m_meshes.beyond_at_both_keys(r, q, axis, sign, margin)) {
           continue;
+        }
         live[size_t(s)] = 1;
       }
       settled |= uint8_t(1u << s);
     }
   }
+  state.verified = by_margin;
   const uint8_t open = uint8_t(tracked & ~settled);
   if (open != 0) settled |= settle_ties(node, open, live);
   if (settled != 0) settle_sides(node, settled, live);
@@ -119,7 +142,7 @@ uint8_t KineticBvh::settle_at_key(uint32_t node) {
 
 uint8_t KineticBvh::settle_ties(uint32_t node, uint8_t open, std::array<uint8_t, 6>& live) const {
   const BvhNode& n = m_topology.nodes[node];
-  const std::array<uint32_t, 6>& realizer = m_realizer[node];
+  const std::array<uint32_t, 6>& realizer = m_node[node].realizer;
   const double margin = m_key_margin;
   uint8_t settled = 0;
   for (int s = 0; s < 6; ++s) {
@@ -137,7 +160,8 @@ uint8_t KineticBvh::settle_ties(uint32_t node, uint8_t open, std::array<uint8_t,
         continue;
       live[size_t(s)] = 2;
     } else {
-      const uint32_t l = m_realizer[n.left][size_t(s)], rr = m_realizer[n.right][size_t(s)];
+      const uint32_t l = m_node[n.left].realizer[size_t(s)],
+                     rr = m_node[n.right].realizer[size_t(s)];
       if (l == kNoVertex || rr == kNoVertex || l == rr || (r != l && r != rr) ||
           !holds(r == l ? rr : l))
         continue;
