@@ -179,9 +179,10 @@ class KineticBvh {
   TreeMeshes m_meshes;
   BvhTopology m_topology;
   Simulator m_sim;
-  /// What an event or a key reads and writes of a node, in one cache line: update_side touched
-  /// five arrays per node (realizers, event handles, live counts, tracked sides, presence), so a
-  /// failure climbing ~2.4 parents missed the cache five times a node.
+  /// What an event or a key reads and writes of a node, in one cache line rather than five arrays
+  /// (realizers, event handles, live counts, tracked sides, presence). Measured: instructions
+  /// -1%, wall time within the noise (docs/kinetic_trees.md, "Limits"); kept as the simpler
+  /// layout.
   struct alignas(64) NodeState {
     std::array<uint32_t, 6> realizer{kNoVertex, kNoVertex, kNoVertex,
                                      kNoVertex, kNoVertex, kNoVertex};

@@ -88,7 +88,7 @@ void KineticBvh::audit_node(uint32_t i, double t,
     // margin at both keys of the current segment against each competitor.
     bool by_margin = m_node_mesh[i] != kMixedMeshes;
     auto check_key = [&](uint32_t q) {
-      by_margin = by_margin && (q == kNoVertex || q == r ||
+      by_margin = by_margin && (!verified || q == kNoVertex || q == r ||
                                 m_meshes.beyond_at_both_keys(r, q, axis, sign, m_key_margin));
     };
     if (n.leaf()) {
