@@ -84,7 +84,7 @@ Floor& floor_setup() {
   params.quiet = true;
   f.job = std::make_unique<RenderJob>(params);
   f.meshes = grid_meshes(f.job->camera_space());
-  // The tree just after the first key, and the events of one whole segment from there.
+  // The tree on the segment from the shot's second key, and the events of that whole segment.
   const std::span<const double> keys = f.meshes.front().key_times;
   if (keys.size() < 4)
     throw std::runtime_error("bench_kinetic_tree_floor: the scene has fewer than four keys");
@@ -108,7 +108,7 @@ Floor& floor_setup() {
     f.end[size_t(a)].resize(m.vertex_count());
     for (uint32_t v = 0; v < m.vertex_count(); ++v) f.end[size_t(a)][v] = m.key_end(v)[a];
   }
-  f.margin = 1e-12 * m.scale();
+  f.margin = 1e-12 * m.scale();  // the key pass's margin (KineticBvh::m_key_margin)
   const BvhTopology& topology = tree.topology();
   for (uint32_t i = uint32_t(topology.nodes.size()); i-- > 0;) {
     const BvhNode& n = topology.nodes[i];
