@@ -27,10 +27,11 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <map>
 #include <memory>
 #include <random>
@@ -264,14 +265,29 @@ BENCHMARK(BM_KineticInterval)->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--triangles=", 12) == 0)
-      g_triangles = std::max(100, std::atoi(argv[i] + 12));
-    else
+    if (std::strncmp(argv[i], "--triangles=", 12) != 0) {
       args.push_back(argv[i]);
+      continue;
+    }
+    // The scene's own limits (a few hundred to 5e7 triangles) are checked when it is made.
+    const char* text = argv[i] + 12;
+    const char* text_end = text + std::strlen(text);
+    const auto [rest, error] = std::from_chars(text, text_end, g_triangles);
+    if (error != std::errc() || rest != text_end || g_triangles <= 0) {
+      std::fprintf(stderr, "bench_kinetic_tree_floor: --triangles: not a positive integer: '%s'\n",
+                   text);
+      return 2;
+    }
   }
   int count = int(args.size());
   benchmark::Initialize(&count, args.data());
   if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
+  try {
+    floor_setup();  // the scene and the trees, before any benchmark runs
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_kinetic_tree_floor: %s\n", e.what());
+    return 1;
+  }
   FloorReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
