@@ -52,7 +52,7 @@ using namespace kinray;
 
 int g_triangles = 100000;
 
-/// The scene, the tree at a key's start, and its certificates laid out flat.
+/// The scene, the tree on a key's segment, and its certificates at the key laid out flat.
 struct Floor {
   std::unique_ptr<RenderJob> job;
   std::vector<FlightplanMesh> meshes;
@@ -94,22 +94,13 @@ Floor& floor_setup() {
   f.after_next_key = keys[3];
   f.tree = std::make_unique<KineticBvh>(f.meshes, f.key, KineticBvh::Config{});
   f.bottom_up = std::make_unique<BottomUpBvh>(f.meshes, f.key);
-  {
-    KineticBvh probe(f.meshes, f.key, KineticBvh::Config{});
-    const TreeStats before = probe.stats();
-    probe.advance_to(std::nextafter(f.next_key, 0.0));
-    const TreeStats after = probe.stats();
-    f.events_per_interval = after.events.total() - before.events.total();
-    f.updates_per_event = double(after.certificates_computed - before.certificates_computed) /
-                          double(std::max<uint64_t>(1, f.events_per_interval));
-  }
   const KineticBvh& tree = *f.tree;
   const TreeMeshes& m = tree.meshes();
   for (int a = 0; a < 3; ++a) {
     f.end[size_t(a)].resize(m.vertex_count());
     for (uint32_t v = 0; v < m.vertex_count(); ++v) f.end[size_t(a)][v] = m.key_end(v)[a];
   }
-  f.margin = 1e-12 * m.scale();  // the key pass's margin (KineticBvh::m_key_margin)
+  f.margin = tree.key_margin();
   const BvhTopology& topology = tree.topology();
   for (uint32_t i = uint32_t(topology.nodes.size()); i-- > 0;) {
     const BvhNode& n = topology.nodes[i];
@@ -131,6 +122,16 @@ Floor& floor_setup() {
       }
     }
   }
+  if (f.realizer.empty())
+    throw std::runtime_error("bench_kinetic_tree_floor: the tree has no certificate");
+  // The events of the whole segment, from the same tree (its segment and the certificates above
+  // stay those of the key: no key is crossed).
+  const TreeStats before = f.tree->stats();
+  f.tree->advance_to(std::nextafter(f.next_key, 0.0));
+  const TreeStats after = f.tree->stats();
+  f.events_per_interval = after.events.total() - before.events.total();
+  f.updates_per_event = double(after.certificates_computed - before.certificates_computed) /
+                        double(std::max<uint64_t>(1, f.events_per_interval));
   return f;
 }
 

@@ -114,6 +114,9 @@ class KineticBvh {
   /// above the mesh's leaves), part of the time advance_to took: how an update
   /// splits between keys and certificate failures.
   [[nodiscard]] double mesh_event_seconds() const { return m_mesh_event_seconds; }
+  /// The margin by which the key pass settles a certificate from its two key positions
+  /// (kinetic_bvh_keys.cpp): far above the rounding of a + b (t - o) against the key positions.
+  [[nodiscard]] double key_margin() const { return m_key_margin; }
   /// Counters, with the live certificates counted now.
   [[nodiscard]] TreeStats stats() const;
   [[nodiscard]] size_t memory_bytes() const;
