@@ -8,6 +8,7 @@
 
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/frame_boxes.h"
+#include "kinetic/tree/frame_occlusion.h"
 #include "kinetic/tree/kinetic_bvh.h"
 #include "renderer/grid_meshes.h"
 #include "renderer/kinetic_shadow_tracer.h"
@@ -42,6 +43,7 @@ class TreeShadowTracer final : public ShadowTracer {
     } else if (!m_kinetic) {
       const TreeShape shape = m_kind == ShadowTree::aabb ? TreeShape::aabb : TreeShape::boxtree;
       m_kinetic.emplace(grid_meshes(m_scene), t, KineticBvh::Config{shape, m_audit});
+      m_boxes.track(*m_kinetic);
     } else {
       m_kinetic->advance_to(t);
     }
@@ -66,16 +68,17 @@ class TreeShadowTracer final : public ShadowTracer {
         m_boxes_time = m_frame.t;
       }
     }
+    std::vector<TreeRay> tree_rays(rays.size());
     for (size_t i = 0; i < rays.size(); ++i) {
       const ShadowRay& r = rays[i];
-      TreeRay ray;
+      TreeRay& ray = tree_rays[i];
       ray.origin = r.origin;
       ray.direction = r.direction;
       ray.s_max = r.s_max;
       if (r.object < m_mesh_of_object.size() && m_mesh_of_object[r.object] != UINT32_MAX)
         ray.skip = tree_meshes.triangle_begin(m_mesh_of_object[r.object]) + r.prim;
-      blocked[i] = frame_traverse(m_boxes, ray, true).has_value();
     }
+    frame_occluded(m_boxes, tree_rays, blocked);
   }
 
   void write_stats(nlohmann::json& stats) const override {

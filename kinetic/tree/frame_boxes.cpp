@@ -76,6 +76,7 @@ void FrameBoxes::prepare(const BvhTopology& topology, const TreeMeshes& meshes,
   const auto& nodes = topology.nodes;
   if (m_topology == &topology && m_slot.size() == nodes.size()) return;
   m_topology = &topology;
+  m_copy_of = nullptr;
   m_slot.assign(nodes.size(), kNoLink);
   m_nodes.clear();
   m_children.clear();
@@ -217,14 +218,11 @@ void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
                                _mm_and_ps(y, _mm_load_ps(m_vertex_point[ry].c))),
                      _mm_and_ps(z, _mm_load_ps(m_vertex_point[rz].c)));
   };
-  const KineticBvh& tree = *m_kinetic;
   __m128 lo[4], hi[4];
   for (int c = 0; c < 4; ++c) {
     lo[c] = _mm_set1_ps(kInf);
     hi[c] = _mm_set1_ps(-kInf);
-    if (((n.used >> c) & 1) == 0) continue;
-    const uint32_t i = m_children[k][size_t(c)];
-    if (!tree.active(i)) continue;
+    if ((((n.used & n.present) >> c) & 1) == 0) continue;
     if ((n.link[size_t(c)] & kLeaf) != 0) {
       // A leaf's box spans its triangle's three points: the same floats as its realizers' (they
       // are the extreme vertices, and rounding to the nearest float keeps the order), or a box
@@ -239,10 +237,9 @@ void FrameBoxes::aabb_children(Node& n, uint32_t k) const {
       continue;
     }
     // Sides 2 axis + 1 are the minima, 2 axis the maxima (side_axis, side_sign).
-    const uint32_t r[6] = {tree.realizer(i, 0), tree.realizer(i, 1), tree.realizer(i, 2),
-                           tree.realizer(i, 3), tree.realizer(i, 4), tree.realizer(i, 5)};
+    const uint32_t(&r)[6] = n.realizer[c];
     if (std::find(std::begin(r), std::end(r), kNoVertex) != std::end(r)) {
-      const std::array<float, 6> b = box(i, kEverywhere);
+      const std::array<float, 6> b = box(m_children[k][size_t(c)], kEverywhere);
       lo[c] = _mm_setr_ps(b[0], b[1], b[2], 0);
       hi[c] = _mm_setr_ps(b[3], b[4], b[5], 0);
       continue;
@@ -273,10 +270,38 @@ std::optional<std::array<float, 6>> FrameBoxes::box_of(uint32_t i) const {
   return b;
 }
 
+void FrameBoxes::track(KineticBvh& tree) {
+  m_tracked = &tree;
+  tree.add_realizer_observer([this, &tree](uint32_t node, int side) {
+    if (m_copy_of != &tree || node >= m_slot.size() || m_slot[node] == kNoLink) return;
+    m_nodes[m_slot[node] >> 2].realizer[m_slot[node] & 3][side] = tree.realizer(node, side);
+  });
+}
+
+void FrameBoxes::copy_realizers(const KineticBvh& tree) {
+  for (uint32_t k = 0; k < m_nodes.size(); ++k) {
+    Node& n = m_nodes[k];
+    n.present = 0;
+    for (int c = 0; c < 4; ++c) {
+      if (((n.used >> c) & 1) == 0) continue;
+      const uint32_t i = m_children[k][size_t(c)];
+      n.present |= uint32_t(tree.active(i)) << c;
+      for (int s = 0; s < 6; ++s) n.realizer[c][s] = tree.realizer(i, s);
+    }
+  }
+  m_copy_of = &tree;
+  m_copy_presence = tree.presence_changes();
+}
+
 void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   m_kinetic = &tree;
   m_bottom_up = nullptr;
   prepare(tree.topology(), tree.meshes(), frame);
+  // The BoxTree's cuts read the tree's own realizers (box()); the AABB tree's nodes their copy,
+  // current when the observer has followed every change since it was made.
+  if (tree.shape() == TreeShape::aabb &&
+      (m_copy_of != &tree || m_tracked != &tree || m_copy_presence != tree.presence_changes()))
+    copy_realizers(tree);
   const TreeMeshes& meshes = tree.meshes();
   m_vertex_point.resize(meshes.vertex_count());
   m_margin_pad = float_up((frame.pad + 1e-30) * (1 + 0x1p-20));
@@ -337,12 +362,8 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
   // The triangle of a leaf link: true when it is hit before s_max (which then shrinks to it).
   auto hits = [&](uint32_t link) {
     const uint32_t tri = link & ~FrameBoxes::kLeaf;
-    if (tri == ray.skip) return false;
-    const auto& v = meshes.triangle(tri);
-    if (filter.misses(boxes.point(v[0]), boxes.point(v[1]), boxes.point(v[2]))) return false;
-    const std::optional<double> s = ray_triangle(ray.origin, ray.direction, boxes.position(v[0]),
-                                                 boxes.position(v[1]), boxes.position(v[2]));
-    if (!(s && *s > ray.s_min && *s < s_max)) return false;
+    const std::optional<double> s = boxes.triangle_hit(tri, ray, filter, s_max);
+    if (!s) return false;
     best = TreeHit{tri, *s};
     s_max = *s;
     wide.set_s_max(s_max);

@@ -78,6 +78,9 @@ class KineticBvh {
   }
   /// Some triangle below the node is present now.
   [[nodiscard]] bool active(uint32_t node) const { return m_node[node].active != 0; }
+  /// How many times some node's presence has changed since the build: a copy of the realizers
+  /// kept current by an observer (FrameBoxes) reads the presence again when this moved.
+  [[nodiscard]] uint64_t presence_changes() const { return m_presence_changes; }
   /// Side s of the node at t, from its realizer (t within the current segments).
   [[nodiscard]] double side_value(uint32_t node, int s, double t) const {
     return m_meshes.coordinate(m_node[node].realizer[size_t(s)], side_axis(s), t);
@@ -214,6 +217,7 @@ class KineticBvh {
   TreeStats m_stats;
   double m_mesh_event_seconds = 0;
   std::vector<RealizerObserver> m_observers;
+  uint64_t m_presence_changes = 0;
 };
 
 }  // namespace kinray

@@ -30,8 +30,10 @@ void KineticBvh::refresh_mesh(uint32_t m) {
   for (uint32_t k = m_mesh_node_begin[m]; k < m_mesh_node_begin[m + 1]; ++k) {
     const uint32_t i = m_mesh_nodes[k];
     const BvhNode& n = m_topology.nodes[i];
-    m_node[i].active =
+    const uint8_t active =
         n.leaf() ? m_meshes.present(m) : uint8_t(m_node[n.left].active | m_node[n.right].active);
+    if (active != m_node[i].active) ++m_presence_changes;
+    m_node[i].active = active;
     const uint8_t settled = moving ? settle_at_key(i) : 0;
     settled_total += kSidesIn[settled & 63u];
     const uint8_t rest = uint8_t(m_node[i].sides & ~settled);

@@ -6,6 +6,7 @@
 
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/frame_boxes.h"
+#include "kinetic/tree/frame_occlusion.h"
 #include "kinetic/tree/kinetic_bvh.h"
 #include "tests/kinetic/tree/tree_test_scenes.h"
 
@@ -42,6 +43,63 @@ TEST(FrameBoxes, QueriesMatchBruteForceAndTheLazyTraversal) {
                                         expect_frame_queries_match(tree, frame, rng, hits);
                                       });
   EXPECT_GT(hits, 1000);
+}
+
+TEST(FrameBoxes, InterleavedOcclusionAnswersAsOneRayAtATime) {
+  const test::TestScene scene = test::mixed_tree_scene(4);
+  std::mt19937 rng(23);
+  int blocked_total = 0, rays_total = 0;
+  test::for_each_tree_at_random_times(
+      scene, rng, 0.4, [&](const auto& tree, const TreeFrame& frame) {
+        FrameBoxes boxes;
+        boxes.fill(tree, frame);
+        // More rays than lanes, in a count that leaves lanes idle at the end; some skip the
+        // triangle they would hit first (the shadow rays' rule).
+        std::vector<TreeRay> rays(37 + rng() % 50);
+        for (TreeRay& ray : rays) {
+          ray = test::random_tree_ray(rng);
+          const auto first = frame_traverse(boxes, ray, false);
+          if (first && rng() % 3 == 0) ray.skip = first->triangle;
+        }
+        std::vector<uint8_t> blocked(rays.size(), 7);
+        frame_occluded(boxes, rays, blocked);
+        for (size_t i = 0; i < rays.size(); ++i) {
+          const bool expected = brute_force_closest_hit(tree.meshes(), rays[i], frame).has_value();
+          ASSERT_EQ(blocked[i], expected ? 1 : 0) << "ray " << i;
+          blocked_total += blocked[i];
+        }
+        rays_total += int(rays.size());
+      });
+  // Both answers occur often (the rays are aimed into the scene).
+  EXPECT_GT(blocked_total, rays_total / 10);
+  EXPECT_LT(blocked_total, rays_total * 9 / 10);
+}
+
+TEST(FrameBoxes, ATrackedCopyOfTheRealizersStaysTheTreesOwn) {
+  // The wide nodes' copy of the AABB tree's realizers, kept by its observer through events,
+  // keys and a mesh that appears and disappears, gives the boxes of a copy made afresh.
+  const test::TestScene scene = test::mixed_tree_scene(11);
+  KineticBvh aabb(scene.input().meshes, 0, KineticBvh::Config{TreeShape::aabb, false});
+  FrameBoxes tracked;
+  tracked.track(aabb);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> dt(0, 0.15);
+  int compared = 0;
+  for (double t = 0; t < 3.4; t += dt(rng)) {
+    aabb.advance_to(t);
+    const TreeFrame frame(aabb.meshes(), t);
+    tracked.fill(aabb, frame);
+    FrameBoxes fresh;
+    fresh.fill(aabb, frame);
+    for (uint32_t i = 1; i < aabb.topology().nodes.size(); ++i) {
+      const auto a = tracked.box_of(i), b = fresh.box_of(i);
+      ASSERT_EQ(a.has_value(), b.has_value());
+      if (!a) continue;
+      ASSERT_EQ(*a, *b) << "node " << i << " at t = " << t;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 10000);
 }
 
 TEST(FrameBoxes, FloatBoxesContainTheKineticBoxes) {
