@@ -272,10 +272,25 @@ std::optional<std::array<float, 6>> FrameBoxes::box_of(uint32_t i) const {
 
 void FrameBoxes::track(KineticBvh& tree) {
   m_tracked = &tree;
+  m_changes.clear();
+  m_changes_dropped = true;  // what happened before this call is unknown: the next fill copies
   tree.add_realizer_observer([this, &tree](uint32_t node, int side) {
-    if (m_copy_of != &tree || node >= m_slot.size() || m_slot[node] == kNoLink) return;
-    m_nodes[m_slot[node] >> 2].realizer[m_slot[node] & 3][side] = tree.realizer(node, side);
+    if (m_changes_dropped) return;
+    if (m_changes.size() >= tree.topology().nodes.size()) {  // more than copying afresh
+      m_changes.clear();
+      m_changes_dropped = true;
+      return;
+    }
+    m_changes.push_back({node, uint32_t(side), tree.realizer(node, side)});
   });
+}
+
+void FrameBoxes::apply_changes() {
+  for (const RealizerChange& c : m_changes) {
+    const uint32_t slot = m_slot[c.node];
+    if (slot != kNoLink) m_nodes[slot >> 2].realizer[slot & 3][c.side] = c.realizer;
+  }
+  m_changes.clear();
 }
 
 void FrameBoxes::copy_realizers(const KineticBvh& tree) {
@@ -291,6 +306,8 @@ void FrameBoxes::copy_realizers(const KineticBvh& tree) {
   }
   m_copy_of = &tree;
   m_copy_presence = tree.presence_changes();
+  m_changes.clear();
+  m_changes_dropped = false;
 }
 
 void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
@@ -299,9 +316,13 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   prepare(tree.topology(), tree.meshes(), frame);
   // The BoxTree's cuts read the tree's own realizers (box()); the AABB tree's nodes their copy,
   // current when the observer has followed every change since it was made.
-  if (tree.shape() == TreeShape::aabb &&
-      (m_copy_of != &tree || m_tracked != &tree || m_copy_presence != tree.presence_changes()))
-    copy_realizers(tree);
+  if (tree.shape() == TreeShape::aabb) {
+    if (m_copy_of != &tree || m_tracked != &tree || m_changes_dropped ||
+        m_copy_presence != tree.presence_changes())
+      copy_realizers(tree);
+    else
+      apply_changes();
+  }
   const TreeMeshes& meshes = tree.meshes();
   m_vertex_point.resize(meshes.vertex_count());
   m_margin_pad = float_up((frame.pad + 1e-30) * (1 + 0x1p-20));
