@@ -111,6 +111,7 @@ class FrameBoxes {
   [[nodiscard]] size_t memory_bytes() const {
     return m_nodes.capacity() * sizeof(Node) + m_slot.capacity() * sizeof(uint32_t) +
            m_children.capacity() * sizeof(m_children[0]) +
+           m_changes.capacity() * sizeof(RealizerChange) +
            m_vertex_point.capacity() * sizeof(m_vertex_point[0]);
   }
 
