@@ -316,6 +316,7 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
   prepare(tree.topology(), tree.meshes(), frame);
   // The BoxTree's cuts read the tree's own realizers (box()); the AABB tree's nodes their copy,
   // current when the observer has followed every change since it was made.
+  m_prefetch_lines = tree.shape() == TreeShape::aabb ? 4 : 2;
   if (tree.shape() == TreeShape::aabb) {
     if (m_copy_of != &tree || m_tracked != &tree || m_changes_dropped ||
         m_copy_presence != tree.presence_changes())
@@ -351,6 +352,7 @@ void FrameBoxes::fill(const KineticBvh& tree, const TreeFrame& frame) {
 void FrameBoxes::fill(const BottomUpBvh& tree, const TreeFrame& frame) {
   m_kinetic = nullptr;
   m_bottom_up = &tree;
+  m_prefetch_lines = 2;
   prepare(tree.topology(), tree.meshes(), frame);
   m_vertex_point.resize(tree.meshes().vertex_count());
   for (uint32_t v = 0; v < m_vertex_point.size(); ++v) {
@@ -360,7 +362,7 @@ void FrameBoxes::fill(const BottomUpBvh& tree, const TreeFrame& frame) {
   if (!tree.topology().nodes.empty()) set_root_box(box(0, kEverywhere));
 }
 
-std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ray, bool any) {
+std::optional<TreeHit> frame_closest_hit(const FrameBoxes& boxes, const TreeRay& ray) {
   if (boxes.root_link() == FrameBoxes::kNoLink) return std::nullopt;
   const TreeMeshes& meshes = boxes.meshes();
   WideRay wide(ray.origin, ray.direction, ray.s_min, ray.s_max);
@@ -380,22 +382,18 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
   float s_high = wide.scaled_up(s_max);
   // Most triangles a ray reaches it misses: decided from the frame's float points where certain.
   const RayTriangleFilter filter(ray.origin, ray.direction, meshes.scale(), boxes.frame().pad);
-  // The triangle of a leaf link: true when it is hit before s_max (which then shrinks to it).
-  auto hits = [&](uint32_t link) {
-    const uint32_t tri = link & ~FrameBoxes::kLeaf;
-    const std::optional<double> s = boxes.triangle_hit(tri, ray, filter, s_max);
-    if (!s) return false;
-    best = TreeHit{tri, *s};
-    s_max = *s;
-    wide.set_s_max(s_max);
-    s_high = wide.scaled_up(s_max);
-    return true;
-  };
   while (top > 0) {
     const Entry cur = stack[--top];
     if (!(cur.entry <= s_high)) continue;  // a hit nearer than this box was found meanwhile
     if ((cur.link & FrameBoxes::kLeaf) != 0) {
-      if (hits(cur.link) && any) return best;
+      // The nearest hit so far, and s_max shrinks to it.
+      const uint32_t tri = cur.link & ~FrameBoxes::kLeaf;
+      const std::optional<double> s = boxes.triangle_hit(tri, ray, filter, s_max);
+      if (!s) continue;
+      best = TreeHit{tri, *s};
+      s_max = *s;
+      wide.set_s_max(s_max);
+      s_high = wide.scaled_up(s_max);
       continue;
     }
     const FrameBoxes::Node& n = boxes.node(cur.link);
@@ -407,20 +405,10 @@ std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ra
     for (; mask != 0; mask &= mask - 1) {
       const int k = std::countr_zero(mask);
       const uint32_t link = n.link[size_t(k)];
-      if ((link & FrameBoxes::kLeaf) != 0) {
-        // Any hit: a leaf met is tested at once, not pushed (any hit ends the query, so the
-        // order does not matter).
-        if (any) {
-          if (hits(link)) return best;
-          continue;
-        }
-      } else {
-        boxes.prefetch(link);  // loads while the rest is tested
-      }
-      // A closest-hit query pops the nearest child first (insertion, at most four).
+      if ((link & FrameBoxes::kLeaf) == 0) boxes.prefetch(link);  // loads while the rest is tested
+      // The nearest child is popped first (insertion, at most four).
       int j = top++;
-      if (!any)
-        for (; j > first && stack[j - 1].entry < entry[k]; --j) stack[j] = stack[j - 1];
+      for (; j > first && stack[j - 1].entry < entry[k]; --j) stack[j] = stack[j - 1];
       stack[j] = Entry{link, entry[k]};
     }
   }

@@ -76,10 +76,11 @@ class FrameBoxes {
       evaluate(k);
     return n;
   }
-  /// Starts loading wide node k's lines (a query about to visit it; not evaluated here).
+  /// Starts loading wide node k's lines (a query about to visit it; not evaluated here): its
+  /// boxes and links, and for the kinetic AABB tree the realizer copy its evaluation reads.
   void prefetch(uint32_t k) const {
     const char* line = reinterpret_cast<const char*>(&m_nodes[k]);
-    for (int l = 0; l < 4; ++l) __builtin_prefetch(line + 64 * l);
+    for (int l = 0; l < m_prefetch_lines; ++l) __builtin_prefetch(line + 64 * l);
   }
   /// The float box of binary node i when a wide node holds it (every node but the root and the
   /// inner nodes the collapse opened); nullopt otherwise.
@@ -139,6 +140,7 @@ class FrameBoxes {
   const KineticBvh* m_tracked = nullptr;  ///< the tree whose observer updates the copy
   const KineticBvh* m_copy_of = nullptr;  ///< the tree the wide nodes' realizers are copied from
   uint64_t m_copy_presence = 0;           ///< its presence_changes() at the copy
+  int m_prefetch_lines = 2;  ///< of a wide node: 4 where evaluation reads the realizer copy
   /// The realizer changes since the last fill, in order (node, side, new realizer): logged by
   /// the observer, a sequential write while the tree works on the node, and applied in one pass
   /// by fill(), a query cost: written straight into the wide nodes, each change was a missed
@@ -173,9 +175,9 @@ class FrameBoxes {
   float m_margin_pad = 0;
 };
 
-/// Closest hit (any = false) or any hit through the frame's boxes; the same answers as
-/// closest_hit / any_hit of tree_query.h on the tree they were filled from.
-[[nodiscard]] std::optional<TreeHit> frame_traverse(const FrameBoxes& boxes, const TreeRay& ray,
-                                                    bool any);
+/// The nearest hit through the frame's boxes: the same answer as closest_hit of tree_query.h on
+/// the tree they were filled from. Any-hit queries: frame_occluded (frame_occlusion.h).
+[[nodiscard]] std::optional<TreeHit> frame_closest_hit(const FrameBoxes& boxes,
+                                                       const TreeRay& ray);
 
 }  // namespace kinray

@@ -15,7 +15,7 @@ namespace {
 /// where the nodes miss every cache, a step some 30-60 ns of work).
 constexpr size_t kLanes = 8;
 /// A wide node pops one entry and pushes at most four: the stack holds at most three per level
-/// of the tree and one (frame_traverse's bound).
+/// of the tree and one (frame_closest_hit's bound).
 constexpr int kStackSize = 512;
 
 /// One ray's traversal: the wide nodes still to visit (an any-hit query keeps no entry

@@ -5,8 +5,8 @@
 // some 17 wide nodes of a 100,000-triangle tree and waits on memory at most of them (the nodes
 // of a frame do not fit in the 1 MB second-level caches of some of these machines, and
 // neighbouring shadow rays share only the top of their paths); one ray at a time leaves nothing
-// to do while a node loads. The same answers as frame_traverse(boxes, ray, true) for each ray:
-// whether a ray meets some triangle does not depend on the order its nodes are visited in.
+// to do while a node loads. Whether a ray meets some triangle does not depend on the order its
+// nodes are visited in, so the answers are any_hit's of tree_query.h on the same tree.
 #include <cstdint>
 #include <span>
 

@@ -23,9 +23,11 @@ void expect_frame_queries_match(const Tree& tree, const TreeFrame& frame, std::m
     const auto first = brute_force_closest_hit(tree.meshes(), ray, frame);
     if (first && rng() % 4 == 0) ray.skip = first->triangle;  // the shadow rays' rule
     const auto expected = brute_force_closest_hit(tree.meshes(), ray, frame);
-    const auto hit = frame_traverse(boxes, ray, false);
+    const auto hit = frame_closest_hit(boxes, ray);
     ASSERT_EQ(hit.has_value(), expected.has_value());
-    EXPECT_EQ(frame_traverse(boxes, ray, true).has_value(), expected.has_value());
+    uint8_t blocked = 7;
+    frame_occluded(boxes, std::span<const TreeRay>(&ray, 1), std::span<uint8_t>(&blocked, 1));
+    EXPECT_EQ(blocked, expected.has_value() ? 1 : 0);
     EXPECT_EQ(any_hit(tree, ray, frame), expected.has_value());  // the lazy traversal agrees
     if (!hit) continue;
     ++hits;
@@ -58,7 +60,7 @@ TEST(FrameBoxes, InterleavedOcclusionAnswersAsOneRayAtATime) {
         std::vector<TreeRay> rays(37 + rng() % 50);
         for (TreeRay& ray : rays) {
           ray = test::random_tree_ray(rng);
-          const auto first = frame_traverse(boxes, ray, false);
+          const auto first = frame_closest_hit(boxes, ray);
           if (first && rng() % 3 == 0) ray.skip = first->triangle;
         }
         std::vector<uint8_t> blocked(rays.size(), 7);
