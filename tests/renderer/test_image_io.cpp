@@ -2,12 +2,15 @@
 // files appear whole or not at all.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "renderer/image_io.h"
 #include "scenes/texture_image.h"
@@ -118,6 +121,27 @@ TEST(Srgb, EncodesTheStandardCurve) {
   for (int code = 0; code < 256; ++code)
     EXPECT_EQ(linear_to_srgb8(srgb_to_linear(uint8_t(code))), code);
   for (float x = 0; x < 1; x += 1e-3f) EXPECT_LE(linear_to_srgb8(x), linear_to_srgb8(x + 1e-3f));
+}
+
+// The encoder's bucket table against the curve's definition: the code of x is the number of
+// decision points srgb_decode((c + 0.5) / 255) at or below it. Checked on both sides of every
+// decision point (where a wrong bucket would show first), at the ends of the range and at a
+// million random floats in (0, 1), spread over every exponent.
+TEST(Srgb, BucketTableIsTheDefinition) {
+  std::vector<float> points;
+  for (int c = 0; c < 255; ++c) points.push_back(srgb_decode((c + 0.5) / 255.0));
+  auto definition = [&](float x) {
+    if (!(x > 0.0f)) return 0;
+    return int(std::upper_bound(points.begin(), points.end(), x) - points.begin());
+  };
+  std::vector<float> xs = {std::numeric_limits<float>::denorm_min(), 1e-30f, 0.99999994f, 1.0f,
+                           std::numeric_limits<float>::infinity()};
+  for (const float p : points)
+    for (const float x : {std::nextafter(p, 0.0f), p, std::nextafter(p, 2.0f)}) xs.push_back(x);
+  std::mt19937 random(7);
+  std::uniform_int_distribution<uint32_t> bits(1, 0x3F7FFFFF);  // the positive floats below 1
+  for (int k = 0; k < 1'000'000; ++k) xs.push_back(std::bit_cast<float>(bits(random)));
+  for (const float x : xs) ASSERT_EQ(int(linear_to_srgb8(x)), definition(x)) << "x = " << x;
 }
 
 TEST_F(ImageIo, BadFilesAreInputErrorsNamingThePath) {
