@@ -150,8 +150,9 @@ class KineticBackend final : public Backend {
   /// How many planned frames to render in the next batch, judged by the last frame's events; 0:
   /// none. A batch keeps each band's events in cache over its frames, but its frames' buffers
   /// are written out to memory (streamed), where one frame at a time stays in cache for the
-  /// caller: worth it when a frame has many events for its pixels (at least one per 192: on
-  /// wavy-sphere at 512x512 one per 128 pays, one per 256 does not). Long enough for a band's
+  /// caller: worth it when a frame has many events for its pixels (at least one per 384: on
+  /// wavy-sphere at 512x512 one per 256 pays, 0.86-0.96 -> 0.82-0.84 ms a frame, one per 512
+  /// is a wash, 0.64 either way; session 29). Long enough for a band's
   /// run of events to reuse what it fetched, short enough that the bands, handed out whole,
   /// share the threads evenly (docs/kinetic_grid.md, "Frames in batches").
   [[nodiscard]] size_t batch_length() const {
@@ -203,7 +204,7 @@ class KineticBackend final : public Backend {
 
   static constexpr size_t kAheadBytes = size_t(256) << 20;
   static constexpr size_t kMaxFramesAhead = 64;
-  static constexpr size_t kPixelsPerBatchedEvent = 192;
+  static constexpr size_t kPixelsPerBatchedEvent = 384;
   static constexpr uint64_t kEventsPerBatch = uint64_t(1) << 18;
 
   const CameraSpaceScene& m_scene;
