@@ -49,14 +49,17 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
     std::vector<Vec3> origins;
     std::vector<HitShadowRays> pixels;
     std::vector<ShadowRay> rays;
+    RowTriangles triangles(scene, frame.time);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
       if (frame.object[p] == kNoHit) {
         frame.color[p] = kBackgroundColor;
         continue;
       }
+      const TriangleAtInstant& triangle = triangles.at(frame.object[p], frame.prim[p]);
+      const Vec3 d = image.direction(i, j);
       const SurfacePoint& s = surfaces.emplace_back(
-          surface_point(scene, image, i, j, frame.object[p], frame.prim[p], frame.time));
+          surface_point(triangle, d, view_direction(d, triangle.tan_half_fov)));
       const Vec3& origin = origins.emplace_back(plane_hit(s.ray, s.p0, s.p1, s.p2));
       HitShadowRays& pixel = pixels.emplace_back(HitShadowRays{i, rays.size(), 0u});
       for (size_t l = 0; l < at_t.size(); ++l)

@@ -166,11 +166,16 @@ void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {
   const PixelRays image{frame.width, frame.height};
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
+    RowTriangles triangles(scene, frame.time);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
-      frame.color[p] = frame.object[p] == kNoHit ? kBackgroundColor
-                                                 : shade_hit(scene, image, i, j, frame.object[p],
-                                                             frame.prim[p], frame.time);
+      if (frame.object[p] == kNoHit) {
+        frame.color[p] = kBackgroundColor;
+        continue;
+      }
+      const TriangleAtInstant& triangle = triangles.at(frame.object[p], frame.prim[p]);
+      const Vec3 d = image.direction(i, j);
+      frame.color[p] = headlight_color(triangle, d, view_direction(d, triangle.tan_half_fov));
     }
   });
 }

@@ -100,5 +100,53 @@ TEST(Shading, ATriangleAtAnInstantShadesEveryRayAsTheWholeComputation) {
   }
 }
 
+/// shade_frame on a frame whose hits come in runs (of a triangle, of an object, of background)
+/// of random lengths, at a random time: every pixel is the reference's colour bit for bit.
+void check_frame(const Scene& scene, uint32_t seed) {
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  std::mt19937 rng(seed);
+  Frame frame;
+  frame.resize(64, 48);
+  const auto [first, last] = std::pair{scene.key_times().front(), scene.key_times().back()};
+  frame.time = first + (last - first) * std::uniform_real_distribution<double>(0, 1)(rng);
+  uint32_t object = 0, prim = 0;
+  for (size_t p = 0; p < frame.pixel_count();) {
+    const size_t run = 1 + rng() % 6;
+    const uint32_t pick = uint32_t(rng() % 8);
+    if (pick == 0 || scene.objects[object].triangles.empty()) {
+      object = uint32_t(rng() % cs.objects.size());
+      prim = 0;
+    }
+    const auto& triangles = scene.objects[object].triangles;
+    const bool background = pick == 1 || triangles.empty();
+    if (!triangles.empty()) prim = uint32_t(rng() % triangles.size());
+    for (size_t k = 0; k < run && p < frame.pixel_count(); ++k, ++p) {
+      frame.object[p] = background ? kNoHit : object;
+      frame.prim[p] = background ? kNoHit : prim;
+    }
+  }
+  shade_frame(cs, frame, 2);
+  const PixelRays image{frame.width, frame.height};
+  for (int j = 0; j < frame.height; ++j)
+    for (int i = 0; i < frame.width; ++i) {
+      const size_t p = frame.index(i, j);
+      const Color expected =
+          frame.object[p] == kNoHit
+              ? kBackgroundColor
+              : headlight_reference(cs, image, i, j, frame.object[p], frame.prim[p], frame.time);
+      ASSERT_TRUE(same_bits(frame.color[p], expected)) << "pixel " << i << "," << j;
+    }
+}
+
+TEST(Shading, AFrameShadesEveryPixelAsTheWholeComputation) {
+  for (uint32_t seed = 1; seed <= 4; ++seed) {
+    check_frame(make_builtin_scene("wavy-sphere", {{"triangles", 2000}}), seed);
+    check_frame(make_builtin_scene("orbit"), seed);
+  }
+  const fs::path textured = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+  if (!fs::exists(textured)) GTEST_SKIP() << textured << " is not installed";
+  check_frame(load_model(textured.string()), 5);
+}
+
 }  // namespace
 }  // namespace kinray
