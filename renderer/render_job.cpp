@@ -243,7 +243,8 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
 }
 
 const RenderTimings& RenderJob::run(Backend& backend,
-                                    const std::function<void(size_t, const Frame&)>& sink) {
+                                    const std::function<void(size_t, const Frame&)>& sink,
+                                    BackgroundWrites* writes) {
   Progress progress(m_slice.size(), !m_params.quiet && Progress::stderr_is_terminal());
   Frame frame;
   frame.resize(m_params.width, m_params.height);
@@ -254,9 +255,15 @@ const RenderTimings& RenderJob::run(Backend& backend,
     render_frame(backend, index, frame);
     const double start = now_s();
     if (sink) sink(index, frame);
+    if (writes != nullptr) writes->submit(index, frame);
     m_timings.write += now_s() - start;
     ++m_timings.frames;
     progress.update(index + 1 - m_slice.begin);
+  }
+  if (writes != nullptr) {
+    const double start = now_s();
+    writes->finish();
+    m_timings.write += now_s() - start;
   }
   progress.finish();
   m_timings.total = now_s() - m_started;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/backend.h"
+#include "renderer/background_writes.h"
 #include "renderer/camera_flags.h"
 #include "renderer/frame.h"
 #include "renderer/frame_schedule.h"
@@ -84,7 +85,7 @@ struct RenderTimings {
   double setup = 0;   ///< creating the backend
   double render = 0;  ///< Backend::render
   double shade = 0;   ///< shade_frame
-  double write = 0;   ///< the frame sink (files, video)
+  double write = 0;   ///< the frame sink and the wait for the background writes (files, video)
   double total = 0;   ///< wall time from the start of the job to the end of the loop
 };
 
@@ -121,11 +122,14 @@ class RenderJob {
   /// render).
   void render_frame(Backend& backend, size_t index, Frame& frame);
   /// The frame loop: every frame time of slice() in order (the index handed to `sink` is the one
-  /// in the whole schedule), rendered, shaded and handed to `sink` (timed as
-  /// "write"), with a progress bar on stderr when it is a terminal and params().quiet is false.
+  /// in the whole schedule), rendered, shaded and handed to `sink`, then to `writes` when given
+  /// (its files written while the next frame renders, the last ones before run returns; a write's
+  /// error is rethrown by the loop). Both are timed as "write": for `writes`, the time the loop
+  /// waited for it. A progress bar on stderr when it is a terminal and params().quiet is false.
   /// Returns the timings of the whole job.
   const RenderTimings& run(Backend& backend,
-                           const std::function<void(size_t index, const Frame&)>& sink);
+                           const std::function<void(size_t index, const Frame&)>& sink,
+                           BackgroundWrites* writes = nullptr);
 
  private:
   RenderParams m_params;

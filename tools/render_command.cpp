@@ -13,6 +13,7 @@
 #include <system_error>
 #include <utility>
 
+#include "renderer/background_writes.h"
 #include "renderer/image_io.h"
 #include "renderer/option_scope.h"
 #include "renderer/output_check.h"
@@ -143,19 +144,24 @@ void run_render(const RenderParams& flags) {
     writer((folder / name).string(), frame);
     written.push_back(name);
   };
+  // A frame's files are written while the next one renders (renderer/background_writes.h);
+  // `written` is read only after run has waited for the last of them.
+  BackgroundWrites writes([&](size_t index, const Frame& frame) {
+    write(numbered_file("frame", index, ".png"), write_color_png, frame);
+    if (write_id) write(numbered_file("id", index, ".png"), write_id_png, frame);
+    if (write_depth) write(numbered_file("depth", index, ".tiff"), write_depth_tiff, frame);
+    if (video) video->write(frame);
+  });
   KineticForecast forecast;
-  const RenderTimings& timings = job.run(*backend, [&](size_t index, const Frame& frame) {
+  const auto frame_done = [&](size_t index, const Frame&) {
     if (index == job.slice().begin) status.finish();  // the job's bar takes the line from here
     if (kinetic && !params.quiet)
       if (const std::optional<RenderForecast> slow = forecast.frame_done(job, index)) {
         status.finish();  // the bar's line, drawn again at the next frame
         warn(forecast_warning(*slow));
       }
-    write(numbered_file("frame", index, ".png"), write_color_png, frame);
-    if (write_id) write(numbered_file("id", index, ".png"), write_id_png, frame);
-    if (write_depth) write(numbered_file("depth", index, ".tiff"), write_depth_tiff, frame);
-    if (video) video->write(frame);
-  });
+  };
+  const RenderTimings& timings = job.run(*backend, frame_done, &writes);
   status.finish();  // already cleared by the bar: only marks the note as gone
   if (video) video->close();
   if (!params.stats.empty()) {
