@@ -12,11 +12,6 @@ ShadingInstant shading_instant(const CameraSpaceScene& scene, uint32_t object, d
   return {locate(scene.objects[object].key_times, t), scene.tan_half_fov(t)};
 }
 
-SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
-                           uint32_t object, uint32_t prim, double t) {
-  return surface_point(scene, image, i, j, object, prim, shading_instant(scene, object, t));
-}
-
 TriangleOverSegment::TriangleOverSegment(const CameraSpaceScene& scene, uint32_t object,
                                          uint32_t prim, size_t k)
     : m_object(object), m_prim(prim), m_k(k) {

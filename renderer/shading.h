@@ -3,7 +3,6 @@
 // ray hits; the colour is computed here from (object, prim) alone, so frames whose ID buffers
 // agree have identical colours.
 #include <array>
-#include <limits>
 
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
@@ -97,7 +96,8 @@ class TriangleOverSegment {
 /// once per run of its pixels and the triangle at that instant once per run of its own (the
 /// values of shading_instant and triangle_at_instant bit for bit: the same functions on the same
 /// values). Found again per pixel, the key search, the fov's tangent and the blend of the
-/// triangle's vertices were two thirds of a frame's shading.
+/// triangle's vertices cost a quarter of the shading (wavy-sphere at 40,000 triangles, 512x512,
+/// 385 frames: 1.7 -> 1.3 s).
 class RowTriangles {
  public:
   RowTriangles(const CameraSpaceScene& scene, double t) : m_scene(scene), m_t(t) {}
@@ -106,7 +106,7 @@ class RowTriangles {
     if (object != m_object) {
       m_object = object;
       m_instant = shading_instant(m_scene, object, m_t);
-      m_prim = std::numeric_limits<uint32_t>::max();
+      m_prim = kNoHit;
     }
     if (prim != m_prim) {
       m_prim = prim;
@@ -118,7 +118,7 @@ class RowTriangles {
  private:
   const CameraSpaceScene& m_scene;
   double m_t;
-  uint32_t m_object = std::numeric_limits<uint32_t>::max(), m_prim = m_object;
+  uint32_t m_object = kNoHit, m_prim = kNoHit;
   ShadingInstant m_instant;
   TriangleAtInstant m_triangle;
 };
@@ -142,10 +142,6 @@ class RowTriangles {
 [[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image,
                                          int i, int j, uint32_t object, uint32_t prim,
                                          const ShadingInstant& instant);
-
-/// The SurfacePoint of pixel (i, j) hitting (object, prim) at time t.
-[[nodiscard]] SurfacePoint surface_point(const CameraSpaceScene& scene, const PixelRays& image,
-                                         int i, int j, uint32_t object, uint32_t prim, double t);
 
 /// Base colour (or texture) with a two-sided headlight Lambert term, using vertex normals
 /// interpolated at the exact hit of pixel (i, j) on (object, prim) at time t.
