@@ -18,6 +18,7 @@
 
 #include "renderer/temporary_files.h"
 #include "scenes/texture_image.h"
+#include "util/image_signature.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -73,9 +74,16 @@ void resize_if_needed(Frame& frame, int width, int height) {
     frame.resize(width, height);
 }
 
-cv::Mat read_image(const std::string& path, int flags) {
+/// `path` decoded, once its first bytes show it is a `format` file: cv::imread would otherwise hand
+/// a misnamed file to whichever decoder claims it (util/image_signature.h says why that matters).
+cv::Mat read_image(const std::string& path, int flags, ImageSignature format) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) throw InputError(path, "no such file");
+  const ImageSignature found = image_signature_of_file(path);
+  if (found != format)
+    throw InputError(path, "not a " + std::string(image_signature_name(format)) + " file (it is " +
+                               (found == ImageSignature::other ? "" : "a ") +
+                               std::string(image_signature_name(found)) + ")");
   cv::Mat image;
   try {
     image = cv::imread(path, flags);
@@ -209,13 +217,13 @@ void write_depth_tiff(const std::string& path, const Frame& frame) {
 }
 
 cv::Mat read_color_png(const std::string& path) {
-  cv::Mat image = read_image(path, cv::IMREAD_COLOR);
+  cv::Mat image = read_image(path, cv::IMREAD_COLOR, ImageSignature::png);
   if (image.type() != CV_8UC3) throw InputError(path, "not an 8-bit colour image");
   return image;
 }
 
 void read_id_png(const std::string& path, Frame& frame) {
-  const cv::Mat image = read_image(path, cv::IMREAD_UNCHANGED);
+  const cv::Mat image = read_image(path, cv::IMREAD_UNCHANGED, ImageSignature::png);
   if (image.type() != CV_16UC3)
     throw InputError(path, "not an ID buffer (expected a 16-bit RGB PNG)");
   resize_if_needed(frame, image.cols, image.rows);
@@ -236,7 +244,7 @@ void read_id_png(const std::string& path, Frame& frame) {
 }
 
 void read_depth_tiff(const std::string& path, Frame& frame) {
-  const cv::Mat image = read_image(path, cv::IMREAD_UNCHANGED);
+  const cv::Mat image = read_image(path, cv::IMREAD_UNCHANGED, ImageSignature::tiff);
   if (image.type() != CV_32FC1)
     throw InputError(path, "not a depth buffer (expected a 32-bit float TIFF)");
   resize_if_needed(frame, image.cols, image.rows);

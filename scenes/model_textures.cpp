@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <span>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <system_error>
@@ -13,6 +14,7 @@
 #include "scenes/model_assimp.h"
 #include "scenes/model_tga.h"
 #include "scenes/texture_image.h"
+#include "util/image_signature.h"
 
 namespace kinray {
 
@@ -40,9 +42,18 @@ std::optional<Texture> from_embedded(const aiTexture& embedded, const std::strin
   }
   if (embedded.mHeight == 0) {  // a compressed file (png, jpg, tga, ...) of mWidth bytes
     const auto* data = reinterpret_cast<const uint8_t*>(embedded.pcData);
-    cv::Mat image = cv::imdecode(
-        cv::Mat(1, int(embedded.mWidth), CV_8UC1, const_cast<uint8_t*>(data)), cv::IMREAD_COLOR);
-    if (image.empty()) image = decode_tga({data, embedded.mWidth});
+    const std::span<const uint8_t> bytes(data, embedded.mWidth);
+    cv::Mat image;
+    if (opencv_may_decode(image_signature(bytes))) {
+      try {
+        image = cv::imdecode(
+            cv::Mat(1, int(embedded.mWidth), CV_8UC1, const_cast<uint8_t*>(data)),
+            cv::IMREAD_COLOR);
+      } catch (const cv::Exception&) {
+        image = cv::Mat();
+      }
+    }
+    if (image.empty()) image = decode_tga(bytes);
     return from_bgr(image, name, where);
   }
   if (size_t(embedded.mWidth) * size_t(embedded.mHeight) > kMaxTexels)
@@ -91,10 +102,12 @@ std::optional<Texture> read_texture(const aiScene& scene, const std::string& ref
     path = beside;
   }
   cv::Mat image;
-  try {
-    image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception&) {
-    image = cv::Mat();
+  if (opencv_may_decode(image_signature_of_file(path))) {
+    try {
+      image = cv::imread(path.string(), cv::IMREAD_COLOR);
+    } catch (const cv::Exception&) {
+      image = cv::Mat();
+    }
   }
   if (image.empty()) {  // OpenCV 4.6 reads no TGA
     std::ifstream file(path, std::ios::binary);

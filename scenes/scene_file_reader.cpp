@@ -20,6 +20,7 @@
 #include "scenes/procedural.h"
 #include "scenes/scene_file_keys.h"
 #include "scenes/texture_image.h"
+#include "util/image_signature.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -59,15 +60,21 @@ float to_float_channel(const JsonNode& node) {
 }
 
 Texture read_texture_file(const JsonNode& where, const fs::path& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error))
+    where.fail("cannot read texture " + path.string() +
+               (fs::exists(path, error) ? " (not a regular file)" : " (no such file)"));
+  if (!opencv_may_decode(image_signature_of_file(path)))
+    where.fail("cannot read texture " + path.string() + " (not a " +
+               std::string(kDecodableImageFormats) + " file)");
   cv::Mat image;
   try {
-    if (fs::is_regular_file(path)) image = cv::imread(path.string(), cv::IMREAD_COLOR);
+    image = cv::imread(path.string(), cv::IMREAD_COLOR);
   } catch (const cv::Exception& error) {
     where.fail("cannot decode texture " + path.string() + ": " + error.what());
   }
   if (image.empty())
-    where.fail("cannot read texture " + path.string() +
-               (fs::exists(path) ? " (not an image OpenCV can decode)" : " (no such file)"));
+    where.fail("cannot read texture " + path.string() + " (not an image OpenCV can decode)");
   if (size_t(image.cols) * size_t(image.rows) > kMaxTexels)
     where.fail("texture " + path.string() + " has more than 8192 x 8192 texels");
   if (image.depth() != CV_8U) image.convertTo(image, CV_8U, 1.0 / 256);

@@ -155,7 +155,18 @@ TEST_F(ImageIo, BadFilesAreInputErrorsNamingThePath) {
   const Frame written = random_frame(8, 8, 5);
   write_color_png(path("colour.png"), written);
   EXPECT_THROW(read_id_png(path("colour.png"), frame), InputError);
-  EXPECT_THROW(read_depth_tiff(path("colour.png"), frame), InputError);
+  try {
+    read_depth_tiff(path("colour.png"), frame);
+    FAIL() << "a PNG is not a depth TIFF";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("colour.png: not a TIFF file (it is a PNG)"),
+              std::string::npos)
+        << e.what();
+  }
+  // A file named .tiff whose bytes another decoder claims (a JPEG 2000 codestream holding a DICOM
+  // tag, found by fuzzing: gdcm aborted the process on it) is refused before any decoder sees it.
+  write_file_atomically(path("dicom.tiff"), std::string("\xff\x4f\xff\x01\0\0\0\x51" "DICM", 12));
+  EXPECT_THROW(read_depth_tiff(path("dicom.tiff"), frame), InputError);
   write_file_atomically(path("garbage.png"), "not a png at all");
   EXPECT_THROW((void)read_color_png(path("garbage.png")), InputError);
   // A write that fails is the machine's failure (exit status 1), not bad input: commands check

@@ -351,6 +351,19 @@ TEST_F(SceneFile, MistakesNameTheFileTheKeyAndTheProblem) {
   }
 }
 
+TEST_F(SceneFile, ATextureOpenCvMustNotDecodeIsAnInputError) {
+  // An OpenEXR header under a .png name: OpenCV would hand it to OpenEXR, whose decoders abort on
+  // malformed input, so the reader refuses any file that is not one of the formats it names.
+  write("fake.png", std::string("\x76\x2f\x31\x01\x02\0\0\0", 8));
+  const std::string message = error_of(R"({"shot": {"begin": 0, "end": 1},
+    "camera": {"keys": [{"position": [0, 0, -5], "look_at": [0, 0, 0]}]},
+    "materials": [{"texture": "fake.png"}], "objects": []})");
+  EXPECT_NE(message.find("/materials/0/texture:"), std::string::npos) << message;
+  EXPECT_NE(message.find("fake.png (not a PNG, JPEG, BMP, TIFF, PNM or WebP file)"),
+            std::string::npos)
+      << message;
+}
+
 TEST_F(SceneFile, MissingFileIsAnInputError) {
   const std::string path = (m_dir / "absent.json").string();
   try {
