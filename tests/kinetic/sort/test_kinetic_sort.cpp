@@ -696,7 +696,9 @@ TEST(KineticSortLinear, ReplacementsFromSeparatorsAreEraseThenInsert) {
       ASSERT_NO_FATAL_FAILURE(lists.expect_replaced(from, to, t));
     }
     EXPECT_EQ(lists.a.stats().events(), lists.b.stats().events()) << size;
-    if (size > 2) EXPECT_GT(lists.a.stats().events(), 5u);  // swaps between the hand-overs
+    if (size > 2) {
+      EXPECT_GT(lists.a.stats().events(), 5u);  // swaps between the hand-overs
+    }
     EXPECT_GT(replacements, 300) << size;
     // A pair is apart about half of the time (its separator then serves), seven mostly.
     EXPECT_GT(keys.beside_proved, size == 2 ? 80 : 300) << size;
