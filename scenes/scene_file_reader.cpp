@@ -70,8 +70,8 @@ Texture read_texture_file(const JsonNode& where, const fs::path& path) {
   cv::Mat image;
   try {
     image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  } catch (const cv::Exception& error) {
-    where.fail("cannot decode texture " + path.string() + ": " + error.what());
+  } catch (const cv::Exception& decode_error) {
+    where.fail("cannot decode texture " + path.string() + ": " + decode_error.what());
   }
   if (image.empty())
     where.fail("cannot read texture " + path.string() + " (not an image OpenCV can decode)");

@@ -34,7 +34,7 @@ void positions_at(const Object& object, double t, std::vector<Vec3>& out) {
 struct SegmentMeshes {
   std::vector<std::vector<Vec3>> start, finish;
   std::vector<VertexTriangles> around;  ///< per selected object, built once
-  std::vector<MeshSegment> meshes;
+  std::vector<MeshSweep> meshes;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
 };
 
@@ -75,7 +75,7 @@ void swept_segment(SegmentMeshes& s, std::vector<SweptVolumeHierarchy>& hierarch
   for (int c = 0; c < checks; ++c) {
     const double u0 = double(c) / checks, u1 = double(c + 1) / checks;
     for (std::size_t i = 0; i < s.meshes.size(); ++i) {
-      const MeshSegment& m = s.meshes[i];
+      const MeshSweep& m = s.meshes[i];
       lo[i].resize(m.start.size());
       hi[i].resize(m.start.size());
       for (std::size_t v = 0; v < m.start.size(); ++v) {
@@ -186,7 +186,7 @@ SceneContacts find_scene_contacts(const Scene& scene, const CollideParams& param
     sort_contacts(result.contacts);
   } else {
     walk_segments(scene, objects, flightplans, times, s, [&](double t0, double t1) {
-      for (const auto& [i, j] : s.pairs)  // i == j: the same MeshSegment means self-contacts
+      for (const auto& [i, j] : s.pairs)  // i == j: the same MeshSweep means self-contacts
         brute_force_contacts(s.meshes[i], s.meshes[j], t0, t1, result.contacts, result.counters);
     });
     sort_contacts(result.contacts);

@@ -48,7 +48,7 @@ void KineticContactFinder::step_to(double t) {
   }
 }
 
-void KineticContactFinder::begin_segment(std::span<const MeshSegment> segments, double begin,
+void KineticContactFinder::begin_segment(std::span<const MeshSweep> segments, double begin,
                                          double end) {
   step_to(begin);
   m_segment_end = end;

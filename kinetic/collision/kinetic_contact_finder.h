@@ -26,7 +26,7 @@ class KineticContactFinder {
 
   /// Advances to `begin`, then begins the segment [begin, end]: segments[i] holds object i's
   /// positions at both ends (kept alive by the caller until the next segment begins).
-  void begin_segment(std::span<const MeshSegment> segments, double begin, double end);
+  void begin_segment(std::span<const MeshSweep> segments, double begin, double end);
   /// Advances to t (within the segment) and appends the contacts released so far, in time order.
   void advance_to(double t, std::vector<Contact>& out);
   /// Appends every contact not yet released (at the end of the window).

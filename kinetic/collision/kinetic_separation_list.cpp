@@ -329,7 +329,7 @@ void KineticSeparationList::schedule(uint32_t id, double time) {
 
 // ---- time ------------------------------------------------------------------------------------
 
-void KineticSeparationList::begin_segment(const MeshSegment& a, const MeshSegment& b,
+void KineticSeparationList::begin_segment(const MeshSweep& a, const MeshSweep& b,
                                           double time_begin, double time_end) {
   advance_to(time_begin);
   m_mesh_a = &a;

@@ -53,7 +53,7 @@ class KineticSeparationList {
 
   /// A flightplan segment [time_begin, time_end] begins (the trees are at time_begin): the meshes'
   /// positions at both ends, as every contact finder tests them. The first call traverses.
-  void begin_segment(const MeshSegment& a, const MeshSegment& b, double time_begin,
+  void begin_segment(const MeshSweep& a, const MeshSweep& b, double time_begin,
                      double time_end);
   /// Handles the trees' realizer changes reported since the last call and every event up to t.
   void advance_to(double t);
@@ -168,8 +168,8 @@ class KineticSeparationList {
   std::array<std::vector<uint32_t>, 2> m_head;  ///< per node of tree a / b: its first record
   std::vector<uint32_t> m_dirty;
 
-  const MeshSegment* m_mesh_a = nullptr;
-  const MeshSegment* m_mesh_b = nullptr;
+  const MeshSweep* m_mesh_a = nullptr;
+  const MeshSweep* m_mesh_b = nullptr;
   double m_segment_begin = 0, m_segment_end = 0;
   /// Per triangle pair tested on this segment: the (global) time up to which it was tested.
   TestedWindows m_tested_until;

@@ -10,8 +10,8 @@ auto key(const Contact& c) {
   return std::tie(c.time, c.type, c.objects, c.vertices);
 }
 
-PrimitiveMotion gather(const MeshSegment& first, std::span<const std::uint32_t> first_vertices,
-                       const MeshSegment& second, std::span<const std::uint32_t> second_vertices) {
+PrimitiveMotion gather(const MeshSweep& first, std::span<const std::uint32_t> first_vertices,
+                       const MeshSweep& second, std::span<const std::uint32_t> second_vertices) {
   PrimitiveMotion m;
   int i = 0;
   for (std::uint32_t v : first_vertices) {
@@ -46,8 +46,8 @@ void name_canonically(Contact& c, PrimitiveMotion& motion) {
   }
 }
 
-void test_pair(ContactType type, const MeshSegment& first, std::span<const std::uint32_t> fv,
-               const MeshSegment& second, std::span<const std::uint32_t> sv, double time_begin,
+void test_pair(ContactType type, const MeshSweep& first, std::span<const std::uint32_t> fv,
+               const MeshSweep& second, std::span<const std::uint32_t> sv, double time_begin,
                double time_end, std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                LocalWindow window) {
   const PrimitiveMotion motion = gather(first, fv, second, sv);
@@ -95,14 +95,14 @@ bool triangles_adjacent(const std::array<std::uint32_t, 3>& a,
   return false;
 }
 
-OwnedPrimitives tested_primitives(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+OwnedPrimitives tested_primitives(const MeshSweep& a, std::uint32_t ta, const MeshSweep& b,
                                   std::uint32_t tb) {
   if (!a.around || !b.around) return kAllPrimitives;
   return owned_primitives({a.triangles, a.around}, ta, {b.triangles, b.around}, tb,
                           a.object == b.object);
 }
 
-void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+void triangle_pair_contacts(const MeshSweep& a, std::uint32_t ta, const MeshSweep& b,
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window) {
@@ -110,7 +110,7 @@ void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSe
                          tested_primitives(a, ta, b, tb));
 }
 
-void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+void triangle_pair_contacts(const MeshSweep& a, std::uint32_t ta, const MeshSweep& b,
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window, OwnedPrimitives owned) {
@@ -139,7 +139,7 @@ void sort_contacts(std::vector<Contact>& contacts) {
   contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
 }
 
-void brute_force_contacts(const MeshSegment& a, const MeshSegment& b, double time_begin,
+void brute_force_contacts(const MeshSweep& a, const MeshSweep& b, double time_begin,
                           double time_end, std::vector<Contact>& out, ContactCounters& counters) {
   const bool self = &a == &b;
   ++counters.segments;

@@ -19,8 +19,9 @@ namespace kinray {
 /// object's own numbering) and every vertex's position at both ends. With the triangles around
 /// each vertex, a primitive pair is tested by its owner triangle pair alone (primitive_owners.h);
 /// without, by every triangle pair that meets it. Two sides with the same `object` are the
-/// object against itself.
-struct MeshSegment {
+/// object against itself. (Not `MeshSegment`: that is the grid's record of which segment a mesh
+/// is on, and two classes of one name in one namespace break the one-definition rule.)
+struct MeshSweep {
   std::uint32_t object = 0;
   std::span<const std::array<std::uint32_t, 3>> triangles;
   std::span<const Eigen::Vector3d> start, end;
@@ -61,20 +62,20 @@ struct ContactCounters {
 /// way (an edge-edge contact: each edge's smaller vertex id first, then the edge pair in
 /// (object, vertices) order), so that the same primitive pair met from two triangle pairs, or
 /// from either side, gives identical contacts, points included.
-void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+void triangle_pair_contacts(const MeshSweep& a, std::uint32_t ta, const MeshSweep& b,
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window = {});
 /// The same tests restricted to `owned` (owned_primitives' bits, whatever the segments carry):
 /// for a caller that keeps the pair's owners from one segment to the next.
-void triangle_pair_contacts(const MeshSegment& a, std::uint32_t ta, const MeshSegment& b,
+void triangle_pair_contacts(const MeshSweep& a, std::uint32_t ta, const MeshSweep& b,
                             std::uint32_t tb, double time_begin, double time_end,
                             std::vector<Contact>& out, PrimitiveCcdCounters& counters,
                             LocalWindow window, OwnedPrimitives owned);
 /// The primitive pairs triangle_pair_contacts tests for (ta, tb): the owned ones when both
 /// segments carry the triangles around their vertices, else all fifteen.
-[[nodiscard]] OwnedPrimitives tested_primitives(const MeshSegment& a, std::uint32_t ta,
-                                                const MeshSegment& b, std::uint32_t tb);
+[[nodiscard]] OwnedPrimitives tested_primitives(const MeshSweep& a, std::uint32_t ta,
+                                                const MeshSweep& b, std::uint32_t tb);
 
 /// Sorts contacts in time order and removes the repeats that arise when a vertex or an edge
 /// belongs to several tested triangle pairs.
@@ -82,7 +83,7 @@ void sort_contacts(std::vector<Contact>& contacts);
 
 /// Brute force: every triangle pair of a and b (or, when &a == &b, every non-adjacent pair of a
 /// with itself).
-void brute_force_contacts(const MeshSegment& a, const MeshSegment& b, double time_begin,
+void brute_force_contacts(const MeshSweep& a, const MeshSweep& b, double time_begin,
                           double time_end, std::vector<Contact>& out, ContactCounters& counters);
 
 }  // namespace kinray

@@ -7,7 +7,7 @@ namespace {
 constexpr std::uint32_t kLeafSize = 4;
 }  // namespace
 
-Eigen::AlignedBox3d swept_box(const MeshSegment& mesh, std::uint32_t t) {
+Eigen::AlignedBox3d swept_box(const MeshSweep& mesh, std::uint32_t t) {
   Eigen::AlignedBox3d box;
   for (std::uint32_t v : mesh.triangles[t]) {
     box.extend(mesh.start[v]);
@@ -44,7 +44,7 @@ std::uint32_t SweptVolumeHierarchy::build(std::uint32_t first, std::uint32_t cou
   return index;
 }
 
-void SweptVolumeHierarchy::update(const MeshSegment& mesh, double pad) {
+void SweptVolumeHierarchy::update(const MeshSweep& mesh, double pad) {
   const std::uint32_t n = static_cast<std::uint32_t>(mesh.triangles.size());
   m_boxes.resize(n);
   const Eigen::Vector3d grow = Eigen::Vector3d::Constant(pad);
@@ -74,8 +74,8 @@ void SweptVolumeHierarchy::update(const MeshSegment& mesh, double pad) {
   }
 }
 
-void SweptVolumeHierarchy::contacts(const SweptVolumeHierarchy& query, const MeshSegment& a,
-                                    const MeshSegment& b, double time_begin, double time_end,
+void SweptVolumeHierarchy::contacts(const SweptVolumeHierarchy& query, const MeshSweep& a,
+                                    const MeshSweep& b, double time_begin, double time_end,
                                     double window_begin, double window_end,
                                     std::vector<Contact>& out, ContactCounters& counters) const {
   const bool self = &query == this;

@@ -17,7 +17,7 @@ class SweptVolumeHierarchy {
   /// Swept boxes of `mesh`'s triangles on its interval (the collision check's), grown by `pad`:
   /// builds the tree on the first call, refits it (same topology, new boxes) on later calls with
   /// the same triangles.
-  void update(const MeshSegment& mesh, double pad = 0);
+  void update(const MeshSweep& mesh, double pad = 0);
 
   /// Contacts of the triangles of `query` (another hierarchy, or this one for the non-adjacent
   /// pairs of a mesh with itself) against this one's, whose boxes overlap: the primitive tests
@@ -25,7 +25,7 @@ class SweptVolumeHierarchy {
   /// one's), and keep the contacts whose time lies in [window_begin, window_end): the check
   /// interval's (-inf and +inf at the segment's ends), so that checks on sub-intervals find
   /// exactly the segment's contacts, each once.
-  void contacts(const SweptVolumeHierarchy& query, const MeshSegment& a, const MeshSegment& b,
+  void contacts(const SweptVolumeHierarchy& query, const MeshSweep& a, const MeshSweep& b,
                 double time_begin, double time_end, double window_begin, double window_end,
                 std::vector<Contact>& out, ContactCounters& counters) const;
 
@@ -44,6 +44,6 @@ class SweptVolumeHierarchy {
 
 /// The box swept by triangle t of `mesh` over its segment (linear motion stays in the box of
 /// the start and end positions).
-[[nodiscard]] Eigen::AlignedBox3d swept_box(const MeshSegment& mesh, std::uint32_t t);
+[[nodiscard]] Eigen::AlignedBox3d swept_box(const MeshSweep& mesh, std::uint32_t t);
 
 }  // namespace kinray

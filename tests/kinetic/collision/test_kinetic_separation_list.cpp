@@ -56,7 +56,7 @@ struct RandomScene {
     }
     return out;
   }
-  [[nodiscard]] MeshSegment segment(uint32_t o, size_t k) const {
+  [[nodiscard]] MeshSweep segment(uint32_t o, size_t k) const {
     const std::span<const V> all = positions[o];
     return {o, triangles[o], all.subspan(k * vertices, vertices),
             all.subspan((k + 1) * vertices, vertices), &around[o]};
@@ -75,7 +75,7 @@ std::vector<Contact> brute(const RandomScene& scene, bool self) {
   ContactCounters counters;
   const uint32_t n = uint32_t(scene.positions.size());
   for (size_t k = 0; k + 1 < scene.times.size(); ++k) {
-    std::vector<MeshSegment> segments;
+    std::vector<MeshSweep> segments;
     for (uint32_t o = 0; o < n; ++o) segments.push_back(scene.segment(o, k));
     for (const auto& [i, j] : all_pairs(n, self))
       brute_force_contacts(segments[i], segments[j], scene.times[k], scene.times[k + 1], out,
@@ -95,7 +95,7 @@ KslRun ksl(const RandomScene& scene, bool self, int checks, bool audit) {
   KineticContactFinder finder(scene.meshes(), all_pairs(n, self), scene.times[0], audit);
   KslRun run;
   for (size_t k = 0; k + 1 < scene.times.size(); ++k) {
-    std::vector<MeshSegment> segments;
+    std::vector<MeshSweep> segments;
     for (uint32_t o = 0; o < n; ++o) segments.push_back(scene.segment(o, k));
     const double t0 = scene.times[k], t1 = scene.times[k + 1];
     finder.begin_segment(segments, t0, t1);
@@ -141,7 +141,7 @@ TEST(KineticSeparationList, FrontEqualsAFreshTraversalAndAdjacentTrianglesAreNev
   std::vector<FlightplanMesh> meshes = scene.meshes();
   KineticBvh tree(meshes, 0, KineticBvh::Config{});
   KineticSeparationList list(tree, tree, 1e-12);
-  const MeshSegment segment = scene.segment(0, 0);
+  const MeshSweep segment = scene.segment(0, 0);
   list.begin_segment(segment, segment, 0, 0.5);
   // strictly between the start and the first event of the tree or the list
   const double t = 0.5 * std::min({tree.next_event_time(), list.next_event_time(), 0.5});

@@ -87,7 +87,7 @@ struct Sheets {
 
   [[nodiscard]] std::vector<Contact> contacts(bool self, const VertexTriangles* around,
                                               PrimitiveCcdCounters& counters) const {
-    std::vector<MeshSegment> meshes;
+    std::vector<MeshSweep> meshes;
     for (std::uint32_t o = 0; o < start.size(); ++o)
       meshes.push_back({o, triangles, start[o], end[o], around});
     std::vector<Contact> out;
