@@ -79,6 +79,8 @@ class KineticSeparationList {
   [[nodiscard]] const ContactCounters& counters() const { return m_counters; }
 
  private:
+  /// Tests corrupt a list's records through this to see the audit report it.
+  friend struct KineticSeparationListTestAccess;
   static constexpr uint32_t kNone = ~0u;
   enum class State : uint8_t { none, separated, leaf, expanded };
   struct Record {

@@ -125,6 +125,8 @@ class KineticBvh {
   [[nodiscard]] size_t memory_bytes() const;
 
  private:
+  /// Tests corrupt a tree's state through this to see the audit report it.
+  friend struct KineticBvhTestAccess;
   static constexpr uint64_t kMeshEvent = uint64_t{1} << 63;
   enum EventKind : uint32_t { kMeshKind = 0, kLeafKind = 1, kTreeKind = 2 };
 

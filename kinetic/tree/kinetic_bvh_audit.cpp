@@ -2,11 +2,29 @@
 // equals the box recomputed from its leaves at a time strictly between events").
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <string>
 
+#include "kinetic/core/audit_failure.h"
 #include "kinetic/tree/kinetic_bvh.h"
-#include "util/check.h"
 
 namespace kinray {
+namespace {
+
+/// Throws KineticAuditFailure naming the time, the place (a node and side, or the tree) and what
+/// does not hold, as the grid's and the separation list's audits do.
+[[noreturn]] void fail(double t, const std::string& where, const char* what) {
+  std::ostringstream message;
+  message.precision(17);
+  message << "kinetic tree audit at t = " << t << ", " << where << ": " << what;
+  throw KineticAuditFailure(message.str());
+}
+
+std::string node_side(uint32_t node, int side) {
+  return "node " + std::to_string(node) + (side >= 0 ? " side " + std::to_string(side) : "");
+}
+
+}  // namespace
 
 void KineticBvh::audit() const {
   m_sim.queue().audit();
@@ -19,14 +37,13 @@ void KineticBvh::audit() const {
   const size_t nodes = m_topology.nodes.size();
   std::vector<std::array<AuditExtreme, 6>> extreme(nodes);
   for (uint32_t i = uint32_t(nodes); i-- > 0;) audit_node(i, t, extreme);
-  KINRAY_CHECK_MSG(live_certificates() == m_live_total,
-                   "kinetic tree audit: live certificates miscounted");
+  if (live_certificates() != m_live_total) fail(t, "the tree", "live certificates miscounted");
   for (uint32_t m = 0; m < m_meshes.mesh_count(); ++m) {
     const double change = m_meshes.next_change(m, now);
-    KINRAY_CHECK_MSG(
-        m_mesh_event[m] == kNoEvent ? !std::isfinite(change)
-                                    : m_sim.queue().key(m_mesh_event[m]).time == change,
-        "kinetic tree audit: a mesh's next key, appearance or disappearance is not scheduled");
+    if (!(m_mesh_event[m] == kNoEvent ? !std::isfinite(change)
+                                      : m_sim.queue().key(m_mesh_event[m]).time == change))
+      fail(t, "mesh " + std::to_string(m),
+           "its next key, appearance or disappearance is not scheduled");
   }
 }
 
@@ -35,8 +52,11 @@ void KineticBvh::audit_node(uint32_t i, double t,
   const BvhNode& n = m_topology.nodes[i];
   const bool present = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
                                 : (m_node[n.left].active | m_node[n.right].active) != 0;
-  KINRAY_CHECK_MSG(present == (m_node[i].active != 0),
-                   "kinetic tree audit: wrong presence of a node");
+  int side = -1;  // the side being checked, for the report
+  const auto require = [&](bool holds, const char* what) {
+    if (!holds) fail(t, node_side(i, side), what);
+  };
+  require(present == (m_node[i].active != 0), "wrong presence of a node");
   // Two coordinates a + b (t - o) of vertices whose exact motions cross within the rounding of
   // that evaluation (about 2 eps scale each: |a| and |b (t - o)| are at most about 2 scale) can
   // come out in the other order: the tree orders vertices by its certificates, c0 + c1 (t - o)
@@ -44,6 +64,7 @@ void KineticBvh::audit_node(uint32_t i, double t,
   // (docs/kinetic_trees.md, "Audit").
   const double rounding = 8 * std::numeric_limits<double>::epsilon() * m_meshes.scale();
   for (int s = 0; s < 6; ++s) {
+    side = s;
     const int axis = side_axis(s), sign = side_sign(s);
     // The winner just after t, as update_side compares: beyond, or tied with the lower id.
     const auto winner = [&](uint32_t p, uint32_t q) {
@@ -65,23 +86,21 @@ void KineticBvh::audit_node(uint32_t i, double t,
     const EventHandle h = m_node[i].event[size_t(s)];
     const bool verified = ((m_node[i].verified >> s) & 1) != 0;
     if (((m_node[i].sides >> s) & 1) == 0 || !present) {
-      KINRAY_CHECK_MSG(r == kNoVertex && h == kNoEvent && !verified,
-                       "kinetic tree audit: an untracked side has a realizer");
+      require(r == kNoVertex && h == kNoEvent && !verified, "an untracked side has a realizer");
       continue;
     }
-    KINRAY_CHECK_MSG(r == e.vertex,
-                     "kinetic tree audit: a side differs from the extreme of its leaves");
+    require(r == e.vertex, "a side differs from the extreme of its leaves");
     // Its coordinate against the largest of the leaves' vertices, which may be another vertex's
     // only within the rounding of the two coordinates.
-    KINRAY_CHECK_MSG(e.largest - sign * m_meshes.coordinate(r, axis, t) <= rounding,
-                     "kinetic tree audit: a side's coordinate is below its leaves' extreme");
+    require(e.largest - sign * m_meshes.coordinate(r, axis, t) <= rounding,
+            "a side's coordinate is below its leaves' extreme");
     // The certificates: the realizer is beyond its competitors, and the earliest failure among
     // them is the scheduled event (none scheduled: none fails within the segments).
     double failure = kInfinityTime;
     auto check = [&](uint32_t q) {
       if (q == kNoVertex || q == r) return;
       const LinearCertificate c = m_meshes.beyond(r, q, axis, sign);
-      KINRAY_CHECK_MSG(c.sign_after(t) >= 0, "kinetic tree audit: a certificate does not hold");
+      require(c.sign_after(t) >= 0, "a certificate does not hold");
       failure = std::min(failure, c.failure_time(m_sim.now()));
     };
     // A verified side (the key pass compares it at the segment's end key only) holds by the
@@ -103,17 +122,14 @@ void KineticBvh::audit_node(uint32_t i, double t,
         check_key(q);
       }
     }
-    KINRAY_CHECK_MSG(
-        !verified || by_margin,
-        "kinetic tree audit: a verified side does not hold by the margin at both keys");
+    require(!verified || by_margin, "a verified side does not hold by the margin at both keys");
     if (h == kNoEvent) {
-      KINRAY_CHECK_MSG(!std::isfinite(failure),
-                       "kinetic tree audit: a failing certificate has no event");
+      require(!std::isfinite(failure), "a failing certificate has no event");
     } else {
       const double scheduled = m_sim.queue().key(h).time;
-      KINRAY_CHECK_MSG(std::isfinite(failure) &&
-                           std::fabs(failure - scheduled) <= 1e-9 * (1 + std::fabs(scheduled)),
-                       "kinetic tree audit: an event is not at its certificate's failure time");
+      require(std::isfinite(failure) &&
+                  std::fabs(failure - scheduled) <= 1e-9 * (1 + std::fabs(scheduled)),
+              "an event is not at its certificate's failure time");
     }
   }
 }

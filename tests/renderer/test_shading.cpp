@@ -9,8 +9,11 @@
 #include <filesystem>
 #include <random>
 
+#include "renderer/backend.h"
+#include "renderer/lighting.h"
 #include "renderer/shading.h"
 #include "scenes/camera_space.h"
+#include "scenes/camera_space_lights.h"
 #include "scenes/model_import.h"
 #include "scenes/procedural.h"
 
@@ -146,6 +149,98 @@ TEST(Shading, AFrameShadesEveryPixelAsTheWholeComputation) {
   const fs::path textured = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
   if (!fs::exists(textured)) GTEST_SKIP() << textured << " is not installed";
   check_frame(load_model(textured.string()), 5);
+}
+
+// Colours worked out by hand, not by a transcription of the shading: a square facing a camera
+// with a 90 degree field of view, 2 units in front of it, so that pixel (i, j)'s ray runs along
+// (x, y, -1) and meets the square's normal (0, 0, 1) at cos = 1 / sqrt(x^2 + y^2 + 1).
+Scene facing_square(std::vector<Light> lights) {
+  Scene scene;
+  scene.name = "facing-square";
+  Object square;
+  square.name = "square";
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  square.key_times = {0.0};
+  square.key_positions = {{Vec3(-4, -4, -2), Vec3(4, -4, -2), Vec3(4, 4, -2), Vec3(-4, 4, -2)}};
+  scene.objects = {square};
+  scene.materials = {Material{}};
+  scene.materials[0].base_color = Color(0.5f, 0.4f, 0.2f);
+  scene.camera.keys = {CameraKey{}};
+  scene.camera.keys[0].fov_y_degrees = 90;
+  scene.lights = std::move(lights);
+  scene.validate("facing-square");
+  return scene;
+}
+
+Frame render_square(const Scene& scene) {
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  BackendConfig config;
+  config.width = config.height = 64;
+  config.threads = 1;
+  std::unique_ptr<Backend> backend = make_backend("embree", cs, config);
+  Frame frame;
+  backend->render(0.0, frame);
+  if (scene.lights.empty())
+    shade_frame(cs, frame, 1);
+  else
+    shade_frame_lit(cs, CameraSpaceLights(scene), *backend->shadow_tracer(), frame, 1);
+  return frame;
+}
+
+TEST(Shading, AFacingSquareUnderTheHeadlightIsItsColourTimesTheCosine) {
+  const Scene scene = facing_square({});
+  const Frame frame = render_square(scene);
+  const PixelRays image{64, 64};
+  const Color base(0.5f, 0.4f, 0.2f);
+  int checked = 0;
+  for (const auto& [i, j] : {std::pair{32, 32}, {31, 31}, {0, 0}, {63, 10}, {5, 50}}) {
+    const size_t p = frame.index(i, j);
+    ASSERT_EQ(frame.object[p], 0u);
+    const double x = image.x(i), y = image.y(j);
+    const double cosine = 1 / std::sqrt(x * x + y * y + 1);  // the view ray against the normal
+    const Color expected = base * float(0.15 + 0.85 * cosine);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(frame.color[p][c], expected[c], 1e-5) << "pixel " << i << "," << j;
+    ++checked;
+  }
+  // at the image's centre the ray meets the square head on: the full base colour
+  const size_t centre = frame.index(32, 32);
+  EXPECT_NEAR(frame.color[centre][0], 0.5f, 2e-3);
+  EXPECT_EQ(checked, 5);
+}
+
+TEST(Shading, ALightAtSixtyDegreesGivesHalfItsDiffuseShare) {
+  // A directional light travelling along (0, -sin 60, -cos 60): towards the light is
+  // (0, sin 60, cos 60), 60 degrees from the normal, so every pixel of the square receives
+  // ambient + diffuse * cos 60 = 0.15 + 0.85 / 2 = 0.575 of its base colour. A light of
+  // colour (1, 0.5, 0) scales the diffuse share per channel.
+  const double angle = 60 * M_PI / 180;
+  Light light;
+  light.kind = Light::Kind::directional;
+  light.direction = Vec3(0, -std::sin(angle), -std::cos(angle));
+  for (const auto& [colour, factor] :
+       {std::pair{Color(1, 1, 1), Color(0.575f, 0.575f, 0.575f)},
+        std::pair{Color(1, 0.5f, 0), Color(0.575f, 0.15f + 0.85f * 0.25f, 0.15f)}}) {
+    light.color = colour;
+    const Frame frame = render_square(facing_square({light}));
+    // pixels off the square's diagonal: a pixel centre exactly on the edge two coplanar
+    // triangles share starts its shadow ray on both, and the other one may block it
+    for (const auto& [i, j] : {std::pair{32, 20}, {3, 50}, {60, 10}}) {
+      const size_t p = frame.index(i, j);
+      ASSERT_EQ(frame.object[p], 0u);
+      EXPECT_EQ(frame.lit[p], 1u) << "nothing stands between the square and the light";
+      const Color expected = Color(0.5f, 0.4f, 0.2f).cwiseProduct(factor);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(frame.color[p][c], expected[c], 1e-5) << "pixel " << i << "," << j;
+    }
+  }
+  // the same light from behind the square does not reach its visible side: ambient alone
+  light.color = Color(1, 1, 1);
+  light.direction = -light.direction;
+  const Frame behind = render_square(facing_square({light}));
+  const size_t p = behind.index(32, 20);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(behind.color[p][c], Color(0.5f, 0.4f, 0.2f)[c] * 0.15f, 1e-5);
 }
 
 }  // namespace

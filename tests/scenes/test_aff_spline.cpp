@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "scenes/aff_spline.h"
@@ -52,6 +53,48 @@ TEST(AffSpline, PassesThroughInnerKeysAndClampsOutside) {
   EXPECT_NEAR((spline.at(3) - p[3]).norm(), 0, 1e-12);
   EXPECT_EQ(spline.at(-5), spline.at(1));
   EXPECT_EQ(spline.at(10), spline.at(3));
+}
+
+/// Kochanek and Bartels (SIGGRAPH 1984), written from the paper: the cubic Hermite curve between
+/// keys i and i + 1 whose end tangents are the outgoing ("destination") tangent TD_i and the
+/// incoming ("source") tangent TS_{i+1}, each built from the chords around its key with that
+/// key's tension, continuity and bias and scaled for unequal key spacing (the paper's section 4).
+Vector3d kochanek_bartels(const std::vector<SplineKey>& k, size_t i, double u) {
+  const auto chord = [&](size_t a) { return Vector3d(k[a + 1].value - k[a].value); };
+  const SplineKey &ki = k[i], &kj = k[i + 1];
+  const double before = ki.time - k[i - 1].time, span = kj.time - ki.time,
+               after = k[i + 2].time - kj.time;
+  const Vector3d td =
+      (0.5 * (1 - ki.tension) * (1 + ki.continuity) * (1 + ki.bias)) * chord(i - 1) +
+      (0.5 * (1 - ki.tension) * (1 - ki.continuity) * (1 - ki.bias)) * chord(i);
+  const Vector3d ts = (0.5 * (1 - kj.tension) * (1 - kj.continuity) * (1 + kj.bias)) * chord(i) +
+                      (0.5 * (1 - kj.tension) * (1 + kj.continuity) * (1 - kj.bias)) * chord(i + 1);
+  const Vector3d out = td * (2 * span / (before + span)), in = ts * (2 * span / (span + after));
+  const double h00 = 2 * u * u * u - 3 * u * u + 1, h10 = u * u * u - 2 * u * u + u,
+               h01 = -2 * u * u * u + 3 * u * u, h11 = u * u * u - u * u;
+  return h00 * ki.value + h10 * out + h01 * kj.value + h11 * in;
+}
+
+TEST(AffSpline, BetweenKeysFollowsKochanekAndBartels) {
+  // Unequal spacing and a different tension, continuity and bias at every key.
+  const std::vector<Vector3d> p = {{0, 0, 0},  {1, 3, 0}, {2, 1, 5},
+                                   {4, 4, -2}, {5, 0, 1}, {7, 2, 2}};
+  std::vector<SplineKey> keys = position_keys({0, 1, 2.5, 3, 4.5, 5}, p);
+  const double tcb[6][3] = {{0.2, 0.1, -0.3},  {0.5, -0.3, 0.2}, {-0.4, 0.6, 0.7},
+                            {0.1, -0.8, -0.5}, {0.3, 0.2, 0.4},  {0, 0, 0}};
+  for (size_t i = 0; i < keys.size(); ++i)
+    std::tie(keys[i].tension, keys[i].continuity, keys[i].bias) =
+        std::tuple{tcb[i][0], tcb[i][1], tcb[i][2]};
+  const PositionSpline spline(keys);
+  int checked = 0;
+  for (size_t i = 1; i + 2 < keys.size(); ++i)
+    for (double u : {0.1, 0.25, 0.5, 0.7, 0.9}) {
+      const double t = keys[i].time + u * (keys[i + 1].time - keys[i].time);
+      EXPECT_NEAR((spline.at(t) - kochanek_bartels(keys, i, u)).norm(), 0, 1e-12)
+          << "piece " << i << " u=" << u;
+      ++checked;
+    }
+  EXPECT_EQ(checked, 15);
 }
 
 TEST(AffSpline, RotationStepsAboutOneAxisTurnUniformly) {

@@ -27,10 +27,12 @@ inline std::string read_text(const std::filesystem::path& path) {
 }
 
 /// Runs `kinray ARGS` with stdin closed; its output is captured through two files in `folder`
-/// (which must exist), removed afterwards.
-inline CommandRun run_kinray(const std::string& args, const std::filesystem::path& folder) {
+/// (which must exist), removed afterwards. `launcher`, when given, runs the program (e.g. as
+/// another user).
+inline CommandRun run_kinray(const std::string& args, const std::filesystem::path& folder,
+                             const std::string& launcher = "") {
   const std::filesystem::path out = folder / "stdout.txt", err = folder / "stderr.txt";
-  const std::string command = std::string("'") + KINRAY_BINARY + "' " + args + " </dev/null >'" +
+  const std::string command = launcher + " '" + KINRAY_BINARY + "' " + args + " </dev/null >'" +
                               out.string() + "' 2>'" + err.string() + "'";
   const int raw = std::system(command.c_str());
   CommandRun run;

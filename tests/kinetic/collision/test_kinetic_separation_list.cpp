@@ -5,11 +5,32 @@
 
 #include <algorithm>
 #include <random>
+#include <string>
 
 #include "kinetic/collision/kinetic_contact_finder.h"
 #include "kinetic/collision/mesh_contacts.h"
+#include "kinetic/core/audit_failure.h"
 
 namespace kinray {
+
+/// Corrupts a list's records behind its back, as a bug would.
+struct KineticSeparationListTestAccess {
+  /// Marks the first separated record as dirty (a realizer change never recertified), or drops
+  /// it from the list; returns its node pair.
+  static KslPair corrupt_separated(KineticSeparationList& list, bool drop) {
+    for (auto& r : list.m_records)
+      if (r.alive && r.state == KineticSeparationList::State::separated) {
+        if (drop)
+          r.state = KineticSeparationList::State::none;
+        else
+          r.dirty = true;
+        return {r.a, r.b, false};
+      }
+    ADD_FAILURE() << "no separated record";
+    return {};
+  }
+};
+
 namespace {
 
 using V = Eigen::Vector3d;
@@ -153,6 +174,38 @@ TEST(KineticSeparationList, FrontEqualsAFreshTraversalAndAdjacentTrianglesAreNev
     if (a.leaf() && b.leaf()) {
       EXPECT_FALSE(triangles_adjacent(tree.meshes().triangle(a.triangle),
                                       tree.meshes().triangle(b.triangle)));
+    }
+  }
+}
+
+// The audit the other tests run, shown to fail: a listed pair whose realizer change was never
+// recertified, and a separated pair taken off the list of separated ones, each reported with its
+// node pair.
+TEST(KineticSeparationList, AuditReportsACorruptedPairByItsNodes) {
+  const RandomScene scene(3, 1, 8, 3);
+  for (bool drop : {false, true}) {
+    SCOPED_TRACE(drop ? "dropped" : "dirty");
+    std::vector<FlightplanMesh> meshes = scene.meshes();
+    KineticBvh tree(meshes, 0, KineticBvh::Config{});
+    KineticSeparationList list(tree, tree, 1e-12);
+    const MeshSweep segment = scene.segment(0, 0);
+    list.begin_segment(segment, segment, 0, 0.5);
+    const double t = 0.5 * std::min({tree.next_event_time(), list.next_event_time(), 0.5});
+    ASSERT_NO_THROW(list.audit(t));
+    const KslPair pair = KineticSeparationListTestAccess::corrupt_separated(list, drop);
+    try {
+      list.audit(t);
+      ADD_FAILURE() << "the audit missed the corruption";
+    } catch (const KineticAuditFailure& failure) {
+      const std::string report = failure.what();
+      EXPECT_NE(
+          report.find("node pair (" + std::to_string(pair.a) + ", " + std::to_string(pair.b) + ")"),
+          std::string::npos)
+          << report;
+      // dirty: never recertified; dropped: taken for an overlapping pair, which it is not
+      EXPECT_NE(report.find(drop ? "overlapping pair is separated" : "not recertified"),
+                std::string::npos)
+          << report;
     }
   }
 }

@@ -3,12 +3,25 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
+#include "kinetic/core/audit_failure.h"
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/kinetic_bvh.h"
 #include "tests/kinetic/tree/tree_test_scenes.h"
 
 namespace kinray {
+
+/// Corrupts a tree behind its back, as a bug would.
+struct KineticBvhTestAccess {
+  static void set_realizer(KineticBvh& tree, uint32_t node, int side, uint32_t vertex) {
+    tree.m_node[node].realizer[size_t(side)] = vertex;
+  }
+  static void set_active(KineticBvh& tree, uint32_t node, bool active) {
+    tree.m_node[node].active = active ? 1 : 0;
+  }
+};
+
 namespace {
 
 using test::Vec;
@@ -182,6 +195,57 @@ TEST(KineticTree, MalformedMeshesThrow) {
   scene.meshes.push_back(
       test::moving_triangle({0.0, 1.0}, {{Vec(0, 0, 3), Vec(1, 0, 3), Vec(0, 1, 3)}}));
   EXPECT_THROW(make_tree(scene, TreeShape::aabb), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace kinray
+
+namespace kinray {
+namespace {
+
+// The audit is what the other tests lean on: shown here to catch a wrong realizer and a wrong
+// presence, naming the node and side, on both tree shapes.
+TEST(KineticTreeAudit, ACorruptedRealizerOrPresenceIsReportedWithItsNodeAndSide) {
+  const test::TestScene scene = test::mixed_tree_scene(4, 6);
+  for (TreeShape shape : {TreeShape::aabb, TreeShape::boxtree}) {
+    SCOPED_TRACE(shape == TreeShape::aabb ? "aabb" : "boxtree");
+    KineticBvh tree = make_tree(scene, shape, false);
+    tree.advance_to(0.3);
+    ASSERT_NO_THROW(tree.audit());
+    // the first tracked side of an inner node (a BoxTree's root tracks none)
+    uint32_t node = 0;
+    int side = 6;
+    for (; node < tree.topology().nodes.size() && side == 6; ++node) {
+      if (tree.topology().nodes[node].leaf()) continue;
+      side = 0;
+      while (side < 6 && tree.realizer(node, side) == kNoVertex) ++side;
+      if (side < 6) break;
+    }
+    ASSERT_LT(side, 6);
+    const uint32_t extreme = tree.realizer(node, side);
+    KineticBvhTestAccess::set_realizer(tree, node, side, extreme == 0 ? 1 : 0);
+    try {
+      tree.audit();
+      ADD_FAILURE() << "the audit missed a wrong realizer";
+    } catch (const KineticAuditFailure& failure) {
+      const std::string report = failure.what();
+      EXPECT_NE(report.find("node " + std::to_string(node) + " side " + std::to_string(side)),
+                std::string::npos)
+          << report;
+      EXPECT_NE(report.find("differs from the extreme of its leaves"), std::string::npos) << report;
+    }
+    KineticBvhTestAccess::set_realizer(tree, node, side, extreme);
+    ASSERT_NO_THROW(tree.audit());
+    const uint32_t root = 0;
+    KineticBvhTestAccess::set_active(tree, root, false);
+    try {
+      tree.audit();
+      ADD_FAILURE() << "the audit missed a wrong presence";
+    } catch (const KineticAuditFailure& failure) {
+      EXPECT_NE(std::string(failure.what()).find("wrong presence"), std::string::npos)
+          << failure.what();
+    }
+  }
 }
 
 }  // namespace
