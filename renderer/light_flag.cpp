@@ -43,6 +43,7 @@ Light parse_light_flag(const std::string& text) {
       fail(text, "the colour must be three finite numbers R,G,B >= 0");
     light.color = rgb->cast<float>();
   }
+  if (const std::optional<std::string> problem = light_problem(light)) fail(text, *problem);
   return light;
 }
 

@@ -40,6 +40,9 @@ void check_options_apply(const RenderParams& params, std::span<const std::string
   if (params.sort != defaults.sort)
     require_backend(backends, "kinetic", "--sort", "--sort " + std::string(depth_sort_name(params.sort)));
   if (params.audit) require_backend(backends, "kinetic", "--audit", "--audit");
+  if (params.shadow_tree != defaults.shadow_tree)
+    require_backend(backends, "kinetic", "--shadow-tree",
+                    "--shadow-tree " + std::string(shadow_tree_name(params.shadow_tree)));
   if (is_model_spec(params.scene)) return;
   const char* what = is_builtin_scene(params.scene.substr(0, params.scene.find(':')))
                          ? "a built-in scene"

@@ -100,9 +100,19 @@ void validate(const RenderParams& params) {
     throw OptionError("packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
   for (const std::string& aov : params.aov)
     if (const auto problem = not_one_of(aov, {"id", "depth"})) throw OptionError("aov", *problem);
-  if (!std::isfinite(params.keyrate) || params.keyrate < 0)
-    throw OptionError("keyrate", "must be a finite number >= 0 (0: the model's own keys)");
-  if (!params.video.empty()) VideoWriter::validate_path(params.video);
+  if (!std::isfinite(params.keyrate) || params.keyrate < 0 || params.keyrate > kMaxKeyrate)
+    throw OptionError("keyrate", "must be a number in [0, 1e6] (0: the model's own keys)");
+  if (params.skip_existing && !params.video.empty())
+    throw InputError("--skip-existing",
+                     "does not combine with --video (a video needs every frame): once every "
+                     "chunk is done, assemble the frames with kinray video DIR --out FILE");
+  if (!params.video.empty()) {
+    VideoWriter::validate_path(params.video);
+    if (params.width < 2 || params.height < 2)
+      throw OptionError("video",
+                        "video encoders need frames of at least 2x2 pixels, and --size is " +
+                            std::to_string(params.width) + "x" + std::to_string(params.height));
+  }
   for (const std::string& light : params.lights) (void)parse_light_flag(light);
   if (params.lights.size() > kMaxLights)
     throw OptionError("lights", "at most " + std::to_string(kMaxLights) + " lights, got " +
@@ -191,6 +201,7 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   m_lights = CameraSpaceLights(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
+  for (size_t index = m_slice.begin; index < m_slice.end; ++index) m_to_render.push_back(index);
   // The blurred frames are shaded by the headlight inside the backends' window integration;
   // shadow rays over a shutter window are not integrated, so lights and a shutter are refused
   // rather than shaded wrongly.
@@ -242,23 +253,29 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   m_timings.shade += now_s() - start;
 }
 
+void RenderJob::skip_frames(const std::function<bool(size_t index)>& done) {
+  std::erase_if(m_to_render, done);
+}
+
 const RenderTimings& RenderJob::run(Backend& backend,
                                     const std::function<void(size_t, const Frame&)>& sink,
                                     BackgroundWrites* writes) {
-  Progress progress(m_slice.size(), !m_params.quiet && Progress::stderr_is_terminal());
+  Progress progress(m_to_render.size(), !m_params.quiet && Progress::stderr_is_terminal());
   Frame frame;
   frame.resize(m_params.width, m_params.height);
-  // The kinetic backend is built at the first time it renders: the slice's first frame. The bar
-  // is first drawn after it, so a command's note ("initialising the kinetic grid...") stays.
-  backend.plan_frames(std::span(m_frame_times).subspan(m_slice.begin, m_slice.end - m_slice.begin));
-  for (size_t index = m_slice.begin; index < m_slice.end; ++index) {
+  // The kinetic backend is built at the first time it renders: the first frame to render. The
+  // bar is first drawn after it, so a command's note ("initialising the kinetic grid...") stays.
+  std::vector<double> times;
+  for (size_t index : m_to_render) times.push_back(m_frame_times[index]);
+  backend.plan_frames(times);
+  for (size_t index : m_to_render) {
     render_frame(backend, index, frame);
     const double start = now_s();
     if (sink) sink(index, frame);
     if (writes != nullptr) writes->submit(index, frame);
     m_timings.write += now_s() - start;
     ++m_timings.frames;
-    progress.update(index + 1 - m_slice.begin);
+    progress.update(m_timings.frames);
   }
   if (writes != nullptr) {
     const double start = now_s();
@@ -285,6 +302,13 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
       {"lights", job.scene().lights.size()},
       {"shot", {job.scene().time_begin, job.scene().time_end}},
       {"frame_times", job.frame_times()},
+      {"slice",
+       {{"first", job.slice().begin},
+        {"last", job.slice().size() > 0 ? job.slice().end - 1 : job.slice().begin},
+        {"chunk", params.chunk.empty() ? nlohmann::json() : nlohmann::json(params.chunk)},
+        {"frame_range",
+         params.frame_range.empty() ? nlohmann::json() : nlohmann::json(params.frame_range)},
+        {"skipped", job.slice().size() - job.frames_to_render().size()}}},
       {"shutter", job.params().shutter.shutter},
       {"time_s",
        {{"total", timings.total},

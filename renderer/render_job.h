@@ -50,6 +50,7 @@ struct RenderParams {
   bool scene_size = false;  ///< no --size given: the scene's own image size when it has one
   std::string chunk;        ///< --chunk I/N: render only the I-th of N slices of the schedule
   std::string frame_range;  ///< --frame-range A:B: render only frames A..B of the schedule
+  bool skip_existing = false;  ///< --skip-existing: render only the frames whose files are missing
   bool contacts = false;    ///< --contacts: tint the triangles in contact (set_contact_tint)
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
   CameraParams camera;    ///< --camera, --eye, --target, --fov
@@ -105,6 +106,12 @@ class RenderJob {
   [[nodiscard]] const std::vector<double>& frame_times() const { return m_frame_times; }
   /// The frames run() renders (--chunk, --frame-range; else all), indices into frame_times().
   [[nodiscard]] const FrameSlice& slice() const { return m_slice; }
+  /// The frames run() renders, in order: the slice, less those skip_frames() took out.
+  [[nodiscard]] const std::vector<size_t>& frames_to_render() const { return m_to_render; }
+  /// Takes the frames of the slice for which `done(index)` is true out of frames_to_render()
+  /// (--skip-existing: their files are already there). The others render exactly as in a
+  /// whole render: each backend is built at the first frame it renders.
+  void skip_frames(const std::function<bool(size_t index)>& done);
   /// With --shutter: each frame's shutter window (renderer/shutter.h); empty without.
   [[nodiscard]] const std::vector<ShutterWindow>& shutter_windows() const { return m_windows; }
   /// Timings so far: load (and setup once make_backend was called).
@@ -121,8 +128,8 @@ class RenderJob {
   /// none); with --shutter the backend renders the frame's window and shades it itself (timed as
   /// render).
   void render_frame(Backend& backend, size_t index, Frame& frame);
-  /// The frame loop: every frame time of slice() in order (the index handed to `sink` is the one
-  /// in the whole schedule), rendered, shaded and handed to `sink`, then to `writes` when given
+  /// The frame loop: every frame of frames_to_render() in order (the index handed to `sink` is the
+  /// one in the whole schedule), rendered, shaded and handed to `sink`, then to `writes` when given
   /// (its files written while the next frame renders, the last ones before run returns; a write's
   /// error is rethrown by the loop). Both are timed as "write": for `writes`, the time the loop
   /// waited for it. A progress bar on stderr when it is a terminal and params().quiet is false.
@@ -140,6 +147,7 @@ class RenderJob {
   Frame m_shadow_scratch;                    ///< the helper's primary hits, unused
   std::vector<double> m_frame_times;
   FrameSlice m_slice;
+  std::vector<size_t> m_to_render;
   std::vector<ShutterWindow> m_windows;
   std::vector<std::vector<uint64_t>> m_contact_tint;  ///< empty: no --contacts
   RenderTimings m_timings;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "scenes/aff_reader.h"
@@ -241,6 +242,7 @@ class AffParser {
 
   std::vector<SplineKey> read_keys(AffReader& in, const std::string& part, int count) {
     std::vector<SplineKey> keys(static_cast<size_t>(count));
+    const std::string where = in.where();
     for (SplineKey& key : keys) {
       key.time = in.number("a key time");
       key.value = read_vec3(in, part == "rot" ? "the rotation axis" : "the key value");
@@ -250,10 +252,22 @@ class AffParser {
       key.bias = in.number("the bias");
     }
     // BART's reference code accepts keys out of order (Robot1.aff has one: 48 then 42) and
-    // evaluates them as they stand; only a zero span of two pieces would divide by zero.
+    // evaluates them as they stand, so kinray renders such a file as BART does, but says so (the
+    // JSON reader, with no such files to honour, refuses them); only a zero span of two pieces
+    // would divide by zero.
     for (size_t i = 2; i < keys.size(); ++i)
       if (keys[i].time == keys[i - 2].time)
         in.fail("three " + part + " keys in a row share the time " + std::to_string(keys[i].time));
+    for (size_t i = 1; i < keys.size(); ++i)
+      if (!(keys[i].time > keys[i - 1].time)) {
+        std::ostringstream line;
+        line << where << ": " << part << " key " << i << " (t=" << keys[i].time << ") "
+             << (keys[i].time == keys[i - 1].time ? "repeats" : "comes before")
+             << " the time of the key before it (t=" << keys[i - 1].time
+             << "); played in file order, as BART's reference code does";
+        m_document.warnings.push_back(line.str());
+        break;
+      }
     return keys;
   }
 

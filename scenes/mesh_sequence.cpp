@@ -106,8 +106,8 @@ Scene build_scene(const std::string& spec, std::vector<MeshFile>& frames, double
 }  // namespace
 
 Scene load_mesh_sequence(const std::string& spec, const ModelOptions& options) {
-  if (!std::isfinite(options.keyrate) || options.keyrate < 0)
-    throw InputError("--keyrate", "must be a finite number >= 0 (0: 24 keys per second)");
+  if (!std::isfinite(options.keyrate) || options.keyrate < 0 || options.keyrate > kMaxKeyrate)
+    throw InputError("--keyrate", "must be a number in [0, 1e6] (0: 24 keys per second)");
   if (!options.animation.empty())
     throw InputError("--animation",
                      "applies to model files; a mesh sequence's animation is its files");

@@ -449,6 +449,19 @@ void drop_static_keys_and_check(const std::vector<MeshInstance>& instances,
                                " s (bad transforms, bones or morph targets)");
 }
 
+/// assimp's reason a file could not be read, made plain: a file of an extension it reads that
+/// no reader accepts (a truncated glTF's JSON no longer parses, so no glTF reader claims it) is
+/// not "No suitable reader found" but a damaged file of that format.
+std::string import_failure(const std::string& path, const std::string& assimp_message) {
+  if (assimp_message.empty()) return "assimp cannot read it: unknown error";
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (assimp_message.find("No suitable reader found") != std::string::npos &&
+      extension.size() > 1 && Assimp::Importer().IsExtensionSupported(extension))
+    return "assimp reads " + extension +
+           " files, but none of its readers accepts this one: the file is truncated or corrupt";
+  return "assimp cannot read it: " + assimp_message;
+}
+
 }  // namespace
 
 unsigned model_import_flags() {
@@ -463,8 +476,8 @@ bool is_model_file(const std::string& path) {
 }
 
 Scene convert_model(const aiScene& model, const std::string& source, const ModelOptions& options) {
-  if (!std::isfinite(options.keyrate) || options.keyrate < 0)
-    throw InputError(source, "the key rate must be a finite number >= 0, got " +
+  if (!std::isfinite(options.keyrate) || options.keyrate < 0 || options.keyrate > kMaxKeyrate)
+    throw InputError(source, "the key rate must be a number in [0, 1e6], got " +
                                  std::to_string(options.keyrate));
   const AnimationClip clip = select_animation(model, options.animation, source);
   const NodeGraph graph = build_node_graph(model, clip.animation, source);
@@ -512,7 +525,7 @@ Scene load_model(const std::string& path, const ModelOptions& options, ModelCata
           return read(importer) ? std::string() : std::string(importer.GetErrorString());
         },
         options.import_timeout, reader_address_space());
-    if (failure) throw InputError(path, "assimp cannot read it: " + *failure);
+    if (failure) throw InputError(path, import_failure(path, *failure));
   }
   Assimp::Importer importer;
   const aiScene* model = nullptr;
@@ -522,11 +535,7 @@ Scene load_model(const std::string& path, const ModelOptions& options, ModelCata
   } catch (const std::exception& failure) {
     throw InputError(path, std::string("assimp cannot read it: ") + failure.what());
   }
-  if (model == nullptr) {
-    const std::string message = importer.GetErrorString();
-    throw InputError(path, "assimp cannot read it: " +
-                               (message.empty() ? std::string("unknown error") : message));
-  }
+  if (model == nullptr) throw InputError(path, import_failure(path, importer.GetErrorString()));
   Scene scene = convert_model(*model, path, options);
   scene.validate(path);
   if (catalog != nullptr) {

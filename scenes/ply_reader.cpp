@@ -1,5 +1,6 @@
 #include "scenes/ply_reader.h"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -71,6 +72,13 @@ struct PlyHeader {
   std::vector<PlyElement> elements;
   size_t body = 0;       ///< byte offset of the first byte after end_header's line
   size_t body_line = 0;  ///< line number of that byte
+};
+
+/// A coordinate that no reader should take (NaN, infinite, beyond +-kMaxCoordinate): told apart
+/// from the other problems so that check_ply_file can refuse it while leaving those to assimp.
+class PlyCoordinateError : public InputError {
+ public:
+  explicit PlyCoordinateError(const InputError& error) : InputError(error) {}
 };
 
 std::string at_line(const std::string& source, size_t line) {
@@ -333,7 +341,11 @@ void read_vertices(PlyBody& body, const PlyElement& element, std::vector<Vec3>& 
       const double value = body.number(property.type);
       for (int a = 0; a < 3; ++a)
         if (axis[a] == int(q)) {
-          check_mesh_coordinate(value, kAxes[a], body.where());
+          try {
+            check_mesh_coordinate(value, kAxes[a], body.where());
+          } catch (const InputError& error) {
+            throw PlyCoordinateError(error);
+          }
           p[a] = value;
         }
     }
@@ -408,10 +420,8 @@ void check_mesh_elements(const PlyHeader& header, const std::string& source) {
     throw InputError(source, "has no faces (a 'face' element with a 'vertex_indices' list)");
 }
 
-}  // namespace
-
-MeshFile parse_ply(std::string_view bytes, const std::string& source) {
-  const PlyHeader header = parse_header(bytes, source);
+MeshFile parse_ply(std::string_view bytes, const std::string& source, UnknownLines unknown) {
+  const PlyHeader header = parse_header(bytes, source, unknown);
   check_mesh_elements(header, source);
   check_counts(header, bytes.size() - header.body, source);
   uint64_t vertex_count = 0;
@@ -440,26 +450,47 @@ MeshFile parse_ply(std::string_view bytes, const std::string& source) {
   return file;
 }
 
+}  // namespace
+
+MeshFile parse_ply(std::string_view bytes, const std::string& source) {
+  return parse_ply(bytes, source, UnknownLines::refuse);
+}
+
 void check_ply_file(const std::string& path) {
-  // Only the header is read: it is all the check needs, and a model can be large.
-  std::ifstream file(path, std::ios::binary);
+  std::ifstream probe(path, std::ios::binary);
   std::string line;
-  if (!std::getline(file, line) || (line != "ply" && line != "ply\r")) return;
-  std::string header = line + '\n';
-  while (std::getline(file, line)) {
-    header += line + '\n';
-    const std::vector<std::string_view> w = split_words(line);
-    if (!w.empty() && w[0] == "end_header") break;
+  if (!std::getline(probe, line) || (line != "ply" && line != "ply\r")) return;
+  probe.close();
+  const std::string bytes = read_mesh_bytes(path);
+  std::string_view rest = bytes;
+  bool ended = false;
+  while (!ended && !rest.empty()) {
+    const size_t end = std::min(rest.find('\n'), rest.size());
+    const std::vector<std::string_view> w = split_words(rest.substr(0, end));
+    ended = !w.empty() && w[0] == "end_header";
+    rest.remove_prefix(std::min(end + 1, rest.size()));
   }
+  // assimp's PLY reader spins without end on a header cut short (it waits for end_header).
+  if (!ended)
+    throw InputError(path, "the PLY header ends without an 'end_header' line (a truncated file?)");
   PlyHeader parsed;
   try {
     // Leniently: assimp reads headers with lines of other writers (Wuson.ply has 'Created
     // by ...') and files a few bytes short, and says itself what else is wrong.
-    parsed = parse_header(header, path, UnknownLines::skip);
+    parsed = parse_header(bytes, path, UnknownLines::skip);
   } catch (const InputError&) {
     return;
   }
   for (const PlyElement& element : parsed.elements) check_has_properties(element, path);
+  // assimp takes NaN and infinite coordinates as they are (a NaN vertex silently vanished from
+  // a triangle): kinray's own reader checks every coordinate and refuses such a file, and leaves
+  // the problems it is stricter about than assimp (unknown header lines, a short body) to it.
+  try {
+    (void)parse_ply(bytes, path, UnknownLines::skip);
+  } catch (const PlyCoordinateError& error) {
+    throw InputError(error.where(), error.message());
+  } catch (const InputError&) {
+  }
 }
 
 MeshFile read_ply(const std::string& path) {

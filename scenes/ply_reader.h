@@ -17,9 +17,10 @@ namespace kinray {
 [[nodiscard]] MeshFile parse_ply(std::string_view bytes, const std::string& source);
 
 /// When the file at `path` is a PLY file (its first line is 'ply'), throws InputError if its
-/// header declares elements without properties: no length of file bounds their count, and
-/// assimp's PLY reader loops over it (for hours on a corrupt file). Run before assimp reads a
-/// model; everything else about the file is left to assimp.
+/// header has no end_header line or declares elements without properties (assimp's PLY reader
+/// loops without end over either), or if a vertex coordinate is NaN, infinite or beyond
+/// +-kMaxCoordinate (assimp takes those as they are). Run before assimp reads a model;
+/// everything else about the file is left to assimp.
 void check_ply_file(const std::string& path);
 
 /// Reads and parses the file at `path`; throws InputError naming it when it cannot be read.

@@ -94,10 +94,21 @@ void check_times(const std::vector<double>& times, const std::string& where) {
   for (size_t k = 0; k < times.size(); ++k) {
     if (!std::isfinite(times[k]))
       throw InputError(where, "key time " + std::to_string(k) + " is not a finite number");
+    if (std::abs(times[k]) > kMaxTime) {
+      std::ostringstream message;
+      message << "key time " << k << " (t=" << times[k] << ") lies beyond +-1e9 s";
+      throw InputError(where, message.str());
+    }
     if (k > 0 && !(times[k] > times[k - 1])) {
       std::ostringstream message;
       message << "key times must be strictly increasing, but key " << k << " (t=" << times[k]
               << ") follows t=" << times[k - 1] << (times[k] == times[k - 1] ? " (duplicate)" : " (unsorted)");
+      throw InputError(where, message.str());
+    }
+    if (k > 0 && times[k] - times[k - 1] < kMinKeySpacing) {
+      std::ostringstream message;
+      message << "keys " << k - 1 << " and " << k << " are " << times[k] - times[k - 1]
+              << " s apart; keys must be at least 1e-9 s apart";
       throw InputError(where, message.str());
     }
   }
@@ -115,10 +126,31 @@ std::string describe_far(const Vec3& p) {
 
 }  // namespace
 
+std::optional<std::string> light_problem(const Light& light) {
+  if (light.kind == Light::Kind::point) {
+    if (!light.position.allFinite()) return "the position is NaN or infinite";
+    if (light.position.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return "the position has a coordinate beyond +-1e15 (" + describe_far(light.position) +
+             "), which the float references cannot trace";
+  } else if (!light.direction.allFinite() || !(light.direction.norm() > 0)) {
+    return "the direction must be finite and not zero";
+  }
+  if (!light.color.allFinite() || (light.color.array() < 0).any())
+    return "the colour must be finite (as a float) and >= 0";
+  return std::nullopt;
+}
+
 void Scene::validate(const std::string& source) const {
   if (!std::isfinite(time_begin) || !std::isfinite(time_end) || !(time_end > time_begin))
     throw InputError(source, "the shot must have finite times with end > begin, got [" +
                                  std::to_string(time_begin) + ", " + std::to_string(time_end) + "]");
+  if (std::abs(time_begin) > kMaxTime || std::abs(time_end) > kMaxTime ||
+      time_end - time_begin < kMinKeySpacing) {
+    std::ostringstream message;
+    message << "the shot [" << time_begin << ", " << time_end
+            << "] must lie within +-1e9 s and last at least 1e-9 s";
+    throw InputError(source, message.str());
+  }
   if (materials.empty()) throw InputError(source, "no materials");
   for (size_t m = 0; m < materials.size(); ++m) {
     const Color& c = materials[m].base_color;
@@ -180,6 +212,9 @@ void Scene::validate(const std::string& source) const {
                                                 std::to_string(key.fov_y_degrees));
   }
   check_times(camera_times, source + ": camera");
+  for (size_t l = 0; l < lights.size(); ++l)
+    if (const std::optional<std::string> problem = light_problem(lights[l]))
+      throw InputError(source + ": light " + std::to_string(l), *problem);
 }
 
 std::vector<double> Scene::key_times() const {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,6 +28,15 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// 3.4e38 (and a model whose buffer is garbage, bounds 1.7e40, is refused as bad input rather
 /// than rendered blank). At 1e15 a product is at most 1e30.
 inline constexpr double kMaxCoordinate = 1e15;
+
+/// The range of key and shot times, in seconds: |t| at most kMaxTime, and two keys of one
+/// flightplan at least kMinKeySpacing apart. The kinetic core solves certificates in time
+/// relative to an interval's origin; keys 1e-300 s apart (a mesh sequence at --keyrate 1e300)
+/// underflow its arithmetic, and a scene keyed faster than a billion times a second is a typo.
+inline constexpr double kMaxTime = 1e9;
+inline constexpr double kMinKeySpacing = 1e-9;
+/// The largest --keyrate (keys per second) of a model or mesh sequence.
+inline constexpr double kMaxKeyrate = 1e6;
 
 /// An RGB texture read from an image file, sampled bilinearly with wrap-around.
 struct Texture {
@@ -92,6 +102,10 @@ struct Light {
   Vec3 direction = Vec3(0, 0, -1);         ///< directional lights, unit length
   Color color = Color(1.0f, 1.0f, 1.0f);   ///< linear RGB intensity
 };
+
+/// What is wrong with `light`, or nothing: a point light's position must be finite and within
+/// +-kMaxCoordinate, a direction finite and not zero, a colour finite (as float) and >= 0.
+[[nodiscard]] std::optional<std::string> light_problem(const Light& light);
 
 struct Scene {
   std::string name;

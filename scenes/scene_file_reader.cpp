@@ -1,8 +1,6 @@
 // The reader of JSON scene files (docs/scene_format.md): materials, objects (meshes, built-ins,
 // models, primitives) with their keys, the camera, lights and the shot. Every malformed value is
 // an InputError naming the file and the JSON pointer (json_node.h).
-#include "scenes/scene_file.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -15,9 +13,11 @@
 
 #include "scenes/camera_space.h"
 #include "scenes/json_node.h"
+#include "scenes/json_unique_keys.h"
 #include "scenes/mesh_builders.h"
 #include "scenes/model_import.h"
 #include "scenes/procedural.h"
+#include "scenes/scene_file.h"
 #include "scenes/scene_file_keys.h"
 #include "scenes/texture_image.h"
 #include "util/image_signature.h"
@@ -473,6 +473,9 @@ struct Reader {
           target_node->fail("the camera looks at its own position");
         const Vec3 up = key.has("up") ? key.at("up").vec3() : Vec3::UnitY();
         if (!(up.norm() > 1e-12)) key.at("up").fail("the up vector must not be zero");
+        if (key.has("up") &&
+            !(up.normalized().cross((target - position).normalized()).norm() > 1e-9))
+          key.at("up").fail("the up vector is parallel to the viewing direction");
         result.keys.push_back(Camera::look_at(time, position, target, up, fov));
       } else {
         if (auto up = key.find("up"))
@@ -549,7 +552,10 @@ std::pair<size_t, size_t> line_and_column(const std::string& text, size_t offset
 Scene parse_scene_file(const std::string& text, const std::string& path) {
   json document;
   try {
-    document = json::parse(text);
+    document = parse_json_with_unique_keys(text);
+  } catch (const DuplicateJsonKey& error) {
+    throw InputError(path + ": " + error.pointer + "/" + error.key,
+                     "is given twice in one object (JSON would keep only the last)");
   } catch (const json::parse_error& error) {
     // nlohmann's byte is one past the character it stopped at.
     const auto [line, column] = line_and_column(text, error.byte > 0 ? error.byte - 1 : 0);

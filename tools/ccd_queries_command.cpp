@@ -44,9 +44,10 @@ ContactType query_type(const CcdQueriesOptions& options) {
 }
 
 void run_ccd_queries(const CcdQueriesOptions& options) {
+  // The file first: a missing file is the problem to name, not the --type its path would tell.
+  const std::vector<CcdQuery> queries = read_ccd_queries(options.file);
   const ContactType type = query_type(options);
   prepare_json_output(options.json);
-  const std::vector<CcdQuery> queries = read_ccd_queries(options.file);
   std::uint64_t tp = 0, fp = 0, fn = 0, tn = 0;
   PrimitiveCcdCounters counters;
   const auto begin = std::chrono::steady_clock::now();

@@ -35,6 +35,24 @@ bool starts_with(const std::string& text, const std::string& prefix) {
   return text.rfind(prefix, 0) == 0;
 }
 
+/// A value as echoed back in a message: at most 40 characters (a 300-digit number is cut).
+std::string echoed(const std::string& value) {
+  return value.size() <= 40 ? value : value.substr(0, 37) + "...";
+}
+
+/// Why CLI11 could not convert `value` to the option's type: a whole number that does not fit
+/// the type is out of range, not malformed.
+std::string conversion_problem(const CLI::App& command, const std::string& name,
+                               const std::string& value) {
+  const std::string expected = expected_value(command, name);
+  const std::string digits =
+      starts_with(value, "-") || starts_with(value, "+") ? value.substr(1) : value;
+  const bool whole = !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
+  if (expected == "a whole number" && whole)
+    return "'" + echoed(value) + "' is out of range (too large a whole number)";
+  return "expected " + expected + ", got '" + echoed(value) + "'";
+}
+
 /// The words after `prefix` in `message`, in command-line order (CLI11 lists extras reversed).
 std::vector<std::string> listed_arguments(const std::string& message, const std::string& prefix) {
   std::vector<std::string> words;
@@ -77,6 +95,7 @@ InputError name_the_flag(const OptionError& error) {
       {"backend", "--backend"},
       {"aov", "--aov"},
       {"keyrate", "--keyrate"},
+      {"video", "--video"},
       {"lights", "--light"},
       {"frames", "--frames"},
       {"fps", "--fps"},
@@ -98,8 +117,7 @@ InputError explain_parse_error(const CLI::App& app, const CLI::ParseError& error
     const size_t equals = message.find(" = ");
     if (starts_with(message, prefix) && equals != std::string::npos) {
       const std::string name = message.substr(prefix.size(), equals - prefix.size());
-      return InputError(name, "expected " + expected_value(command, name) + ", got '" +
-                                  message.substr(equals + 3) + "'");
+      return InputError(name, conversion_problem(command, name, message.substr(equals + 3)));
     }
     const size_t colon = message.find(": ");
     if (colon != std::string::npos)  // "--audit: too many inputs for a flag"

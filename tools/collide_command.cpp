@@ -94,6 +94,11 @@ void run_collide(const CollideOptions& options) {
   params.structure = parse_contact_structure(options.structure);
   params.self = options.self;
   params.audit = options.audit;
+  if (params.audit && params.structure != ContactStructure::ksl)
+    throw InputError("--audit",
+                     "applies to --structure ksl only (the separation list and its "
+                     "trees), and this run uses " +
+                         options.structure + " (--audit would be ignored)");
   params.checks = options.checks;
   if (!options.time.empty())
     std::tie(params.time_begin, params.time_end) = parse_time_range(options.time);

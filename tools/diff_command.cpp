@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "renderer/image_io.h"
@@ -76,7 +77,7 @@ struct DiffOptions {
   std::string report;
   std::string budget;
   std::string json;
-  int reference_samples = 0;  ///< --shutter: the reference's time samples per pixel
+  std::optional<int> reference_samples;  ///< --shutter: the reference's time samples per pixel
 };
 
 std::string numbered(const char* prefix, size_t index) {
@@ -88,7 +89,12 @@ std::string numbered(const char* prefix, size_t index) {
 void run_diff(const DiffOptions& options) {
   const RenderParams params = options.render.resolve();
   if (params.shutter.enabled())
-    return run_shutter_diff(params, {options.reference_samples, options.report, options.json});
+    return run_shutter_diff(params, {options.reference_samples.value_or(kShutterReferenceSamples),
+                                     options.report, options.json});
+  if (options.reference_samples)
+    throw InputError(
+        "--reference-samples",
+        "applies to --shutter (the motion blur reference's samples), which is not given");
   if (options.against != "embree" && options.against != "osmesa")
     throw InputError("--against",
                      "the reference must be embree or osmesa, not '" + options.against + "'");

@@ -7,7 +7,6 @@
 #include <unordered_set>
 
 namespace kinray {
-namespace {
 
 bool is_frame_output(const std::string& name) {
   for (const auto& [prefix, extension] : {std::pair<std::string, std::string>{"frame_", ".png"},
@@ -25,12 +24,20 @@ bool is_frame_output(const std::string& name) {
   return false;
 }
 
-}  // namespace
-
 std::string numbered_file(const std::string& prefix, size_t index, const char* extension) {
   char name[64];
   std::snprintf(name, sizeof name, "%s_%05zu%s", prefix.c_str(), index, extension);
   return name;
+}
+
+std::vector<std::string> frame_files(size_t index, const std::vector<std::string>& aov) {
+  std::vector<std::string> names = {numbered_file("frame", index, ".png")};
+  const auto has = [&](const char* name) {
+    return std::find(aov.begin(), aov.end(), name) != aov.end();
+  };
+  if (has("id")) names.push_back(numbered_file("id", index, ".png"));
+  if (has("depth")) names.push_back(numbered_file("depth", index, ".tiff"));
+  return names;
 }
 
 std::vector<std::string> remove_stale_frames(const std::filesystem::path& folder,

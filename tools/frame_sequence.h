@@ -13,6 +13,15 @@ namespace kinray {
 [[nodiscard]] std::string numbered_file(const std::string& prefix, size_t index,
                                         const char* extension);
 
+/// The files a render writes for frame `index`: frame_N.png, and id_N.png and depth_N.tiff when
+/// `aov` holds "id" and "depth".
+[[nodiscard]] std::vector<std::string> frame_files(size_t index,
+                                                   const std::vector<std::string>& aov);
+
+/// Whether `name` is named like a kinray frame output: frame_N.png, id_N.png or depth_N.tiff, N
+/// of 5 or more digits.
+[[nodiscard]] bool is_frame_output(const std::string& name);
+
 /// Removes from `folder` every file named like a kinray frame output -- frame_N.png, id_N.png or
 /// depth_N.tiff, N of 5 or more digits -- that is not in `written` (file names). Other files are
 /// left alone. Returns the names removed, sorted.

@@ -273,8 +273,8 @@ void register_info_command(CLI::App& app) {
   command->add_flag("--json", options->json, "Print JSON instead of text");
   command->footer(describe_scene_spec_syntax());
   command->callback([options] {
-    if (!std::isfinite(options->keyrate) || options->keyrate < 0)
-      throw InputError("--keyrate", "must be a finite number >= 0 (0: the model's own keys)");
+    if (!std::isfinite(options->keyrate) || options->keyrate < 0 || options->keyrate > kMaxKeyrate)
+      throw InputError("--keyrate", "must be a number in [0, 1e6] (0: the model's own keys)");
     ModelOptions model;
     model.animation = options->animation;
     model.keyrate = options->keyrate;
@@ -284,7 +284,8 @@ void register_info_command(CLI::App& app) {
     apply_camera_params(options->camera, scene);
     scene.validate(options->scene);
     nlohmann::json info = describe(options->scene, scene);
-    if (is_mesh_sequence(options->scene)) info["sequence"] = describe_sequence(options->scene, scene);
+    if (is_mesh_sequence(options->scene))
+      info["sequence"] = describe_sequence(options->scene, scene);
     if (!catalog.file.empty()) {
       info["animations"] = describe_animations(catalog);
       info["model_cameras"] = catalog.cameras;

@@ -40,11 +40,41 @@ double video_fps(const RenderParams& params, const std::vector<double>& times) {
   return std::clamp(double(times.size() - 1) / (times.back() - times.front()), 1.0, 240.0);
 }
 
+/// A path as the file system will resolve it, for telling whether two names are one file.
+fs::path resolved(const std::string& path) {
+  std::error_code error;
+  const fs::path absolute = fs::absolute(path, error);
+  const fs::path canonical = fs::weakly_canonical(absolute, error);
+  return error ? absolute.lexically_normal() : canonical;
+}
+
+/// A file output (--stats, --video) must be none of the render's other outputs: not the other
+/// one (JSON would be written over the video), and not a numbered file in --out, which a frame
+/// would overwrite or the clean-up would remove as an earlier render's.
+void check_distinct_output(const std::string& path, const char* flag, const std::string& out) {
+  const fs::path file = resolved(path);
+  if (file.parent_path() == resolved(out) && is_frame_output(file.filename().string()))
+    throw InputError(flag, "'" + path +
+                               "' is named like one of the frames the render writes in "
+                               "--out '" +
+                               out + "'; give another name or folder");
+}
+
 /// Every output of the render, checked before the scene is loaded.
 void check_output_paths(const std::string& out, const RenderParams& params) {
   check_output_folder(out, "--out");
-  if (!params.stats.empty()) check_output_file(params.stats, "--stats");
-  if (!params.video.empty()) check_output_file(params.video, "--video");
+  if (!params.stats.empty()) {
+    check_output_file(params.stats, "--stats");
+    check_distinct_output(params.stats, "--stats", out);
+  }
+  if (!params.video.empty()) {
+    check_output_file(params.video, "--video");
+    check_distinct_output(params.video, "--video", out);
+  }
+  if (!params.stats.empty() && !params.video.empty() &&
+      resolved(params.stats) == resolved(params.video))
+    throw InputError("--stats",
+                     "'" + params.stats + "' is also the --video file; give each its own");
 }
 
 /// The summary's parenthesis after the total time: how much of it was loading, and the kinetic
@@ -92,9 +122,16 @@ void print_summary(const RenderJob& job, const Backend& backend, const RenderTim
               params.height, backend.name().c_str(), timings.total,
               summary_details(timings, backend).c_str());
   const FrameSlice& slice = job.slice();
-  const std::string last = n > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
-  std::printf("frames: %s/%s%s\n", outputs.folder.c_str(),
-              numbered_file("frame", slice.begin, ".png").c_str(), last.c_str());
+  const std::string last =
+      slice.size() > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
+  std::string of_slice;
+  if (!params.chunk.empty()) of_slice = " (chunk " + params.chunk + ")";
+  if (!params.frame_range.empty()) of_slice = " (--frame-range " + params.frame_range + ")";
+  std::printf("frames: %s/%s%s%s\n", outputs.folder.c_str(),
+              numbered_file("frame", slice.begin, ".png").c_str(), last.c_str(), of_slice.c_str());
+  if (params.skip_existing)
+    std::printf("skipped %zu frame%s whose files were already there (--skip-existing)\n",
+                slice.size() - n, slice.size() - n == 1 ? "" : "s");
   const std::vector<std::string>& stale = outputs.stale;
   if (!stale.empty())
     std::printf("removed %zu file%s of an earlier render from %s (%s%s)\n", stale.size(),
@@ -125,6 +162,19 @@ void run_render(const RenderParams& flags) {
     contact_frames = size_t(std::count_if(tint.begin(), tint.end(), [](const auto& t) { return !t.empty(); }));
     job.set_contact_tint(std::move(tint));
   }
+  // A frame's files appear under their names only once whole (written under a temporary name,
+  // then renamed): a frame whose files are all there is done.
+  std::vector<std::string> kept;
+  if (params.skip_existing)
+    job.skip_frames([&](size_t index) {
+      const std::vector<std::string> names = frame_files(index, params.aov);
+      const bool done = std::all_of(names.begin(), names.end(), [&](const std::string& name) {
+        std::error_code error;
+        return fs::is_regular_file(fs::path(out) / name, error);
+      });
+      if (done) kept.insert(kept.end(), names.begin(), names.end());
+      return done;
+    });
   std::unique_ptr<Backend> backend = job.make_backend();
   const bool kinetic = backend->name() == "kinetic";
   if (kinetic)
@@ -139,7 +189,7 @@ void run_render(const RenderParams& flags) {
   const bool write_depth =
       std::find(params.aov.begin(), params.aov.end(), "depth") != params.aov.end();
   const fs::path folder(out);
-  std::vector<std::string> written;
+  std::vector<std::string> written = kept;
   const auto write = [&](const std::string& name, auto&& writer, const Frame& frame) {
     writer((folder / name).string(), frame);
     written.push_back(name);
@@ -154,7 +204,8 @@ void run_render(const RenderParams& flags) {
   });
   KineticForecast forecast;
   const auto frame_done = [&](size_t index, const Frame&) {
-    if (index == job.slice().begin) status.finish();  // the job's bar takes the line from here
+    if (index == job.frames_to_render().front())
+      status.finish();  // the job's bar takes the line from here
     if (kinetic && !params.quiet)
       if (const std::optional<RenderForecast> slow = forecast.frame_done(job, index)) {
         status.finish();  // the bar's line, drawn again at the next frame
@@ -191,11 +242,17 @@ void register_render_command(CLI::App& app) {
   add_render_options(*command, *options);
   command
       ->add_option("--chunk", options->params.chunk,
-                   "Render farms: only the I-th of N consecutive slices of the frames (I/N, 1-based)")
+                   "Render farms: only the I-th of N consecutive slices of the frames (I/N, "
+                   "1-based; slurm: this Slurm array task's)")
       ->group("Frames");
   command
       ->add_option("--frame-range", options->params.frame_range,
                    "Render farms: only frames A..B of the schedule (A:B, 0-based, both included)")
+      ->group("Frames");
+  command
+      ->add_flag("--skip-existing", options->params.skip_existing,
+                 "Render farms: render only the frames whose files are missing (a resubmitted "
+                 "chunk finishes what an interrupted one left)")
       ->group("Frames");
   command
       ->add_flag("--contacts", options->params.contacts,

@@ -26,9 +26,8 @@ std::string numbered(const char* prefix, size_t index) {
 }  // namespace
 
 void run_shutter_diff(const RenderParams& params, const ShutterDiffOptions& options) {
-  const int samples =
-      options.reference_samples > 0 ? options.reference_samples : kShutterReferenceSamples;
-  if (samples > kMaxShutterSamples)
+  const int samples = options.reference_samples;
+  if (samples < 1 || samples > kMaxShutterSamples)
     throw InputError("--reference-samples", "must lie in 1.." + std::to_string(kMaxShutterSamples));
   RenderJob job(params);
   std::unique_ptr<Backend> tested = job.make_backend();

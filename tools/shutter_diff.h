@@ -5,11 +5,12 @@
 #include <string>
 
 #include "renderer/render_job.h"
+#include "verification/shutter_error.h"
 
 namespace kinray {
 
 struct ShutterDiffOptions {
-  int reference_samples = 0;  ///< --reference-samples (0: kShutterReferenceSamples)
+  int reference_samples = kShutterReferenceSamples;  ///< --reference-samples
   std::string report;         ///< --report DIR: tested, reference and error images per frame
   std::string json;           ///< --json FILE
 };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "renderer/image_io.h"
+#include "renderer/output_check.h"
 #include "renderer/video_writer.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
@@ -55,8 +56,13 @@ std::vector<fs::path> frame_files(const std::string& folder) {
 void run_video(const VideoOptions& options) {
   if (!(options.fps > 0 && options.fps <= 1000)) throw InputError("--fps", "must lie in (0, 1000]");
   VideoWriter::validate_path(options.out);
+  check_output_file(options.out, "--out");  // before the encoder, which would only say it failed
   const std::vector<fs::path> frames = frame_files(options.folder);
   const cv::Mat first = read_color_png(frames.front().string());
+  if (first.cols < 2 || first.rows < 2)
+    throw InputError(frames.front().string(),
+                     "is " + std::to_string(first.cols) + "x" + std::to_string(first.rows) +
+                         "; video encoders need frames of at least 2x2 pixels");
   create_folder(fs::path(options.out).parent_path(), "--out");
   VideoWriter video(options.out, first.cols, first.rows, options.fps);
   for (const fs::path& path : frames) {

@@ -45,12 +45,16 @@ std::vector<CcdQuery> read_ccd_queries(const std::string& path) {
     if (cells.size() != 7)
       throw InputError(where, "expected 7 columns x_num,x_den,y_num,y_den,z_num,z_den,truth, got " +
                                   std::to_string(cells.size()));
+    if (cells[6] != "0" && cells[6] != "1")
+      throw InputError(where, "truth must be 0 or 1, got '" + cells[6] + "'");
     if (row % 8 == 0) {
       queries.emplace_back();
       queries.back().line = line;
-      if (cells[6] != "0" && cells[6] != "1")
-        throw InputError(where, "truth must be 0 or 1, got '" + cells[6] + "'");
       queries.back().truth = cells[6] == "1";
+    } else if ((cells[6] == "1") != queries.back().truth) {
+      // Every row of a query repeats its truth value: a row that differs is a corrupt file.
+      throw InputError(where, "truth " + cells[6] + " disagrees with the query's first row (line " +
+                                  std::to_string(queries.back().line) + ")");
     }
     RationalPoint point;
     for (int k = 0; k < 3; ++k) point[k] = parse_rational(cells[2 * k], cells[2 * k + 1], where);

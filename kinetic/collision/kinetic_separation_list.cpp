@@ -110,6 +110,7 @@ KineticSeparationList::Children KineticSeparationList::children_of(uint32_t a, u
   const BvhNode& x = m_a.topology().nodes[a];
   const BvhNode& y = m_b.topology().nodes[b];
   if (m_self && a == b) {
+    if (x.leaf()) return out;  // a triangle against itself: no contact (a one-triangle mesh's root)
     add(x.left, x.left);
     add(x.left, x.right);
     add(x.right, x.right);
