@@ -44,9 +44,9 @@ std::optional<RenderForecast> KineticForecast::frame_done(const RenderJob& job, 
   // Motion blur renders shutter windows, which one plain Embree frame does not measure.
   if (m_done || !job.shutter_windows().empty()) return std::nullopt;
   const RenderTimings& timings = job.timings();
-  const FrameSlice& slice = job.slice();
+  const std::vector<size_t>& rendered = job.frames_to_render();
   const std::vector<double>& times = job.frame_times();
-  if (index == slice.begin) {
+  if (index == rendered.front()) {
     m_first_s = timings.setup + timings.render;
     // The key interval holding the first frame ends at the first key time after it.
     const std::vector<double> keys = job.scene().key_times();
@@ -54,14 +54,14 @@ std::optional<RenderForecast> KineticForecast::frame_done(const RenderJob& job, 
     m_interval_end = next == keys.end() ? std::numeric_limits<double>::infinity() : *next;
     return std::nullopt;
   }
-  const size_t done = index + 1 - slice.begin;
-  if (times.at(index) < m_interval_end || done >= slice.size()) {
-    if (done >= slice.size()) m_done = true;
+  const size_t done = timings.frames + 1;  // this frame is rendered, not yet counted
+  if (times.at(index) < m_interval_end || done >= rendered.size()) {
+    if (done >= rendered.size()) m_done = true;
     return std::nullopt;
   }
   m_done = true;
   ForecastInputs in;
-  in.frames_total = slice.size();
+  in.frames_total = rendered.size();
   in.frames_done = done;
   in.load_s = timings.load;
   in.kinetic_first_s = m_first_s;

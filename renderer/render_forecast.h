@@ -49,8 +49,8 @@ inline constexpr double kForecastMinKineticS = 10;
 /// exceeds kForecastMinKineticS). Forecasts at most once.
 class KineticForecast {
  public:
-  /// Called after frame `index` of job.slice() was rendered with the kinetic backend; returns the
-  /// forecast when it is due and says Embree is much faster, else nothing.
+  /// Called after frame `index` of job.frames_to_render() was rendered with the kinetic backend;
+  /// returns the forecast when it is due and says Embree is much faster, else nothing.
   [[nodiscard]] std::optional<RenderForecast> frame_done(const RenderJob& job, size_t index);
 
  private:

@@ -1,10 +1,12 @@
 #include "tools/cli_options.h"
 
+#include <cstdlib>
 #include <system_error>
 #include <tuple>
 #include <vector>
 
 #include "renderer/frame_schedule.h"
+#include "tools/slurm_chunk.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -18,6 +20,7 @@ RenderParams RenderOptions::resolve() const {
   if (inbetweens_option && inbetweens_option->count() > 0) resolved.inbetweens = inbetweens;
   if (time_option && time_option->count() > 0) resolved.time = parse_time_range(time);
   if (aov_option && aov_option->count() > 0) resolved.aov = parse_aov(aov);
+  if (resolved.chunk == "slurm") resolved.chunk = slurm_array_chunk(std::getenv);
   validate(resolved);
   return resolved;
 }
