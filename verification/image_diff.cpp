@@ -209,7 +209,7 @@ PixelClass FrameComparator::judge_mismatch(const Frame& tested, const Frame& ref
     } else if (b_hit) {
       std::swap(near, other);
     }
-    // A tie needs both sides to hit something (issue 13): the tolerances absorb rounding in
+    // A tie needs both sides to hit something: the tolerances absorb rounding in
     // *which* surface a ray sees, never whether it sees one. A pixel one side calls background
     // is real whatever its depth or edge margin (a scene beyond float's range once made 18.5%
     // of a frame such "ties" and passed); the crack count still says why.
