@@ -12,7 +12,7 @@
 //            vertices' motions, its failure time and a queue update (the tree's EventQueue,
 //            holding one interval's events); one certificate where a leaf side computes two;
 // and one bottom-up update (vertex blends, leaf boxes, parents) is what each frame of the baseline
-// costs. It measures the three on wavy-sphere (100,000 triangles by default, as the target asks; the
+// costs. It measures the three on wavy-sphere (100,000 triangles by default, as in the target; the
 // scene, time and camera of `kinray bench wavy-sphere:triangles=N --structure aabb`) with the
 // kinetic tree's real key interval (its key pass and the events up to the next key), and prints
 // what the floor would allow at K in-betweens, K * bottom-up pass / (keys + events), beside the
