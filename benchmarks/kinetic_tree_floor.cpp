@@ -1,5 +1,5 @@
 // How far the kinetic AABB tree's key interval is from a floor, against the bottom-up update it is
-// compared with (issue 15: the update 10x faster than bottom-up at 16 in-betweens per key
+// compared with (the target: the update 10x faster than bottom-up at 16 in-betweens per key
 // interval, 50x at 128). A flightplan update changes every vertex's motion, so at each key every
 // certificate of the moving meshes is decided again on the new segment, and between keys every
 // certificate failure is an event. The floor keeps only that work:
@@ -12,7 +12,7 @@
 //            vertices' motions, its failure time and a queue update (the tree's EventQueue,
 //            holding one interval's events); one certificate where a leaf side computes two;
 // and one bottom-up update (vertex blends, leaf boxes, parents) is what each frame of the baseline
-// costs. It measures the three on wavy-sphere (100,000 triangles by default, as issue 15 asks; the
+// costs. It measures the three on wavy-sphere (100,000 triangles by default, as in the target; the
 // scene, time and camera of `kinray bench wavy-sphere:triangles=N --structure aabb`) with the
 // kinetic tree's real key interval (its key pass and the events up to the next key), and prints
 // what the floor would allow at K in-betweens, K * bottom-up pass / (keys + events), beside the

@@ -1,8 +1,8 @@
 #pragma once
 // The reference shadow tracer: every triangle present at the frame time is tested against every
-// shadow ray in double precision, with the edge-function test of DESIGN.md ("Coverage") moved to
-// the ray's origin. Slow (rays x triangles, with one box test per object), exact up to double
-// rounding: what the other tracers are tested against, and enough for tiny scenes.
+// shadow ray in double precision, with the edge-function test of docs/design.md ("The sign rule")
+// moved to the ray's origin. Slow (rays x triangles, with one box test per object), exact up to
+// double rounding: what the other tracers are tested against, and enough for tiny scenes.
 #include <atomic>
 #include <vector>
 

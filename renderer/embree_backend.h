@@ -16,10 +16,10 @@
 // 2x2, 4x2 and 4x4 pixel tiles with valid masks).
 //
 // Depth: Embree's float tfar carries the rounding of its float intersector (an ulp or two off the
-// camera-space z). The backend reports instead the exact depth of the triangle Embree hit,
-// z = det(v0, v1, v2) / ((v1 - v0) x (v2 - v0)) . d in double from the interpolated camera-space
-// positions (DESIGN.md, "Depth order"), so that depths from different backends compare exactly.
-// The object and primitive ids are Embree's.
+// camera-space z). The backend reports instead the exact depth of the triangle Embree hit, z =
+// det(v0, v1, v2) / ((v1 - v0) x (v2 - v0)) . d in double from the interpolated camera-space
+// positions (docs/design.md, "Depth order per pixel"), so that depths from different backends
+// compare exactly. The object and primitive ids are Embree's.
 #include <memory>
 #include <vector>
 

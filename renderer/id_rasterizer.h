@@ -1,5 +1,5 @@
 #pragma once
-// The rasterizing reference (DESIGN.md, "The references"): the camera-space triangles at frame
+// The rasterizing reference (docs/design.md, "The references"): the camera-space triangles at frame
 // time t are rasterized off-screen into an ID buffer and a depth buffer. This file holds the part
 // that does not depend on the rasterizer: the projection that makes GL's pixel centres the
 // centre rays d_ij, the exact 32-bit ID encoding, and the decoding back into a Frame. The
@@ -15,7 +15,7 @@
 // is near / z, 1 at the near plane and 0 at infinity, stored as a 32-bit float, so its relative
 // precision is that of a float (~6e-8) at every distance; the depth test keeps the greater value.
 // The only clipping in depth is GL's near plane z = near: triangles crossing the eye plane lose
-// the sliver nearer than `near` (DESIGN.md's sign rule needs no clipping; this is the one
+// the sliver nearer than `near` (the sign rule of docs/design.md needs no clipping; this is the one
 // expected geometric difference, part of the fill-rule budget of `kinray diff --against osmesa`).
 #include <Eigen/Core>
 #include <cstdint>

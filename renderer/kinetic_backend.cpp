@@ -152,7 +152,7 @@ class KineticBackend final : public Backend {
   /// are written out to memory (streamed), where one frame at a time stays in cache for the
   /// caller: worth it when a frame has many events for its pixels (at least one per 384: on
   /// wavy-sphere at 512x512 one per 256 pays, 0.87 -> 0.82 ms a frame in the median, one per
-  /// 512 is a wash, 0.61-0.65 either way; session 29). Long enough for a band's
+  /// 512 is a wash, 0.61-0.65 either way; Intel Xeon, 2 MB L2). Long enough for a band's
   /// run of events to reuse what it fetched, short enough that the bands, handed out whole,
   /// share the threads evenly (docs/kinetic_grid.md, "Frames in batches").
   [[nodiscard]] size_t batch_length() const {

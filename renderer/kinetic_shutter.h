@@ -1,6 +1,6 @@
 #pragma once
-// Exact motion blur on the kinetic grid (DESIGN.md, "Exact motion blur"). The grid processes
-// every event of a shutter window in time order and logs each change of a pixel's front
+// Exact motion blur on the kinetic grid (docs/design.md, "Exact motion blur"). The grid
+// processes every event of a shutter window in time order and logs each change of a pixel's front
 // (kinetic/grid/front_change_log.h); between two changes the front is fixed, so each pixel's window
 // splits into intervals with one front each, and the visibility part of the time average is
 // exact. Each interval's shading (which varies smoothly while the front is fixed) is integrated

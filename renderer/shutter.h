@@ -1,6 +1,6 @@
 #pragma once
-// Motion blur (DESIGN.md, "Exact motion blur"): a frame at time t with shutter S shows, at each
-// pixel centre, the time average of the radiance along the centre ray over the frame's shutter
+// Motion blur (docs/design.md, "Exact motion blur"): a frame at time t with shutter S shows, at
+// each pixel centre, the time average of the radiance along the centre ray over the frame's shutter
 // window. This file fixes the windows of a schedule and holds the pieces every backend's time
 // average shares: Gauss-Legendre rules, stratified sample times, and the average itself.
 #include <cstdint>

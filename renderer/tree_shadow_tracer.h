@@ -1,5 +1,5 @@
 #pragma once
-// Shadow rays through the kinetic trees (issue 15; DESIGN.md, "Kinetic AABB tree and kinetic
+// Shadow rays through the kinetic trees (docs/design.md, "Kinetic AABB tree and kinetic
 // BoxTree"): the kinetic AABB tree, the kinetic BoxTree, or the same AABB tree updated bottom-up
 // at every frame (`--shadow-tree aabb|boxtree|refit`). The tree is built at the first frame time
 // and then only advanced: the kinetic trees process their events up to each frame time, the

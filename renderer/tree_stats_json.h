@@ -1,6 +1,6 @@
 #pragma once
 // The --stats of the kinetic trees and of the bottom-up tree as JSON: events by kind and the four
-// quality measures of DESIGN.md (compactness, responsiveness, locality, efficiency), shared by
+// quality measures of docs/design.md (compactness, responsiveness, locality, efficiency), shared by
 // the shadow tracer and the benchmark.
 #include <nlohmann/json_fwd.hpp>
 #include <string>

@@ -5,8 +5,8 @@
 // walk) is followed by a camera that translates with it, at the distance that keeps its largest
 // extent in view; a subject that stays where it is gets a still camera, as before.
 //
-// The kinetic grid needs no still camera: camera space (DESIGN.md) transforms every key into the
-// camera's frame at that key and interpolates there, so a camera keyed at the scene's own key
+// The kinetic grid needs no still camera: camera space (docs/design.md) transforms every key into
+// the camera's frame at that key and interpolates there, so a camera keyed at the scene's own key
 // times keeps every camera-space flightplan piecewise linear with the same keys. The following
 // camera only translates (its orientation is fixed), so between two keys a vertex's camera-space
 // position is the difference of two linear motions: it stays inside the view, which is convex,

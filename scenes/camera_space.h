@@ -1,10 +1,10 @@
 #pragma once
-// Camera space (DESIGN.md): every backend consumes the scene as camera-space flightplans. Keyframe
-// positions are transformed into camera space at each key (the union of the object's and the
-// camera's key times) and interpolated linearly there, so an animated camera keeps the relative
-// motion piecewise linear. The field of view is folded into the positions (x and y scaled by
-// 1 / tan(fov_y / 2)), so the pixel-centre rays d_ij = (x_i, y_j, 1) never change, even when the
-// fov is animated; the ray parameter of a hit is still the camera-space depth z.
+// Camera space (docs/design.md): every backend consumes the scene as camera-space flightplans.
+// Keyframe positions are transformed into camera space at each key (the union of the object's and
+// the camera's key times) and interpolated linearly there, so an animated camera keeps the relative
+// motion piecewise linear. The field of view is folded into the positions (x and y scaled by 1 /
+// tan(fov_y / 2)), so the pixel-centre rays d_ij = (x_i, y_j, 1) never change, even when the fov is
+// animated; the ray parameter of a hit is still the camera-space depth z.
 #include <optional>
 #include <span>
 #include <utility>

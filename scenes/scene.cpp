@@ -68,7 +68,7 @@ CameraKey Camera::at(double t) const {
 
 CameraKey Camera::look_at(double time, const Vec3& eye, const Vec3& target, const Vec3& up,
                           double fov_y_degrees) {
-  // Stored as the usual right-handed camera frame (right, up, back); camera space of DESIGN.md
+  // Stored as the usual right-handed camera frame (right, up, back); camera space of docs/design.md
   // looks down +z, which camera_space.cpp gets by negating z.
   const Vec3 forward = (target - eye).normalized();
   Vec3 right = forward.cross(up);

@@ -76,7 +76,7 @@ struct Object {
   [[nodiscard]] Vec3 position(uint32_t v, double t) const;
 };
 
-/// One camera key. Camera frame: x right, y up, looking down +z (camera space of DESIGN.md).
+/// One camera key. Camera frame: x right, y up, looking down +z (camera space, docs/design.md).
 struct CameraKey {
   double time = 0;
   Vec3 position = Vec3::Zero();

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Compares two kinray binaries on the kinetic backend: a refactoring that must not change
-# behaviour (issue 12) passes when every run agrees bit for bit.
+# behaviour passes when every run agrees bit for bit.
 #
 #   tools/compare_kinetic_runs.sh BASE_BINARY NEW_BINARY [WORK_DIR]
 #

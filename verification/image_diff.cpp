@@ -53,8 +53,8 @@ double margin_of(const Vec3& p, const Vec3& q, const Vec3& d, double sign) {
 
 ExactHit evaluate(const std::array<Vec3, 3>& v, const Vec3& d, double edge_tolerance) {
   ExactHit hit;
-  // DESIGN.md "Coverage": the ray pierces (v0, v1, v2) iff the three edge functions have the sign
-  // of O = det(v0, v1, v2); the depth is O / (E01 + E12 + E20).
+  // docs/design.md, "The sign rule": the ray pierces (v0, v1, v2) iff the three edge functions have
+  // the sign of O = det(v0, v1, v2); the depth is O / (E01 + E12 + E20).
   const double o = v[0].dot(v[1].cross(v[2]));
   if (o == 0 || !std::isfinite(o)) return hit;  // the eye is in its plane: no ray pierces it
   const double sign = o > 0 ? 1.0 : -1.0;
@@ -209,7 +209,7 @@ PixelClass FrameComparator::judge_mismatch(const Frame& tested, const Frame& ref
     } else if (b_hit) {
       std::swap(near, other);
     }
-    // A tie needs both sides to hit something (issue 13): the tolerances absorb rounding in
+    // A tie needs both sides to hit something: the tolerances absorb rounding in
     // *which* surface a ray sees, never whether it sees one. A pixel one side calls background
     // is real whatever its depth or edge margin (a scene beyond float's range once made 18.5%
     // of a frame such "ties" and passed); the crack count still says why.

@@ -1,5 +1,5 @@
 #pragma once
-// Comparing two frames of the same scene at the same time t (DESIGN.md, "The references").
+// Comparing two frames of the same scene at the same time t (docs/design.md, "The references").
 // Every pixel whose (object, prim) differ is classified from the exact geometry, recomputed in
 // double from the camera-space positions at t (the backends' float depths are not trusted):
 //

@@ -1,10 +1,10 @@
 #pragma once
-// Equal-quality motion blur benchmark (DESIGN.md, "Exact motion blur"): for one scene and shutter,
-// the kinetic backend's exact blur and Embree's stratified time sampling at several sample counts,
-// each timed per frame and measured against a reference frame (Embree with very many samples).
-// Error is the RMSE (and max) over every channel of every pixel, in linear RGB, pooled over the
-// frames; time per frame is the median wall time of the frames after the first (the first holds
-// the kinetic grid's scan conversion and each backend's warm-up; the kinetic init is reported
+// Equal-quality motion blur benchmark (docs/design.md, "Exact motion blur"): for one scene and
+// shutter, the kinetic backend's exact blur and Embree's stratified time sampling at several sample
+// counts, each timed per frame and measured against a reference frame (Embree with very many
+// samples). Error is the RMSE (and max) over every channel of every pixel, in linear RGB, pooled
+// over the frames; time per frame is the median wall time of the frames after the first (the first
+// holds the kinetic grid's scan conversion and each backend's warm-up; the kinetic init is reported
 // apart).
 #include <functional>
 #include <nlohmann/json.hpp>

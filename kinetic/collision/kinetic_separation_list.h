@@ -1,5 +1,5 @@
 #pragma once
-// The kinetic separation list of Zachmann and Weller (VRIPHYS 2006; DESIGN.md, "Kinetic
+// The kinetic separation list of Zachmann and Weller (VRIPHYS 2006; docs/design.md, "Kinetic
 // separation list"): continuous collision detection between two kinetic AABB trees, or one tree
 // against itself, as the maintenance of the front of their bounding volume test tree (BVTT).
 //

@@ -1,6 +1,7 @@
 // KineticSeparationList::audit: the list against a fresh simultaneous traversal of the two trees
-// (DESIGN.md: "the list equals a fresh traversal's front at a time strictly between events"),
-// and every record's certificates against a recomputation from its current realizers.
+// (docs/design.md, "The audit": "the list equals a fresh traversal's front at a time strictly
+// between events"), and every record's certificates against a recomputation from its current
+// realizers.
 #include <cmath>
 #include <sstream>
 #include <string>

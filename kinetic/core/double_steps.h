@@ -1,7 +1,7 @@
 #pragma once
 // Stepping through doubles to pin down the first one where a sign test holds: the last stage of
 // the failure-time searches of root_finding.cpp and certificate_time.cpp, which must land on the
-// same double as the callers' own evaluation (DESIGN.md, "robust root isolation").
+// same double as the callers' own evaluation (docs/design.md, "Root isolation and its filters").
 #include <algorithm>
 #include <bit>
 #include <cstdint>

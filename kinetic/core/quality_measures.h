@@ -1,8 +1,8 @@
 #pragma once
-// The four quality measures of a kinetic structure (DESIGN.md; Basch, Guibas and Hershberger),
-// defined once for every structure: compactness (live certificates, at most), responsiveness
-// (certificates computed per event), locality (live certificates per object present) and
-// efficiency (internal events per external one).
+// The four quality measures of a kinetic structure (docs/design.md, "Vocabulary"; Basch, Guibas and
+// Hershberger), defined once for every structure: compactness (live certificates, at most),
+// responsiveness (certificates computed per event), locality (live certificates per object present)
+// and efficiency (internal events per external one).
 #include <algorithm>
 #include <cstdint>
 

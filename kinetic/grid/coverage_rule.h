@@ -1,6 +1,6 @@
 #pragma once
-// The sign rule for coverage (DESIGN.md, "Coverage"): the ray d (not the line) pierces the
-// triangle iff E_01(d), E_12(d), E_20(d) all have the sign of O and O != 0. It holds for
+// The sign rule for coverage (docs/design.md, "The sign rule"): the ray d (not the line) pierces
+// the triangle iff E_01(d), E_12(d), E_20(d) all have the sign of O and O != 0. It holds for
 // triangles in front of, straddling and behind the eye, so nothing is ever clipped.
 //
 // Signs are always taken "just after now" (sign_after), in initialisation, events and audit

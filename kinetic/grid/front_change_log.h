@@ -1,7 +1,7 @@
 #pragma once
-// The seam between the kinetic grid and exact motion blur (DESIGN.md, "Exact motion blur"): while
-// a log is attached, a band appends every change of a pixel's front triangle, with the time of
-// the event that made it. Between two entries of a pixel its front is fixed, so the entries of a
+// The seam between the kinetic grid and exact motion blur (docs/design.md, "Exact motion blur"):
+// while a log is attached, a band appends every change of a pixel's front triangle, with the time
+// of the event that made it. Between two entries of a pixel its front is fixed, so the entries of a
 // shutter window split each pixel's window into intervals with one front each. A band appends in
 // event (time) order and owns its log, so bands log in parallel without locks.
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
-// One band of rows of the kinetic grid of frusta, simulated on its own event queue (DESIGN.md,
-// "Coverage: event-based polygon tracking", "Depth order", "Frame loop"). A band owns
+// One band of rows of the kinetic grid of frusta, simulated on its own event queue (docs/design.md,
+// "Coverage", "Depth order per pixel", "Bands and the frame loop"). A band owns
 //   - the (triangle, row) records of its rows, each with the interval of columns it covers and
 //     two boundaries, the points where two of its edges meet the row plane,
 //   - the (edge, row) boundaries, each on a slot of the column circle (boundary events) and

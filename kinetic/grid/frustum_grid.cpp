@@ -292,9 +292,9 @@ class RowReader {
     TrianglePlane plane{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   };
 
-  /// A triangle in a pixel's order pierces its ray just after now; exactly at now it may not:
-  /// when its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers
-  /// nothing at that instant (DESIGN.md's strict rule), and its hit is not in front of the eye.
+  /// A triangle in a pixel's order pierces its ray just after now; exactly at now it may not: when
+  /// its plane holds the eye (det = 0, e.g. a vertex passing through the eye) it covers nothing at
+  /// that instant (the strict sign rule, docs/design.md), and its hit is not in front of the eye.
   /// That is measure zero, so the front is checked and only then are the other members visited.
   static bool pierces(double z) { return std::isfinite(z) && z > 0; }
 

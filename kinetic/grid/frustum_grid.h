@@ -1,7 +1,7 @@
 #pragma once
-// The kinetic grid of frusta (DESIGN.md): for every pixel the triangles its centre ray pierces,
-// in depth order, kept up to date by events only. Coverage is tracked per (triangle, row) by
-// boundary, vertex-row and orientation certificates, depth per pixel by a kinetic sorted list,
+// The kinetic grid of frusta (docs/design.md): for every pixel the triangles its centre ray
+// pierces, in depth order, kept up to date by events only. Coverage is tracked per (triangle, row)
+// by boundary, vertex-row and orientation certificates, depth per pixel by a kinetic sorted list,
 // tournament or heap with degree-5 certificates; flightplan updates at keyframes, meshes that
 // appear and disappear, and static meshes (no coverage events) are handled. Rows are split into
 // bands simulated in parallel on their own event queues; the frames do not depend on the split.

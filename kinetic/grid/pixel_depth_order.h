@@ -1,5 +1,5 @@
 #pragma once
-// Per-pixel depth order (DESIGN.md, "Depth order: kinetic sorting per pixel"). Along the centre
+// Per-pixel depth order (docs/design.md, "Depth order per pixel"). Along the centre
 // ray d of a pixel the depth of triangle A is z_A = N_A / D_A with N_A = det(v0, v1, v2) (cubic)
 // and D_A = (e1 x e2) . d (quadratic), so "A before B" holds while
 //     sign(D_A D_B) (N_B D_A - N_A D_B) > 0,

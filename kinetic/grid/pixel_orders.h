@@ -1,6 +1,6 @@
 #pragma once
-// The pixel orders of one band: a kinetic depth order per pixel of its rows (DESIGN.md, "Depth
-// order: kinetic sorting per pixel"), the only part of the kinetic grid that depends on the sort
+// The pixel orders of one band: a kinetic depth order per pixel of its rows (docs/design.md,
+// "Depth order per pixel"), the only part of the kinetic grid that depends on the sort
 // (--sort list, tournament or heap). The band reaches them through this interface, one virtual
 // call per change of a pixel's order; pixel_orders.cpp holds them in one array per sort. Every
 // change returns the pixel's front after it, which the band copies into its front array.

@@ -1,6 +1,6 @@
 #pragma once
-// Per (triangle, row) bookkeeping of the kinetic grid (DESIGN.md, "Coverage: event-based polygon
-// tracking"). The centre rays of row j span the plane Pi_j through the eye; a triangle meeting
+// Per (triangle, row) bookkeeping of the kinetic grid (docs/design.md,
+// "Coverage"). The centre rays of row j span the plane Pi_j through the eye; a triangle meeting
 // Pi_j does so in a segment whose two end points (the boundaries) lie on two of its edges. Each
 // boundary's column position lives on the projective line of the row and is tracked by a slot on
 // a circle of columns, once per (edge, row) for the two triangles of the edge; the record keeps

@@ -1,6 +1,6 @@
 #pragma once
-// The polynomials of a moving triangle on one flightplan segment (DESIGN.md, "Coverage" and
-// "Depth order"). Every vertex moves as p(s) = a + b s in the local time s = t - origin of its
+// The polynomials of a moving triangle on one flightplan segment (docs/design.md, "Certificates and
+// their polynomials"). Every vertex moves as p(s) = a + b s in the local time s = t - origin of its
 // segment, so
 //   - the edge function E_pq(d) = (p x q) . d is quadratic in s,
 //   - the orientation O = det(v0, v1, v2) is cubic,

@@ -1,5 +1,5 @@
 #pragma once
-// The kinetic AABB tree and the kinetic BoxTree of Zachmann and Weller (VRCIA 2006; DESIGN.md,
+// The kinetic AABB tree and the kinetic BoxTree of Zachmann and Weller (VRCIA 2006; docs/design.md,
 // "Kinetic AABB tree and kinetic BoxTree"). The tree's shape is built once (binned SAH) and kept;
 // each node side (an axis and max or min) stores its realizing vertex, the vertex of the subtree
 // that is extreme there. Certificates are linear on a flightplan segment:

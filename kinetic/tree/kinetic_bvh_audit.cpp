@@ -1,5 +1,5 @@
-// KineticBvh::audit: the tree against a recomputation from its leaves (DESIGN.md: "every box
-// equals the box recomputed from its leaves at a time strictly between events").
+// KineticBvh::audit: the tree against a recomputation from its leaves (docs/design.md, "The
+// audit": "every box equals the box recomputed from its leaves at a time strictly between events").
 #include <cmath>
 #include <limits>
 #include <sstream>

@@ -2,9 +2,10 @@
 // The input of the kinetic trees, indexed: the triangles of camera-space meshes with
 // piecewise-linear flightplans (kinetic/motion/flightplan_mesh.h's FlightplanMesh), with global
 // triangle and vertex ids, and every vertex's motion on its mesh's current flightplan segment, x(t)
-// = a + b (t - o). The certificates of the trees are linear in t on a segment (DESIGN.md, "Kinetic
-// AABB tree and kinetic BoxTree"), and every comparison of two vertices builds the same polynomial
-// from these motions, so an event sees the sign change its failure time was computed for.
+// = a + b (t - o). The certificates of the trees are linear in t on a segment (docs/design.md,
+// "Kinetic AABB tree and kinetic BoxTree"), and every comparison of two vertices builds the same
+// polynomial from these motions, so an event sees the sign change its failure time was computed
+// for.
 #include <Eigen/Core>
 #include <array>
 #include <cmath>

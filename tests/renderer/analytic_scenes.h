@@ -46,14 +46,16 @@ inline Scene analytic_scene(std::vector<Object> objects) {
   return scene;
 }
 
-/// Exact depth z = O / (E01 + E12 + E20) of the ray d on the plane of (p0, p1, p2) (DESIGN.md).
+/// Exact depth z = O / (E01 + E12 + E20) of the ray d on the plane of (p0, p1, p2)
+/// (docs/design.md).
 inline double plane_depth(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& d) {
   const double o = p0.dot(p1.cross(p2));
   return o / (p0.cross(p1).dot(d) + p1.cross(p2).dot(d) + p2.cross(p0).dot(d));
 }
 
-/// The ID and depth buffers by brute force: every pixel's front-most triangle by DESIGN.md's sign
-/// rule (the ray pierces a triangle iff its three edge functions have the sign of det(v0, v1, v2)).
+/// The ID and depth buffers by brute force: every pixel's front-most triangle by the sign rule of
+/// docs/design.md (the ray pierces a triangle iff its three edge functions have the sign of det(v0,
+/// v1, v2)).
 inline Frame exact_frame(const CameraSpaceScene& scene, int width, int height, double t) {
   Frame frame;
   frame.resize(width, height);

@@ -330,8 +330,8 @@ TEST(HardCases, SharedEdgeReachesPixelCentresAtAFrameTime) {
 }
 
 TEST(HardCases, DepthSwapExactlyAtAFrameTime) {
-  // a: a square at depth 2. b: a smaller square moving away along its own rays, z = 1.5 + t, so
-  // its image never changes and it passes a at t = 0.5 exactly, over its whole area. DESIGN.md:
+  // a: a square at depth 2. b: a smaller square moving away along its own rays, z = 1.5 + t, so its
+  // image never changes and it passes a at t = 0.5 exactly, over its whole area. docs/design.md:
   // events at t <= t_f are processed before the read-out, and a root is decided by the sign just
   // after it, so at t = 0.5 a is already in front.
   auto along_rays = [](double z) { return square(0, 0, 0.375, z); };
@@ -492,7 +492,7 @@ TEST(HardCases, GeometryPassingBehindTheCamera) {
 }
 
 // o's first vertex moves along its own ray, through the eye at t = 0.5 and behind it after. At
-// t = 0.5 the eye is a vertex of o, so its plane holds the eye (det = 0) and by DESIGN.md's rule it
+// t = 0.5 the eye is a vertex of o, so its plane holds the eye (det = 0) and by the sign rule it
 // covers nothing, although the pixel orders hold the coverage of just after 0.5: the read-out must
 // see that the front does not pierce the ray at that instant and show what is behind. Near the
 // instant Embree is no reference: it forms o's edges v1 - v0 in float, where a vertex 1e-6 from

@@ -1,5 +1,5 @@
-// 10x slow motion (DESIGN.md, "Frame loop": the cost of event processing depends only on the
-// motion, never on how many frames are read out). Rendering --inbetweens 10K instead of
+// 10x slow motion (docs/design.md, "Bands and the frame loop": the cost of event processing depends
+// only on the motion, never on how many frames are read out). Rendering --inbetweens 10K instead of
 // --inbetweens K over the same shot processes the same events, kind for kind; its frames at the
 // shared times are identical to the normal render's (object, prim, depth and colour); and its
 // in-between frames agree with Embree (zero real mismatches). Checked on every built-in scene and

@@ -1,6 +1,6 @@
 #pragma once
 // What the model-import tests check on a loaded scene, computed independently of the importer:
-// how far vertices move, and what the camera sees (the camera-space convention of DESIGN.md:
+// how far vertices move, and what the camera sees (the camera-space convention of docs/design.md:
 // eye at the origin looking down +z, a point is in a square image when |x|, |y| <= z tan(fov/2)).
 #include <algorithm>
 #include <array>

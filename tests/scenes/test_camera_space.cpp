@@ -1,4 +1,4 @@
-// Camera space (DESIGN.md): the transform of world points, checked against values computed by
+// Camera space (docs/design.md): the transform of world points, checked against values computed by
 // hand; the fov folding; the key grid of an object under a moving camera; pixel-centre rays.
 //
 // The world is right-handed (as glTF, COLLADA, OBJ and assimp's output are): a camera looking

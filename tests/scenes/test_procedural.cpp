@@ -20,7 +20,7 @@ namespace {
 constexpr uint32_t kNoPrim = std::numeric_limits<uint32_t>::max();
 
 /// Calls hit(object, prim, pixel, depth) for every pixel-centre ray of `image` that pierces a
-/// visible triangle at time t (DESIGN.md's sign rule; depth = camera-space z of the hit).
+/// visible triangle at time t (the sign rule of docs/design.md; depth = camera-space z of the hit).
 void rasterize(const CameraSpaceScene& scene, const PixelRays& image, double t,
                const std::function<void(uint32_t, uint32_t, size_t, double)>& hit) {
   std::vector<Vec3> p;
