@@ -7,6 +7,8 @@
 #                                   # KINRAY_FUZZ_SECONDS (default 30) from its seed corpus, with
 #                                   # libFuzzer's seed KINRAY_FUZZ_SEED (default 0: a random one)
 #   bash tools/checks.sh fuzz NAME  # one harness only
+#   bash tools/checks.sh slurm      # a one-node Slurm cluster renders a shot with the shipped job
+#                                   # array (tools/slurm/), a task cancelled and requeued included
 #
 # Extra CMake arguments (a compiler launcher such as ccache, say) go in KINRAY_CMAKE_ARGS.
 set -euo pipefail
@@ -81,8 +83,12 @@ case "$mode" in
       exit 1
     fi
     ;;
+  slurm)
+    # Installs Slurm and MUNGE, starts its own daemons in a temporary folder and stops them.
+    exec bash tools/slurm/check.sh
+    ;;
   *)
-    echo "usage: bash tools/checks.sh sanitize|fuzz [NAME]" >&2
+    echo "usage: bash tools/checks.sh sanitize|fuzz [NAME]|slurm" >&2
     exit 2
     ;;
 esac
