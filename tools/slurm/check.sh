@@ -123,7 +123,8 @@ give_up() {  # the cluster or a job went wrong: show its logs, stop
 wait_jobs() {
   local deadline=$((SECONDS + $2))
   while [[ -n "$(squeue -h -j "$1" -o %i)" ]]; do
-    ((SECONDS < deadline)) || give_up "jobs $1 still queued after $2 s: $(squeue -h -j "$1" -o '%i %T %r' | tr '\n' ' ')"
+    ((SECONDS < deadline)) ||
+      give_up "jobs $1 still queued after $2 s: $(squeue -h -j "$1" -o '%i %T %r' | tr '\n' ' ')"
     sleep 1
   done
 }
