@@ -177,7 +177,7 @@ shot=(--time 0:2 --frames 8 --size 64x48 --keyrate 4)
 read -r array video < <(bash tools/slurm/submit.sh "$scene" "$tmp/farm" "$tmp/farm.mp4" "${shot[@]}")
 [[ -n "${video:-}" ]] || give_up "submit.sh failed"
 echo "slurm: submitted array $array (4 tasks) and video $video"
-wait_jobs "$array,$video" 120
+wait_jobs "$array,$video" 240
 check "the array's 4 tasks completed" completed "$array" 4
 check "the video job completed" completed "$video" 1
 check "the 8 frames equal a single process's, bit for bit" same_frames "$tmp/whole" "$tmp/farm"
@@ -200,7 +200,7 @@ until [[ -e "$tmp/fault/${chunk2[0]}" ]]; do
   sleep 0.1
 done
 scancel "${array}_2" || give_up "scancel failed"
-wait_jobs "$array" 120
+wait_jobs "$array" 240
 kept=()
 for frame in "${chunk2[@]}"; do [[ -e "$tmp/fault/$frame" ]] && kept+=("$tmp/fault/$frame"); done
 kept_inodes="$(stat -c '%n %i' "${kept[@]}")"
@@ -215,7 +215,7 @@ scancel "$video"
 video=$(sbatch --parsable "${sbatch_options[@]}" --dependency="afterok:${array}_2" \
   tools/slurm/kinray-video.sbatch "$tmp/fault" "$tmp/fault.mp4") || give_up "sbatch failed"
 echo "slurm: requeued task ${array}_2 and submitted video $video after it"
-wait_jobs "$array,$video" 180
+wait_jobs "$array,$video" 240
 check "the array's 4 tasks completed after the requeue" completed "$array" 4
 check "the requeued task kept the frames it had written" \
   test "$(stat -c '%n %i' "${kept[@]}")" == "$kept_inodes"
