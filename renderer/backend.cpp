@@ -1,5 +1,6 @@
 #include "renderer/backend.h"
 
+#include "renderer/auto_backend.h"
 #include "renderer/embree_backend.h"
 #include "renderer/kinetic_backend.h"
 #ifdef KINRAY_WITH_OSMESA
@@ -21,6 +22,7 @@ struct BackendEntry {
 const BackendEntry kBackends[] = {
     {"kinetic", &make_kinetic_backend},
     {"embree", &make_embree_backend},
+    {"auto", &make_auto_backend},
 #ifdef KINRAY_WITH_OSMESA
     {"osmesa", &make_osmesa_backend},
 #endif

@@ -36,6 +36,16 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
+/// A built-in's size from its parameters: its meshes have about one vertex per two triangles.
+std::optional<SceneSize> size_of_builtin(const std::string& spec) {
+  const std::optional<ProceduralParams> params = builtin_scene_params(spec);
+  if (!params) return std::nullopt;
+  const double keys = std::ceil(params->duration * params->keyrate - 1e-9) + 1;
+  return SceneSize{params->triangles, params->triangles / 2 * keys};
+}
+
+}  // namespace
+
 SceneSize size_of(const Scene& scene) {
   SceneSize size;
   for (const Object& object : scene.objects) {
@@ -47,26 +57,17 @@ SceneSize size_of(const Scene& scene) {
   return size;
 }
 
-/// A built-in's size from its parameters: its meshes have about one vertex per two triangles.
-std::optional<SceneSize> size_of_builtin(const std::string& spec) {
-  const std::optional<ProceduralParams> params = builtin_scene_params(spec);
-  if (!params) return std::nullopt;
-  const double keys = std::ceil(params->duration * params->keyrate - 1e-9) + 1;
-  return SceneSize{params->triangles, params->triangles / 2 * keys};
-}
-
-}  // namespace
-
 MemoryEstimate estimate_render_memory(const SceneSize& size, int width, int height,
                                       const std::string& backend) {
   const double pixels = double(width) * double(height);
   MemoryEstimate estimate;
   estimate.scene = size.vertex_keys * kBytesPerVertexKey + size.triangles * kSceneBytesPerTriangle;
   estimate.frames = pixels * kFrameBytesPerPixel;
+  // auto tries the kinetic grid only when it fits (renderer/auto_backend.h)
   if (backend == "kinetic") {
     estimate.backend_scene = size.triangles * kKineticBytesPerTriangle;
     estimate.backend_pixels = pixels * kKineticBytesPerPixel;
-  } else if (backend == "embree") {
+  } else if (backend == "embree" || backend == "auto") {
     estimate.backend_scene = size.triangles * kEmbreeBytesPerTriangle;
   } else {
     estimate.backend_scene = size.triangles * kOsmesaBytesPerTriangle;

@@ -24,6 +24,9 @@ struct SceneSize {
   double triangles = 0, vertex_keys = 0;  ///< vertex_keys: sum over objects of vertices x keys
 };
 
+/// The sizes of a loaded scene.
+[[nodiscard]] SceneSize size_of(const Scene& scene);
+
 /// The estimate for a scene of `size` rendered at width x height by `backend`.
 [[nodiscard]] MemoryEstimate estimate_render_memory(const SceneSize& size, int width, int height,
                                                     const std::string& backend);

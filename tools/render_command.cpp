@@ -121,6 +121,10 @@ void print_summary(const RenderJob& job, const Backend& backend, const RenderTim
               n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
               params.height, backend.name().c_str(), timings.total,
               summary_details(timings, backend).c_str());
+  nlohmann::json stats;
+  backend.write_stats(stats);
+  if (stats.contains("auto"))  // which backend rendered which frames, and why
+    std::printf("auto:   %s\n", stats["auto"]["summary"].get<std::string>().c_str());
   const FrameSlice& slice = job.slice();
   const std::string last =
       slice.size() > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
@@ -146,7 +150,11 @@ void print_summary(const RenderJob& job, const Backend& backend, const RenderTim
 }
 
 void run_render(const RenderParams& flags) {
-  check_options_apply(flags, std::array{flags.backend});
+  const bool automatic = flags.backend == "auto";
+  if (automatic)
+    check_options_apply(flags, std::array<std::string, 2>{"kinetic", "embree"});
+  else
+    check_options_apply(flags, std::array{flags.backend});
   const std::string out = output_folder(flags);
   check_output_paths(out, flags);
   // Loading a big model and building the kinetic grid take seconds before the first frame.
@@ -239,6 +247,7 @@ void register_render_command(CLI::App& app) {
                                          "Render a scene to PNG frames out/<scene>/frame_00000.png "
                                          "... (and a video, ID/depth buffers, stats)");
   auto options = std::make_shared<RenderOptions>();
+  options->params.backend = "auto";  // diff and bench name the backends they compare
   add_render_options(*command, *options);
   command
       ->add_option("--chunk", options->params.chunk,

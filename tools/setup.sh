@@ -70,8 +70,10 @@ fi
 
 case "$mode" in
   render)
-    build/bin/kinray render wavy-sphere --frames 24 --out out/wavy-sphere
-    echo "setup: the 24 frames are in $root/out/wavy-sphere/ (frame_00000.png .. frame_00023.png)"
+    # Slow motion, what the kinetic grid is for: 32 frames per keyframe interval over half a
+    # second; --backend auto (the default) measures the shot and says which backend it took.
+    build/bin/kinray render wavy-sphere --time 0:0.5 --inbetweens 32 --out out/wavy-sphere
+    echo "setup: the 385 frames are in $root/out/wavy-sphere/ (frame_00000.png .. frame_00384.png)"
     ;;
   test)
     ctest --test-dir build --output-on-failure -j2

@@ -164,6 +164,25 @@ double measure_first_build(const BenchParams& bench, RenderJob& job, double time
   return median(first);
 }
 
+/// --backend auto over the frames of the point, from creating it to the last frame (median over
+/// repetitions), set against the faster of what the point measured of each backend.
+void measure_auto(const BenchParams& bench, RenderJob& job, const std::vector<double>& times,
+                  BenchPoint& point) {
+  std::vector<double> wall;
+  for (int repetition = 0; repetition < bench.repetitions; ++repetition) {
+    BackendRun run = run_backend(job, [&] { return job.make_backend("auto"); }, times, {});
+    wall.push_back(run.wall_ms);
+    if (repetition == 0 && run.stats.contains("auto"))
+      point.auto_summary = run.stats["auto"]["summary"].get<std::string>();
+  }
+  const double frames = double(times.size());
+  point.auto_ms_per_frame = median(wall) / frames;
+  const double best_embree = point.embree_build_and_trace_ms +
+                             point.embree_best_ms_per_frame * std::max(frames - 1, 0.0);
+  point.faster_ms_per_frame =
+      std::min(point.kinetic_with_init_ms_per_frame * frames, best_embree) / frames;
+}
+
 }  // namespace
 
 size_t BenchPoint::Peer::count(const FrameDiff& diff) {
@@ -200,6 +219,7 @@ BenchPoint measure_frames(const BenchParams& bench, RenderJob& job,
   const std::vector<Frame> kinetic_frames = measure_kinetic(bench, job, times, sampled, point);
   measure_peers(bench, job, times, sampled, kinetic_frames, point);
   point.embree_build_and_trace_ms = measure_first_build(bench, job, times.front());
+  measure_auto(bench, job, times, point);
   return point;
 }
 
@@ -382,6 +402,17 @@ nlohmann::json BenchReport::to_json() const {
                            {"embree_best_mode", p.embree_best_mode},
                            {"embree_build_and_trace_ms", p.embree_build_and_trace_ms},
                            {"speedup_vs_best_embree", p.speedup_vs_best_embree},
+                           {"best_embree_ms_per_frame", p.embree_best_ms_per_frame},
+                           {"kinetic_init_in_embree_frames",
+                            p.embree_best_ms_per_frame > 0
+                                ? p.kinetic_init_ms / p.embree_best_ms_per_frame
+                                : 0.0},
+                           {"auto_summary", p.auto_summary},
+                           {"auto_ms_per_frame", p.auto_ms_per_frame},
+                           {"faster_ms_per_frame", p.faster_ms_per_frame},
+                           {"auto_over_faster", p.faster_ms_per_frame > 0
+                                                    ? p.auto_ms_per_frame / p.faster_ms_per_frame
+                                                    : 0.0},
                            {"pixels_compared", p.pixels_compared},
                            {"mismatch_real", p.mismatch_real},
                            {"mismatch_tie", p.mismatch_tie}});
@@ -560,6 +591,14 @@ void BenchReport::print(std::ostream& out) const {
         << std::setw(14) << p.events_per_key_interval() << std::setw(8)
         << p.mismatch_real << std::setw(6) << p.mismatch_tie << "\n";
   }
+  // --backend auto against the faster backend, whole renders (initialisation and first build in)
+  out << "auto:    K  auto ms/f  faster ms/f  auto/faster  rendered with\n";
+  for (const BenchPoint& p : points)
+    out << std::setprecision(0) << std::setw(10) << p.inbetweens << std::setprecision(3)
+        << std::setw(11) << p.auto_ms_per_frame << std::setw(13) << p.faster_ms_per_frame
+        << std::setprecision(2) << std::setw(12)
+        << (p.faster_ms_per_frame > 0 ? p.auto_ms_per_frame / p.faster_ms_per_frame : 0) << "x  "
+        << p.auto_summary << "\n";
   if (const auto k = break_even_inbetweens())
     out << std::setprecision(2) << "break-even: " << *k << " in-betweens per keyframe interval\n";
   if (ns_per_event_one_thread)

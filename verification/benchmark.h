@@ -83,6 +83,12 @@ struct BenchPoint {
   double speedup_vs_best_embree = 0;  ///< embree_best_ms_per_frame / kinetic_ms_per_frame
   double embree_build_and_trace_ms = 0;  ///< one Embree rebuild plus trace, to set beside init
   size_t pixels_compared = 0, mismatch_real = 0, mismatch_tie = 0;
+  // --backend auto over the same frames (renderer/auto_backend.h), its whole wall time.
+  double auto_ms_per_frame = 0;    ///< median over repetitions, measuring included
+  std::string auto_summary;        ///< what it rendered with (first repetition)
+  /// The faster of the kinetic backend (initialisation included) and Embree's best mode (its
+  /// first build included), per frame: what auto is set against.
+  double faster_ms_per_frame = 0;
   /// Kinetic events (all kinds) per keyframe interval of the measured frames.
   [[nodiscard]] double events_per_key_interval() const;
 };

@@ -32,8 +32,9 @@ TEST_F(CliFlags, FlagsThatNothingReadsAreRefused) {
       "render wavy-sphere:triangles=600 --size 16x16 --frames 1 --out '" + path("f") + "' ";
   const std::string diff = "diff wavy-sphere:triangles=600 --size 16x16 --frames 1 ";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {render + "--packet 8", "--packet: applies to the embree backend only"},
-      {render + "--embree-mode rebuild", "--embree-mode: applies to the embree backend only"},
+      {render + "--backend kinetic --packet 8", "--packet: applies to the embree backend only"},
+      {render + "--backend kinetic --embree-mode rebuild",
+       "--embree-mode: applies to the embree backend only"},
       {render + "--backend embree --audit", "--audit: applies to the kinetic backend only"},
       {render + "--backend osmesa --sort heap", "--sort: applies to the kinetic backend only"},
       {render + "--animation walk", "--animation: applies to model files only"},
@@ -44,9 +45,13 @@ TEST_F(CliFlags, FlagsThatNothingReadsAreRefused) {
   };
   expect_refused(cases);
   EXPECT_FALSE(fs::exists(path("f")));
-  // Where a flag is read it is accepted: diff's reference is Embree, which takes --packet.
+  // Where a flag is read it is accepted: diff's reference is Embree, which takes --packet, and
+  // render's --backend auto chooses Embree for a flag of Embree's.
   const test::CommandRun run = kinray(diff + "--packet 4 --quiet");
   EXPECT_EQ(run.status, 0) << run.err;
+  const test::CommandRun chosen = kinray(render + "--packet 4 --quiet --stats '" + path("s.json") + "'");
+  EXPECT_EQ(chosen.status, 0) << chosen.err;
+  EXPECT_NE(test::read_text(path("s.json")).find("\"backend\": \"embree\""), std::string::npos);
 }
 
 TEST_F(CliFlags, ALibraryFieldIsNamedByItsFlag) {

@@ -2,6 +2,9 @@
 // event count, and no kinetic-versus-Embree warning on a short render.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <map>
+
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
@@ -15,7 +18,7 @@ class CliRenderFeedback : public test::CommandTest {};
 
 TEST_F(CliRenderFeedback, SummaryGivesTotalTimeWithLoadingAndTheKineticEventCount) {
   const test::CommandRun run =
-      kinray("render wavy-sphere:triangles=600 --size 64x48 --frames 6 --out '" + path("frames") +
+      kinray("render --backend kinetic wavy-sphere:triangles=600 --size 64x48 --frames 6 --out '" + path("frames") +
              "' --stats '" + path("stats.json") + "'");
   ASSERT_EQ(run.status, 0) << run.err;
   // A short quick render: no forecast warning, nothing at all on stderr (not a terminal).
@@ -45,6 +48,56 @@ TEST_F(CliRenderFeedback, EmbreeSummaryHasNoKineticEvents) {
   EXPECT_NE(run.out.find("with embree in "), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("(loading "), std::string::npos) << run.out;
   EXPECT_EQ(run.out.find("kinetic events"), std::string::npos) << run.out;
+}
+
+/// The frame files of a folder, by name.
+std::map<std::string, std::string> frame_files(const std::filesystem::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    files[entry.path().filename().string()] = test::read_text(entry.path());
+  return files;
+}
+
+// --backend auto, render's default: slow motion goes to the kinetic grid after two Embree frames,
+// a short shot stays with Embree, and every frame equals the frame of the backend that rendered
+// it, byte for byte.
+TEST_F(CliRenderFeedback, AutoGivesSlowMotionToTheGridAndAShortShotToEmbree) {
+  const std::string scene = "render wavy-sphere:triangles=2000 --size 64x48 ";
+  const std::string slow = scene + "--time 0:0.25 --inbetweens 64 ";
+  const test::CommandRun run =
+      kinray(slow + "--out '" + path("auto") + "' --stats '" + path("auto.json") + "'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("auto:   "), std::string::npos) << run.out;
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(path("auto.json")));
+  EXPECT_EQ(stats["backend"], "auto");
+  // 64 frames per keyframe interval of a small image: the grid, by a wide margin (the choice
+  // is measured, so the test asserts the margin, not the exact split)
+  EXPECT_GE(stats["auto"]["frames"]["kinetic"].get<int>(), 300) << stats["auto"].dump();
+  EXPECT_EQ(stats["auto"]["frames"]["kinetic"].get<int>() +
+                stats["auto"]["frames"]["embree"].get<int>(),
+            385);
+  const std::string packet = std::to_string(stats["auto"]["embree_packet"].get<int>());
+  ASSERT_EQ(kinray(slow + "--backend kinetic -q --out '" + path("kinetic") + "'").status, 0);
+  ASSERT_EQ(kinray(slow + "--backend embree --packet " + packet + " -q --out '" + path("embree") +
+                   "'")
+                .status,
+            0);
+  const auto automatic = frame_files(path("auto")), kinetic = frame_files(path("kinetic")),
+             embree = frame_files(path("embree"));
+  ASSERT_EQ(automatic.size(), 385u);
+  for (const auto& [name, bytes] : automatic) {
+    const bool first_two = name == "frame_00000.png" || name == "frame_00001.png";
+    if (first_two)
+      EXPECT_EQ(bytes, embree.at(name)) << name;
+    else
+      EXPECT_TRUE(bytes == kinetic.at(name) || bytes == embree.at(name)) << name;
+  }
+  // four frames, one per keyframe interval: Embree alone
+  const test::CommandRun short_shot = kinray(scene + "--frames 4 --out '" + path("short") + "'");
+  ASSERT_EQ(short_shot.status, 0) << short_shot.err;
+  EXPECT_NE(short_shot.out.find("auto:   4 frames with Embree, 0 with the kinetic grid"),
+            std::string::npos)
+      << short_shot.out;
 }
 
 }  // namespace

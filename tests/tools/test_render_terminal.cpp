@@ -30,7 +30,7 @@ std::string last_visible_line(std::string text) {
 
 TEST_F(CliRenderTerminal, NotesLoadingAndGridInitialisationThenDrawsTheBar) {
   const test::CommandRun run = on_terminal(
-      "render wavy-sphere:triangles=600 --size 64x48 --frames 3 --out '" + path("frames") + "'");
+      "render --backend kinetic wavy-sphere:triangles=600 --size 64x48 --frames 3 --out '" + path("frames") + "'");
   ASSERT_EQ(run.status, 0) << run.err;
   const size_t loading = run.err.find("loading wavy-sphere:triangles=600...");
   const size_t grid = run.err.find("initialising the kinetic grid...");
@@ -50,7 +50,7 @@ TEST_F(CliRenderTerminal, AGridThatTakesSecondsToInitialiseShowsHowFarItHasGot) 
   // 300,000 triangles: the culling proof and the scan conversion take well over the 250 ms
   // between redraws.
   const test::CommandRun run = on_terminal(
-      "render wavy-sphere:triangles=300000 --size 320x240 --frames 1 --threads 1 --out '" +
+      "render --backend kinetic wavy-sphere:triangles=300000 --size 320x240 --frames 1 --threads 1 --out '" +
       path("frames") + "'");
   ASSERT_EQ(run.status, 0) << run.err;
   // Two steps, each with its share done, which only grows within the step.
