@@ -171,7 +171,7 @@ export KINRAY_SBATCH="--cpus-per-task=1 --mem=1G --chdir=$tmp --output=$tmp/jobs
 read -r -a sbatch_options <<<"$KINRAY_SBATCH"
 
 # 1. The short shot: 4 tasks of 2 frames each, then the video, against one process.
-shot=(--time 0:2 --frames 8 --size 64x48 --keyrate 4)
+shot=(--backend kinetic --time 0:2 --frames 8 --size 64x48 --keyrate 4)
 "$kinray" render "$scene" "${shot[@]}" --out "$tmp/whole" --quiet 2>>"$tmp/log/whole.err" ||
   give_up "the single-process render failed"
 read -r array video < <(bash tools/slurm/submit.sh "$scene" "$tmp/farm" "$tmp/farm.mp4" "${shot[@]}")
@@ -186,7 +186,7 @@ check "the video decodes to 8 frames" video_frames "$tmp/farm.mp4" 8
 # 2. A task cancelled while it renders, then requeued: the same index, the same array, so the
 # same slice; --skip-existing renders only the frames it had not written. Larger frames and 6 a
 # task (0.2 to 1.5 s each here) leave time to cancel task 2 between its first frame and its last.
-slow=(--time 0:2 --frames 24 --size 160x120 --keyrate 4)
+slow=(--backend kinetic --time 0:2 --frames 24 --size 160x120 --keyrate 4)
 chunk2=(frame_0000{6..9}.png frame_0001{0,1}.png)  # task 2 of 4: frames 6 to 11 of 24
 "$kinray" render "$scene" "${slow[@]}" --out "$tmp/whole-slow" --quiet 2>>"$tmp/log/whole.err" ||
   give_up "the single-process render failed"
