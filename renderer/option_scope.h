@@ -4,7 +4,7 @@
 #include <span>
 #include <string>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 
 namespace kinray {
 

@@ -10,10 +10,10 @@
 #include <tuple>
 #include <vector>
 
-#include "renderer/image_io.h"
-#include "renderer/memory_estimate.h"
+#include "renderer/output/image_io.h"
+#include "renderer/job/memory_estimate.h"
 #include "renderer/option_scope.h"
-#include "renderer/output_check.h"
+#include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "renderer/image_io.h"
-#include "renderer/output_check.h"
+#include "renderer/output/image_io.h"
+#include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
 #include "tools/scene_contacts.h"
 #include "util/input_error.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "kinetic/collision/mesh_contacts.h"
-#include "renderer/frame_slice.h"
+#include "renderer/job/frame_slice.h"
 #include "scenes/scene.h"
 
 namespace kinray {

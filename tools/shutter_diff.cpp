@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "renderer/image_io.h"
-#include "renderer/progress.h"
+#include "renderer/output/image_io.h"
+#include "renderer/output/progress.h"
 #include "tools/cli_options.h"
 #include "util/input_error.h"
 #include "verification/shutter_error.h"

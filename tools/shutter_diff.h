@@ -4,7 +4,7 @@
 // samples (verification/shutter_error.h), frame by frame, within a stated tolerance.
 #include <string>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 #include "verification/shutter_error.h"
 
 namespace kinray {
