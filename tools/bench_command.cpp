@@ -19,7 +19,7 @@
 #include "tools/bench_suite_command.h"
 #include "tools/cli_errors.h"
 #include "tools/cli_options.h"
-#include "tools/collide_bench.h"
+#include "verification/collide_bench.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
 #include "util/input_error.h"

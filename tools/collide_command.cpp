@@ -14,7 +14,7 @@
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
-#include "tools/scene_contacts.h"
+#include "contacts/scene_contacts.h"
 #include "util/input_error.h"
 
 namespace kinray {

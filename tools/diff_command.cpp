@@ -18,7 +18,7 @@
 #include "renderer/output/progress.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
-#include "tools/shutter_diff.h"
+#include "verification/shutter_diff.h"
 #include "util/input_error.h"
 #include "verification/image_diff.h"
 

@@ -23,7 +23,7 @@
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
-#include "tools/contact_frames.h"
+#include "renderer/contact_frames.h"
 #include "tools/frame_sequence.h"
 #include "util/input_error.h"
 #include "util/warning.h"

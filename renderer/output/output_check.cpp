@@ -74,4 +74,13 @@ void check_output_folder(const std::string& path, const char* flag) {
   probe_writable(nearest_existing_folder(path, path, flag), path, flag);
 }
 
+void create_output_folder(const std::filesystem::path& folder, const char* flag) {
+  if (folder.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error)
+    throw InputError(flag,
+                     "cannot create the folder '" + folder.string() + "': " + error.message());
+}
+
 }  // namespace kinray

@@ -2,7 +2,9 @@
 // Checks, before anything is rendered or written, that an output a flag names can be written: a
 // command calls these for every output path it was given, so bad paths are refused (exit 2) with
 // earlier output intact, instead of failing after the work is done. A check may create and remove
-// a probe file in an existing folder; it creates no folder.
+// a probe file in an existing folder; it creates no folder (create_output_folder does, once
+// everything is valid and files are about to be written).
+#include <filesystem>
 #include <string>
 
 namespace kinray {
@@ -16,5 +18,9 @@ void check_output_file(const std::string& path, const char* flag);
 /// The same for an output folder: an empty path, an existing file, or a place where the folder
 /// cannot be created or written into is refused.
 void check_output_folder(const std::string& path, const char* flag);
+
+/// Creates `folder` (and its parents) for the output named by `flag`; an empty path is the
+/// working folder. Throws InputError naming the flag when it cannot.
+void create_output_folder(const std::filesystem::path& folder, const char* flag);
 
 }  // namespace kinray

@@ -1,4 +1,4 @@
-#include "tools/collide_bench.h"
+#include "verification/collide_bench.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,7 +11,7 @@
 #include "renderer/output/image_io.h"
 #include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
-#include "tools/scene_contacts.h"
+#include "contacts/scene_contacts.h"
 #include "util/input_error.h"
 #include "verification/bench_support.h"
 #include "verification/benchmark.h"

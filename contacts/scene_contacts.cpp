@@ -1,4 +1,4 @@
-#include "tools/scene_contacts.h"
+#include "contacts/scene_contacts.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,11 +1,11 @@
-#include "tools/contact_frames.h"
+#include "renderer/contact_frames.h"
 
 #include <algorithm>
 #include <array>
 #include <initializer_list>
 
 #include "renderer/contact_tint.h"
-#include "tools/scene_contacts.h"
+#include "contacts/scene_contacts.h"
 
 namespace kinray {
 namespace {

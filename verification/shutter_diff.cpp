@@ -1,4 +1,4 @@
-#include "tools/shutter_diff.h"
+#include "verification/shutter_diff.h"
 
 #include <cmath>
 #include <cstdio>
@@ -9,8 +9,8 @@
 #include <stdexcept>
 
 #include "renderer/output/image_io.h"
+#include "renderer/output/output_check.h"
 #include "renderer/output/progress.h"
-#include "tools/cli_options.h"
 #include "util/input_error.h"
 #include "verification/shutter_error.h"
 
@@ -35,8 +35,8 @@ void run_shutter_diff(const RenderParams& params, const ShutterDiffOptions& opti
   config.shutter.samples = samples;
   std::unique_ptr<Backend> reference = make_backend("embree", job.camera_space(), config);
 
-  create_folder(options.report, "--report");
-  create_folder(std::filesystem::path(options.json).parent_path(), "--json");
+  create_output_folder(options.report, "--report");
+  create_output_folder(std::filesystem::path(options.json).parent_path(), "--json");
   const std::filesystem::path report(options.report);
   const ShutterTolerance tolerance;
   nlohmann::json frames = nlohmann::json::array();
