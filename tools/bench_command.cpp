@@ -12,7 +12,7 @@
 
 #include "renderer/output/image_io.h"
 #include "renderer/job/memory_estimate.h"
-#include "renderer/option_scope.h"
+#include "tools/option_scope.h"
 #include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"

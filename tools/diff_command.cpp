@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "renderer/output/image_io.h"
-#include "renderer/option_scope.h"
+#include "tools/option_scope.h"
 #include "renderer/output/output_check.h"
 #include "renderer/output/progress.h"
 #include "tools/cli_options.h"

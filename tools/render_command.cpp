@@ -15,7 +15,7 @@
 
 #include "renderer/output/background_writes.h"
 #include "renderer/output/image_io.h"
-#include "renderer/option_scope.h"
+#include "tools/option_scope.h"
 #include "renderer/output/output_check.h"
 #include "renderer/output/progress.h"
 #include "renderer/job/render_forecast.h"

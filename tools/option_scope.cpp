@@ -1,4 +1,4 @@
-#include "renderer/option_scope.h"
+#include "tools/option_scope.h"
 
 #include <algorithm>
 #include <cctype>
