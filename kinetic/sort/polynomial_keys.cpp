@@ -1,35 +1,17 @@
-#include "kinetic/sort/kinetic_sort.h"
+#include "kinetic/sort/polynomial_keys.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kinetic/core/certificate_time.h"
+#include "util/check.h"
 
 namespace kinray {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }
-
-QualityCounts quality_counts(const KineticSortStats& s, size_t objects) {
-  QualityCounts q;
-  q.certificates_live_max = s.certificates_live;
-  q.certificates_live = s.certificates_live;
-  q.certificates_computed = s.work;
-  q.events = s.events() + s.events_renewal;
-  q.events_internal = s.events_internal;
-  q.events_external = s.events_external;
-  q.objects_present = objects;
-  return q;
-}
-
-namespace detail {
-
-double value_tolerance(double va, double vb) {
-  return 1e-9 * (1 + std::fabs(va) + std::fabs(vb));
-}
-
-}  // namespace detail
 
 uint32_t PolynomialKeys::add(const Polynomial& p, double start) {
   m_objects.push_back({Segment{start, p}});
