@@ -43,8 +43,8 @@
 #include "kinetic/core/event_queue.h"
 #include "kinetic/tree/bottom_up_bvh.h"
 #include "kinetic/tree/kinetic_bvh.h"
-#include "renderer/grid_meshes.h"
-#include "renderer/render_job.h"
+#include "renderer/backends/grid_meshes.h"
+#include "renderer/job/render_job.h"
 
 namespace {
 

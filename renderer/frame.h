@@ -18,7 +18,7 @@ struct Frame {
   std::vector<uint32_t> prim;    ///< triangle index within the object
   std::vector<float> depth;      ///< +inf for background
   std::vector<Color> color;      ///< linear RGB
-  /// Per pixel, bit l set when light l reaches the hit (renderer/lighting.h); empty when the
+  /// Per pixel, bit l set when light l reaches the hit (renderer/shadows/lighting.h); empty when the
   /// scene has no lights (the headlight casts no shadows).
   std::vector<uint32_t> lit;
 

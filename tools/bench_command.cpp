@@ -10,16 +10,16 @@
 #include <tuple>
 #include <vector>
 
-#include "renderer/image_io.h"
-#include "renderer/memory_estimate.h"
-#include "renderer/option_scope.h"
-#include "renderer/output_check.h"
+#include "renderer/output/image_io.h"
+#include "renderer/job/memory_estimate.h"
+#include "tools/option_scope.h"
+#include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"
 #include "tools/cli_errors.h"
 #include "tools/cli_options.h"
-#include "tools/collide_bench.h"
+#include "verification/collide_bench.h"
 #include "tools/commands.h"
 #include "tools/tree_bench_command.h"
 #include "util/input_error.h"

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "tools/cli_options.h"
 #include "util/input_error.h"
 #include "verification/benchmark.h"

@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 
 namespace kinray {
 

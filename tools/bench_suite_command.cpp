@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "renderer/image_io.h"
-#include "renderer/output_check.h"
+#include "renderer/output/image_io.h"
+#include "renderer/output/output_check.h"
 #include "util/input_error.h"
 
 namespace kinray {

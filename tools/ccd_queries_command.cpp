@@ -17,7 +17,7 @@
 #include "kinetic/collision/ccd_query_file.h"
 #include "kinetic/collision/exact_ccd.h"
 #include "kinetic/collision/primitive_ccd.h"
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"

@@ -83,8 +83,8 @@ InputError unexpected_arguments(const CLI::App& command, const std::string& mess
 }  // namespace
 
 InputError name_the_flag(const OptionError& error) {
-  // The fields the library can reject, and their flags: BackendConfig's (renderer/backend.h),
-  // RenderParams' (renderer/render_job.h) and FrameScheduleParams' (renderer/frame_schedule.h).
+  // The fields the library can reject, and their flags: BackendConfig's (renderer/backends/backend.h),
+  // RenderParams' (renderer/job/render_job.h) and FrameScheduleParams' (renderer/job/frame_schedule.h).
   // Enum fields cannot hold a bad value, their flags refuse one at parse time.
   static const std::pair<const char*, const char*> kFlags[] = {
       {"width", "--size"},

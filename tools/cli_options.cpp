@@ -5,7 +5,7 @@
 #include <tuple>
 #include <vector>
 
-#include "renderer/frame_schedule.h"
+#include "renderer/job/frame_schedule.h"
 #include "tools/slurm_chunk.h"
 #include "util/input_error.h"
 

@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 #include "util/enum_names.h"
 
 namespace kinray {
@@ -83,7 +83,7 @@ void add_render_options(CLI::App& command, RenderOptions& options);
 
 /// Marks `option` as naming an output path: an empty value (an unset shell variable) is refused
 /// at parse time. Commands still call check_output_file / check_output_folder
-/// (renderer/output_check.h) on the paths before they start. Returns `option`.
+/// (renderer/output/output_check.h) on the paths before they start. Returns `option`.
 CLI::Option* output_path(CLI::Option* option);
 
 /// Creates `folder` (and its parents) for the output named by `flag`; an empty path is the

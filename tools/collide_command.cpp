@@ -7,14 +7,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "renderer/frame_schedule.h"
-#include "renderer/image_io.h"
-#include "renderer/stats_json.h"
+#include "renderer/job/frame_schedule.h"
+#include "renderer/output/image_io.h"
+#include "renderer/output/stats_json.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/json_output.h"
-#include "tools/scene_contacts.h"
+#include "contacts/scene_contacts.h"
 #include "util/input_error.h"
 
 namespace kinray {

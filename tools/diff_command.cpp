@@ -12,13 +12,13 @@
 #include <optional>
 #include <stdexcept>
 
-#include "renderer/image_io.h"
-#include "renderer/option_scope.h"
-#include "renderer/output_check.h"
-#include "renderer/progress.h"
+#include "renderer/output/image_io.h"
+#include "tools/option_scope.h"
+#include "renderer/output/output_check.h"
+#include "renderer/output/progress.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
-#include "tools/shutter_diff.h"
+#include "verification/shutter_diff.h"
 #include "util/input_error.h"
 #include "verification/image_diff.h"
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "kinetic/core/rational_polynomial.h"
-#include "renderer/temporary_files.h"
+#include "renderer/output/temporary_files.h"
 #include "tools/cli_errors.h"
 #include "tools/commands.h"
 #include "util/input_error.h"

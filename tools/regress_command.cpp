@@ -12,7 +12,7 @@
 #include <system_error>
 #include <vector>
 
-#include "renderer/output_check.h"
+#include "renderer/output/output_check.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "util/input_error.h"

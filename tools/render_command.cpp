@@ -13,17 +13,17 @@
 #include <system_error>
 #include <utility>
 
-#include "renderer/background_writes.h"
-#include "renderer/image_io.h"
-#include "renderer/option_scope.h"
-#include "renderer/output_check.h"
-#include "renderer/progress.h"
-#include "renderer/render_forecast.h"
-#include "renderer/video_writer.h"
+#include "renderer/output/background_writes.h"
+#include "renderer/output/image_io.h"
+#include "tools/option_scope.h"
+#include "renderer/output/output_check.h"
+#include "renderer/output/progress.h"
+#include "renderer/job/render_forecast.h"
+#include "renderer/output/video_writer.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
-#include "tools/contact_frames.h"
+#include "renderer/contact_frames.h"
 #include "tools/frame_sequence.h"
 #include "util/input_error.h"
 #include "util/warning.h"
@@ -202,7 +202,7 @@ void run_render(const RenderParams& flags) {
     writer((folder / name).string(), frame);
     written.push_back(name);
   };
-  // A frame's files are written while the next one renders (renderer/background_writes.h);
+  // A frame's files are written while the next one renders (renderer/output/background_writes.h);
   // `written` is read only after run has waited for the last of them.
   BackgroundWrites writes([&](size_t index, const Frame& frame) {
     write(numbered_file("frame", index, ".png"), write_color_png, frame);

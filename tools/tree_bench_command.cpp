@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "util/input_error.h"
 #include "verification/benchmark.h"
 #include "verification/tree_benchmark.h"

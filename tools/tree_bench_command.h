@@ -3,7 +3,7 @@
 // (verification/tree_benchmark.h), reached from tools/bench_command.cpp.
 #include <string>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 
 namespace kinray {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image_io.h"
-#include "renderer/output_check.h"
-#include "renderer/video_writer.h"
+#include "renderer/output/image_io.h"
+#include "renderer/output/output_check.h"
+#include "renderer/output/video_writer.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "util/input_error.h"

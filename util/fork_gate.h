@@ -6,7 +6,7 @@
 // pool was working, hung in the sanitizer suite until its 300 s timeout. A fork therefore happens
 // under NoThreadBusy, which waits until none of these is at work:
 //  - a thread inside a ThreadBusy: every body of util/parallel.h's loops (on whatever thread
-//    runs it, the caller's included) and the progress ticker's drawing (renderer/progress.cpp);
+//    runs it, the caller's included) and the progress ticker's drawing (renderer/output/progress.cpp);
 //  - a thread inside one of the oneTBB arenas of util/parallel.h, counted by an observer on each
 //    arena from its entry to its exit (a worker stealing or splitting tasks between bodies runs
 //    oneTBB's code, which allocates). While a fork is under way, a thread that enters an arena

@@ -9,7 +9,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "renderer/embree_backend.h"
+#include "renderer/backends/embree_backend.h"
 #include "util/input_error.h"
 #include "util/parallel.h"
 #include "verification/bench_support.h"

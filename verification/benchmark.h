@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 #include "verification/bench_support.h"
 #include "verification/image_diff.h"
 

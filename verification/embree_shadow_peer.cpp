@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "renderer/embree_shadow_tracer.h"
+#include "renderer/shadows/embree_shadow_tracer.h"
 
 namespace kinray {
 

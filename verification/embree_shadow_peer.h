@@ -2,10 +2,10 @@
 // Shadow rays through Embree (rtcOccluded1), refitted or rebuilt at each frame time from the same
 // interpolated camera-space positions as every backend: the peer of the kinetic trees in
 // `kinray bench --structure aabb,boxtree` and their reference in the tests. The triangle a ray
-// leaves from is skipped by a context filter, as renderer/shadow_tracer.h asks.
+// leaves from is skipped by a context filter, as renderer/shadows/shadow_tracer.h asks.
 #include <memory>
 
-#include "renderer/shadow_tracer.h"
+#include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
 
 namespace kinray {

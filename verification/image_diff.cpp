@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "util/input_error.h"
 
 namespace kinray {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 
 namespace kinray {
 

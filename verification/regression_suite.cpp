@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-#include "renderer/image_io.h"
-#include "renderer/render_job.h"
+#include "renderer/output/image_io.h"
+#include "renderer/job/render_job.h"
 #include "scenes/texture_image.h"
 #include "util/input_error.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/brute_force_shadow_tracer.h"
+#include "renderer/shadows/brute_force_shadow_tracer.h"
 
 namespace kinray {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "renderer/frame.h"
-#include "renderer/shadow_rays.h"
+#include "renderer/shadows/shadow_rays.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
 

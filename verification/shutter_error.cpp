@@ -4,7 +4,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 
 namespace kinray {
 

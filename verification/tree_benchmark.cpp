@@ -6,11 +6,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "renderer/backend.h"
+#include "renderer/backends/backend.h"
 #include "renderer/frame.h"
-#include "renderer/kinetic_shadow_tracer.h"
-#include "renderer/tree_shadow_tracer.h"
-#include "renderer/tree_stats_json.h"
+#include "renderer/shadows/kinetic_shadow_tracer.h"
+#include "renderer/shadows/tree_shadow_tracer.h"
+#include "renderer/output/tree_stats_json.h"
 #include "util/input_error.h"
 #include "verification/bench_support.h"
 #include "verification/embree_shadow_peer.h"

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/render_job.h"
-#include "renderer/shadow_tracer.h"
+#include "renderer/job/render_job.h"
+#include "renderer/shadows/shadow_tracer.h"
 
 namespace kinray {
 

@@ -36,7 +36,7 @@
   }
 
 /// A member `function(visit)` that visits only the counters of LIST: a section of a struct whose
-/// --stats JSON groups its counters (renderer/stats_json.h, section_json).
+/// --stats JSON groups its counters (renderer/output/stats_json.h, section_json).
 #define KINRAY_COUNTER_SECTION(function, LIST) \
   template <class Visit>                       \
   void function(Visit&& visit) const {         \

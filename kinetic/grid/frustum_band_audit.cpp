@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "kinetic/core/audit_failure.h"
 #include "kinetic/grid/row_crossings.h"
 
 namespace kinray {

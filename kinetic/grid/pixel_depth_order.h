@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "kinetic/core/root_finding.h"
 #include "kinetic/grid/band_motion.h"
 #include "kinetic/grid/fold_certificate.h"
 #include "kinetic/grid/grid_scene.h"

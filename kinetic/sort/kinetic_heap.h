@@ -11,7 +11,9 @@
 #include <span>
 #include <vector>
 
+#include "kinetic/sort/id_index.h"
 #include "kinetic/sort/kinetic_sort.h"
+#include "kinetic/sort/sort_core.h"
 
 namespace kinray {
 

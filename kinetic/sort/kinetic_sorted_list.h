@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "kinetic/sort/kinetic_sort.h"
+#include "kinetic/sort/sort_core.h"
 #include "util/small_vector.h"
 
 namespace kinray {

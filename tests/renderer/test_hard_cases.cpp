@@ -26,7 +26,7 @@
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
-#include "renderer/backend.h"
+#include "renderer/backends/backend.h"
 #include "tests/renderer/analytic_scenes.h"
 #include "verification/image_diff.h"
 

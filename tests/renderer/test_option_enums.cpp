@@ -5,8 +5,8 @@
 #include <set>
 #include <string>
 
-#include "renderer/embree_build.h"
-#include "renderer/shadow_tracer.h"
+#include "renderer/backends/embree_build.h"
+#include "renderer/shadows/shadow_tracer.h"
 
 namespace kinray {
 namespace {

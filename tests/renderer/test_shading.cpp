@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <random>
 
-#include "renderer/backend.h"
-#include "renderer/lighting.h"
+#include "renderer/backends/backend.h"
+#include "renderer/shadows/lighting.h"
 #include "renderer/shading.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"

@@ -16,9 +16,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "renderer/backend.h"
-#include "renderer/frame_schedule.h"
-#include "renderer/image_io.h"
+#include "renderer/backends/backend.h"
+#include "renderer/job/frame_schedule.h"
+#include "renderer/output/image_io.h"
 #include "renderer/shading.h"
 #include "scenes/camera_space.h"
 #include "scenes/model_import.h"

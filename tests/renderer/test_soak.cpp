@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "kinetic/grid/frustum_grid.h"
-#include "renderer/kinetic_backend.h"
+#include "renderer/backends/kinetic_backend.h"
 #include "scenes/camera_space.h"
 #include "scenes/scene_loader.h"
 #include "tests/address_sanitizer.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 #include "scenes/automatic_camera.h"
 #include "scenes/camera_space.h"
 #include "scenes/model_import.h"

@@ -7,7 +7,7 @@
 
 #include <filesystem>
 
-#include "renderer/backend.h"
+#include "renderer/backends/backend.h"
 #include "scenes/aff_scene.h"
 #include "scenes/camera_space.h"
 #include "tests/scenes/aff_file_facts.h"

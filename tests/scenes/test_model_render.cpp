@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "renderer/backend.h"
-#include "renderer/embree_backend.h"
+#include "renderer/backends/backend.h"
+#include "renderer/backends/embree_backend.h"
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
 #include "scenes/model_import.h"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "renderer/frame.h"
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image_io.h"
-#include "renderer/render_job.h"
+#include "renderer/output/image_io.h"
+#include "renderer/job/render_job.h"
 #include "scenes/scene_loader.h"
 #include "tests/tools/kinray_process.h"
 #include "util/input_error.h"

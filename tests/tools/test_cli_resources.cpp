@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/memory_estimate.h"
+#include "renderer/job/memory_estimate.h"
 #include "tests/address_sanitizer.h"
 #include "tests/tools/kinray_process.h"
 

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/light_flag.h"
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 #include "tests/tools/kinray_process.h"
 #include "util/input_error.h"
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "renderer/render_job.h"
+#include "renderer/job/render_job.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {

@@ -9,7 +9,7 @@
 #include <set>
 
 #include "renderer/frame.h"
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "scenes/scene_loader.h"
 #include "tests/tools/kinray_process.h"
 

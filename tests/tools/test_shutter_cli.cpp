@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "renderer/embree_backend.h"
+#include "renderer/backends/embree_backend.h"
 #include "scenes/procedural.h"
 #include "util/input_error.h"
 #include "verification/bench_suite.h"

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "renderer/embree_backend.h"
+#include "renderer/backends/embree_backend.h"
 #include "util/input_error.h"
 #include "verification/benchmark.h"
 #include "verification/chart.h"

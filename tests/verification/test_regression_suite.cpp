@@ -13,7 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "renderer/frame.h"
-#include "renderer/image_io.h"
+#include "renderer/output/image_io.h"
 #include "tests/tools/kinray_process.h"
 #include "util/warning.h"
 #include "verification/regression_suite.h"

@@ -1,5 +1,5 @@
-// The ID buffer reader (renderer/image_io.h), which `kinray regress` runs on reference folders.
-#include "renderer/image_io.h"
+// The ID buffer reader (renderer/output/image_io.h), which `kinray regress` runs on reference folders.
+#include "renderer/output/image_io.h"
 #include "tests/fuzz/fuzz_target.h"
 
 KINRAY_FUZZ_TARGET(id_png) {

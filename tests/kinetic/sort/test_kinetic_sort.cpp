@@ -13,6 +13,8 @@
 #include "kinetic/sort/kinetic_heap.h"
 #include "kinetic/sort/kinetic_sort.h"
 #include "kinetic/sort/kinetic_sorted_list.h"
+#include "kinetic/sort/linear_motion_keys.h"
+#include "kinetic/sort/polynomial_keys.h"
 #include "kinetic/sort/kinetic_tournament.h"
 
 namespace kinray {

@@ -1,0 +1,38 @@
+#pragma once
+// `--backend auto`, render's default: the faster of the kinetic grid and Embree for the shot at
+// hand, measured on the shot itself. The grid pays an initialisation and then a cost per event,
+// however many frames share them; Embree pays a cost per frame. The break-even moves with the
+// scene and the image (about 10 frames per keyframe interval on wavy-sphere, 60 on flythrough,
+// 100 on BART), so no rule of thumb decides it; what the first frames cost does:
+//   1. Embree (refit, its widest native packet up to 8) renders the first two frames: its BVH build and
+//      the cost of one more frame, E.
+//   2. When the frames left cost less with Embree than kInitInEmbreeBuilds first Embree frames
+//      (the grid's initialisation is 7-35 of them on the built-in scenes), Embree renders the
+//      rest: the grid could not pay its initialisation back.
+//   3. Otherwise the grid is built at the third frame and renders the frames of that frame's
+//      keyframe interval: the interval's events and read-outs give its cost per second of shot.
+//      Projected over the rest of the shot against E per frame left, the cheaper one renders the
+//      rest; if that is Embree, the grid's initialisation and one interval were the price of
+//      finding out.
+// Every frame is its backend's exact frame: the grid built at any frame renders what a grid
+// built at the first would (docs/render_farm.md), and Embree refits to any time, so a frame of an
+// auto render equals the same frame of whichever backend rendered it. Flags that only one backend
+// reads choose it outright (--sort, --audit, --shadow-tree, --shutter: kinetic; --packet,
+// --embree-mode: Embree).
+#include <memory>
+
+#include "renderer/backends/backend.h"
+
+namespace kinray {
+
+/// The frames left after Embree's first two must cost more than this many first Embree frames
+/// (its BVH build and trace) before the grid is tried.
+inline constexpr double kInitInEmbreeBuilds = 20;
+
+/// The auto backend for `scene` (or the kinetic or Embree backend itself when a flag of `config`
+/// chooses it). Its stats hold "auto": how many frames each backend rendered, the costs measured
+/// and the decisions, with a one-line "summary".
+[[nodiscard]] std::unique_ptr<Backend> make_auto_backend(const CameraSpaceScene& scene,
+                                                         const BackendConfig& config);
+
+}  // namespace kinray

@@ -1,0 +1,120 @@
+#include "renderer/job/memory_estimate.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "scenes/scene_loader.h"
+#include "util/input_error.h"
+
+namespace kinray {
+namespace {
+
+// Per vertex and key: world (Vec3, 24 bytes) and camera-space (24) positions and a float normal
+// (12). Per triangle: the scene's and camera space's index triples.
+constexpr double kBytesPerVertexKey = 60;
+constexpr double kSceneBytesPerTriangle = 24;
+// Measured with --stats (memory_bytes, pixel_memory_bytes) on wavy-sphere at 256x256: the kinetic
+// grid takes 113 bytes per pixel and 530-680 bytes per triangle (records and certificates).
+constexpr double kKineticBytesPerPixel = 120;
+constexpr double kKineticBytesPerTriangle = 700;
+// Embree: float vertices with padding and a BVH4 of LOW quality, about 150 bytes per triangle.
+constexpr double kEmbreeBytesPerTriangle = 150;
+// OSMesa: an RGBA colour and a float depth buffer per pixel, vertex arrays per triangle.
+constexpr double kOsmesaBytesPerPixel = 16;
+constexpr double kOsmesaBytesPerTriangle = 64;
+// A Frame (object, prim, depth, linear colour: 24 bytes) and the encoded colour, id and depth
+// images of one frame (3 + 6 + 4 bytes), with room for the encoder's buffers.
+constexpr double kFrameBytesPerPixel = 40;
+
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
+  return text;
+}
+
+/// A built-in's size from its parameters: its meshes have about one vertex per two triangles.
+std::optional<SceneSize> size_of_builtin(const std::string& spec) {
+  const std::optional<ProceduralParams> params = builtin_scene_params(spec);
+  if (!params) return std::nullopt;
+  const double keys = std::ceil(params->duration * params->keyrate - 1e-9) + 1;
+  return SceneSize{params->triangles, params->triangles / 2 * keys};
+}
+
+}  // namespace
+
+SceneSize size_of(const Scene& scene) {
+  SceneSize size;
+  for (const Object& object : scene.objects) {
+    size.triangles += double(object.triangles.size());
+    if (!object.key_positions.empty())
+      size.vertex_keys +=
+          double(object.key_positions.size()) * double(object.key_positions.front().size());
+  }
+  return size;
+}
+
+MemoryEstimate estimate_render_memory(const SceneSize& size, int width, int height,
+                                      const std::string& backend) {
+  const double pixels = double(width) * double(height);
+  MemoryEstimate estimate;
+  estimate.scene = size.vertex_keys * kBytesPerVertexKey + size.triangles * kSceneBytesPerTriangle;
+  estimate.frames = pixels * kFrameBytesPerPixel;
+  // auto tries the kinetic grid only when it fits (renderer/auto_backend.h)
+  if (backend == "kinetic") {
+    estimate.backend_scene = size.triangles * kKineticBytesPerTriangle;
+    estimate.backend_pixels = pixels * kKineticBytesPerPixel;
+  } else if (backend == "embree" || backend == "auto") {
+    estimate.backend_scene = size.triangles * kEmbreeBytesPerTriangle;
+  } else {
+    estimate.backend_scene = size.triangles * kOsmesaBytesPerTriangle;
+    estimate.backend_pixels = pixels * kOsmesaBytesPerPixel;
+  }
+  return estimate;
+}
+
+std::optional<double> available_memory_bytes() {
+  std::optional<double> available;
+  std::ifstream meminfo("/proc/meminfo");
+  for (std::string line; std::getline(meminfo, line);) {
+    std::istringstream fields(line);
+    std::string key;
+    double kilobytes = 0;
+    if (fields >> key >> kilobytes && key == "MemAvailable:") available = kilobytes * 1024;
+  }
+  if (!available) {
+    const long pages = ::sysconf(_SC_AVPHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0) available = double(pages) * double(page);
+  }
+  double limit = 0, used = 0;
+  if ((std::ifstream("/sys/fs/cgroup/memory.max") >> limit) &&
+      (std::ifstream("/sys/fs/cgroup/memory.current") >> used) && limit > used)
+    available = available ? std::min(*available, limit - used) : limit - used;
+  return available;
+}
+
+void check_render_memory(const RenderParams& params, const Scene* scene) {
+  const std::optional<SceneSize> size =
+      scene ? std::optional<SceneSize>(size_of(*scene)) : size_of_builtin(params.scene);
+  const std::optional<double> available = available_memory_bytes();
+  if (!size || !available) return;
+  const MemoryEstimate estimate =
+      estimate_render_memory(*size, params.width, params.height, params.backend);
+  if (estimate.total() <= *available) return;
+  const bool pixels_dominate =
+      estimate.frames + estimate.backend_pixels > estimate.scene + estimate.backend_scene;
+  throw InputError(
+      pixels_dominate ? "--size" : params.scene,
+      "this render needs about " + gigabytes(estimate.total()) + " of memory (scene " +
+          gigabytes(estimate.scene) + ", " + params.backend + " backend " +
+          gigabytes(estimate.backend_scene + estimate.backend_pixels) + ", frames " +
+          gigabytes(estimate.frames) + ") and the machine has " + gigabytes(*available) +
+          " available; " +
+          (pixels_dominate ? "give a smaller --size" : "give fewer triangles or keys") +
+          (params.backend == "kinetic" ? " or --backend embree" : ""));
+}
+
+}  // namespace kinray

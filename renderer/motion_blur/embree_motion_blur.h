@@ -1,0 +1,56 @@
+#pragma once
+// Motion blur as Embree's users do it (Embree 3 tutorial "motion_blur_geometry"): geometries
+// with several time steps, rays at stratified times inside the shutter (ray.time in [0, 1]), the
+// linear interpolation between time steps done by Embree. The flightplans are piecewise linear
+// with breaks at their keys, and Embree spaces a geometry's time steps evenly over its time range,
+// so a window whose keys are not evenly spaced inside it cannot be one geometry without
+// resampling the motion. Instead the window is cut at every key (and every appear / disappear
+// time) inside it, and each piece gets its own scene whose moving geometries have two time steps,
+// the camera-space positions at the piece's ends: within a piece that is exactly the flightplan,
+// and each ray is traced in the piece its time falls in. Static objects are one geometry shared
+// by every piece. N samples per pixel, stratified with a fixed per-pixel jitter.
+#include <embree3/rtcore.h>
+
+#include <nlohmann/json_fwd.hpp>
+#include <vector>
+
+#include "renderer/frame.h"
+#include "renderer/motion_blur/shutter.h"
+#include "scenes/camera_space.h"
+
+namespace kinray {
+
+class EmbreeMotionBlur {
+ public:
+  /// `device` must outlive this; `samples` time samples per pixel.
+  EmbreeMotionBlur(const CameraSpaceScene& scene, RTCDevice device, int threads, int samples);
+  ~EmbreeMotionBlur();
+  EmbreeMotionBlur(const EmbreeMotionBlur&) = delete;
+  EmbreeMotionBlur& operator=(const EmbreeMotionBlur&) = delete;
+
+  /// frame.color: the mean of `samples` shaded samples per pixel over the window; object, prim
+  /// and depth: the hit at window.time (one more ray per pixel).
+  void render(const ShutterWindow& window, Frame& frame);
+  /// Adds "motion_blur": {samples, pieces, build_s, trace_s (totals and per frame)}.
+  void write_stats(nlohmann::json& stats) const;
+
+ private:
+  /// One scene per piece of the window; the times where the pieces meet.
+  void build(const ShutterWindow& window);
+  void release_pieces();
+  RTCGeometry new_geometry(size_t object, unsigned time_steps) const;
+
+  const CameraSpaceScene& m_scene;
+  RTCDevice m_device;
+  int m_threads;
+  int m_samples;
+  uint64_t m_frame = 0;               ///< seeds the jitter: each frame draws fresh times
+  std::vector<RTCGeometry> m_static;  ///< per object: its shared geometry if it never moves
+  std::vector<double> m_breaks;       ///< piece k is [m_breaks[k], m_breaks[k + 1]]
+  std::vector<RTCScene> m_pieces;
+  std::vector<RTCGeometry> m_moving;  ///< this frame's moving geometries, released with the pieces
+  std::vector<double> m_build_s, m_trace_s;
+  std::vector<size_t> m_piece_counts;
+};
+
+}  // namespace kinray

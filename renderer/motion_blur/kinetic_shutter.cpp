@@ -1,0 +1,250 @@
+#include "renderer/motion_blur/kinetic_shutter.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "renderer/plane_depth.h"
+#include "renderer/shading.h"
+#include "util/parallel.h"
+
+namespace kinray {
+
+KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int threads)
+    : m_scene(scene),
+      m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
+      m_threads(threads),
+      m_fixed_tan_half_fov(scene.fixed_tan_half_fov()) {}
+
+void KineticShutter::start_logging(FrustumGrid& grid) {
+  if (!m_started) {
+    // The fronts at the grid's time, and from now on every change is logged.
+    const GridScene& scene = grid.scene();
+    m_open_front.assign(size_t(scene.width()) * size_t(scene.height()), kNoGridHit);
+    for (int j = 0; j < scene.height(); ++j)
+      for (int i = 0; i < scene.width(); ++i)
+        if (const auto hit = grid.front(i, j))
+          m_open_front[size_t(j) * size_t(scene.width()) + size_t(i)] =
+              scene.triangle_begin(hit->mesh) + hit->triangle;
+    grid.log_front_changes(true);
+    m_started = true;
+  }
+}
+
+void KineticShutter::roll_to(FrustumGrid& grid, double open) {
+  for (FrontChangeLog& log : grid.front_logs()) {
+    auto& changes = log.changes;
+    const auto end = std::find_if(changes.begin(), changes.end(),
+                                  [&](const FrontChange& c) { return c.time > open; });
+    for (auto c = changes.begin(); c != end; ++c) m_open_front[c->pixel] = c->front;
+    changes.erase(changes.begin(), end);
+  }
+}
+
+template <class Visit>
+void KineticShutter::for_each_node(uint32_t object, double t0, double t1, double length,
+                                   Visit&& visit) const {
+  const double share = (t1 - t0) / length;
+  // The shading is smooth between the keys of the front's object, not across them (its vertices
+  // and normals turn there): each piece between keys gets its own rule.
+  const std::vector<double>& keys = m_scene.objects[object].key_times;
+  auto key = std::upper_bound(keys.begin(), keys.end(), t0);
+  for (double a = t0; a < t1;) {
+    // The piece lies in [keys[next - 1], keys[next]] (next = 0 or n: before or after the keys).
+    const size_t next = size_t(key - keys.begin());
+    const double b = key != keys.end() && *key < t1 ? *key++ : t1;
+    const double middle = (a + b) / 2, half = (b - a) / 2;
+    for (size_t k = 0; k < m_rule.nodes.size(); ++k)
+      visit(middle + half * m_rule.nodes[k], share * (half / (t1 - t0)) * m_rule.weights[k], next);
+    a = b;
+  }
+}
+
+void KineticShutter::place_window_nodes(const ShutterWindow& window) {
+  m_window_nodes.resize(m_scene.objects.size());
+  for (uint32_t object = 0; object < m_window_nodes.size(); ++object) {
+    std::vector<WindowNode>& nodes = m_window_nodes[object];
+    nodes.clear();
+    if (!(window.close > window.open)) continue;
+    for_each_node(object, window.open, window.close, window.length(),
+                  [&](double t, double w, size_t next) {
+                    nodes.push_back({instant(object, t, next), w});
+                  });
+  }
+}
+
+ShadingInstant KineticShutter::instant(uint32_t object, double t, size_t next) const {
+  return {locate(m_scene.objects[object].key_times, t, next),
+          m_fixed_tan_half_fov ? *m_fixed_tan_half_fov : m_scene.tan_half_fov(t)};
+}
+
+void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
+                               double t1, double length, SegmentCache& cache, uint64_t& nodes,
+                               ColorAverage& average) const {
+  if (!(t1 > t0)) return;
+  if (front == kNoGridHit) {
+    average.add(kBackgroundColor, (t1 - t0) / length);
+    return;
+  }
+  const uint32_t m = grid.mesh_of_triangle(front);
+  const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
+  const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
+  ViewCache view;
+  for_each_node(object, t0, t1, length, [&](double t, double w, size_t next) {
+    const ShadingInstant at = instant(object, t, next);
+    const TriangleAtInstant triangle = cache.get(m_scene, object, prim, at.segment.k).at(at);
+    ++nodes;
+    average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), w);
+  });
+}
+
+void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
+                                      FrontNodes& memo, SegmentCache& cache,
+                                      uint64_t& node_count, ColorAverage& average) const {
+  if (front == kNoGridHit) {
+    average.add(kBackgroundColor, 1.0);
+    return;
+  }
+  const uint32_t m = grid.mesh_of_triangle(front);
+  const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
+  const std::vector<WindowNode>& nodes = m_window_nodes[object];
+  if (memo.front != front) {
+    memo.front = front;
+    memo.triangles.clear();
+    for (const WindowNode& node : nodes)
+      memo.triangles.push_back(
+          cache.get(m_scene, object, prim, node.instant.segment.k).at(node.instant));
+  }
+  const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
+  ViewCache view;
+  node_count += nodes.size();
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    const TriangleAtInstant& triangle = memo.triangles[k];
+    average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), nodes[k].weight);
+  }
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point& since) {
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - since).count();
+  since = now;
+  return seconds;
+}
+
+}  // namespace
+
+void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Frame& frame) {
+  auto clock = std::chrono::steady_clock::now();
+  start_logging(grid);
+  // One advance through the gap since the last window and this window: each band runs its
+  // events to the close in one go, and the log says where the fronts were at the open.
+  grid.advance_to(std::max(window.close, grid.now()));
+  roll_to(grid, window.open);
+  m_stats.events_s += seconds_since(clock);
+  const GridScene& scene = grid.scene();
+  const int w = scene.width(), h = scene.height();
+  const size_t n = size_t(w) * size_t(h);
+  if (frame.width != w || frame.height != h) frame.resize(w, h);
+  frame.time = window.time;
+  const double length = window.length();
+  place_window_nodes(window);
+
+  // Each band's log touches only its own rows' pixels, so the logs are walked in parallel: each
+  // change closes the pixel's current interval and opens the next. A pixel's open interval and
+  // its average so far live in one SplitPixel (one cache line), made at its first change: the
+  // changes come in time order, at pixels all over the band, and five per-pixel arrays were five
+  // cache misses per change. Band b's SplitPixels take the slots from its offset on (a band has
+  // at most as many split pixels as changes).
+  const std::span<FrontChangeLog> logs = grid.front_logs();
+  std::vector<size_t> offset(logs.size() + 1, 0);
+  for (size_t b = 0; b < logs.size(); ++b) offset[b + 1] = offset[b] + logs[b].changes.size();
+  if (m_split.size() < offset.back()) m_split.resize(offset.back());
+  if (m_split_index.size() != n) {
+    m_split_index.assign(n, kNotSplit);
+    m_split_at_time.assign(n, kNoGridHit);
+  }
+  std::vector<size_t> split_end(offset.begin(), offset.end() - 1);
+  std::atomic<uint64_t> changes{0}, nodes{0};
+  parallel_for_dynamic(logs.size(), m_threads, [&](size_t b) {
+    SegmentCache cache;
+    uint64_t band_nodes = 0;
+    size_t& end = split_end[b];
+    for (const FrontChange& c : logs[b].changes) {
+      if (c.time > window.close) break;
+      const size_t p = c.pixel;
+      const int i = int(p % size_t(w)), j = int(p / size_t(w));
+      uint32_t& index = m_split_index[p];
+      if (index == kNotSplit) {
+        index = uint32_t(end);
+        m_split[end++] = SplitPixel{ColorAverage{}, window.open, m_open_front[p], m_open_front[p]};
+      }
+      SplitPixel& s = m_split[index];
+      integrate(scene, s.front, i, j, s.since, c.time, length, cache, band_nodes, s.average);
+      s.front = c.front;
+      s.since = c.time;
+      if (c.time <= window.time) s.at_time = c.front;
+    }
+    changes.fetch_add(logs[b].changes.size(), std::memory_order_relaxed);
+    nodes.fetch_add(band_nodes, std::memory_order_relaxed);
+  });
+  const PixelRays image{w, h};
+  parallel_for(size_t(h), m_threads, [&](size_t row) {
+    const int j = int(row);
+    FrontNodes memo;  // neighbours along a row mostly share their front
+    SegmentCache cache;
+    uint64_t row_nodes = 0;
+    for (int i = 0; i < w; ++i) {
+      const size_t p = size_t(j) * size_t(w) + size_t(i);
+      const uint32_t index = m_split_index[p];
+      if (index != kNotSplit) {
+        SplitPixel& s = m_split[index];
+        integrate(scene, s.front, i, j, s.since, window.close, length, cache, row_nodes,
+                  s.average);
+        frame.color[p] = s.average.result();
+        m_split_at_time[p] = s.at_time;  // for the read-out, in pixel order
+        continue;
+      }
+      // A window of length zero has no intervals: its pixels average nothing.
+      ColorAverage average;
+      if (window.close > window.open)
+        integrate_window(scene, m_open_front[p], i, j, memo, cache, row_nodes, average);
+      frame.color[p] = average.result();
+    }
+    nodes.fetch_add(row_nodes, std::memory_order_relaxed);
+  });
+  m_stats.integrate_s += seconds_since(clock);
+  // The id and depth buffers: the front at the frame time, as the sharp frame has it.
+  parallel_for(size_t(h), m_threads, [&](size_t row) {
+    const int j = int(row);
+    for (int i = 0; i < w; ++i) {
+      const size_t p = size_t(j) * size_t(w) + size_t(i);
+      uint32_t front = m_open_front[p];
+      if (uint32_t& index = m_split_index[p]; index != kNotSplit) {
+        front = m_split_at_time[p];
+        index = kNotSplit;  // free for the next window
+      }
+      if (front == kNoGridHit) {
+        frame.object[p] = frame.prim[p] = kNoHit;
+        frame.depth[p] = std::numeric_limits<float>::infinity();
+        continue;
+      }
+      const uint32_t m = scene.mesh_of_triangle(front);
+      frame.object[p] = scene.mesh(m).id;
+      frame.prim[p] = front - scene.triangle_begin(m);
+      frame.depth[p] = exact_plane_depth(m_scene, frame.object[p], frame.prim[p],
+                                         image.direction(i, j), window.time);
+    }
+  });
+  uint64_t split_count = 0;
+  for (size_t b = 0; b < logs.size(); ++b) split_count += split_end[b] - offset[b];
+  m_stats.front_changes += changes.load();
+  m_stats.pixels_split += split_count;
+  m_stats.shading_nodes += nodes.load();
+  m_stats.readout_s += seconds_since(clock);
+}
+
+}  // namespace kinray
