@@ -21,6 +21,7 @@
 #include "scenes/scene_file_keys.h"
 #include "scenes/texture_image.h"
 #include "util/image_signature.h"
+#include "util/png_chunks.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -64,9 +65,13 @@ Texture read_texture_file(const JsonNode& where, const fs::path& path) {
   if (!fs::is_regular_file(path, error))
     where.fail("cannot read texture " + path.string() +
                (fs::exists(path, error) ? " (not a regular file)" : " (no such file)"));
-  if (!opencv_may_decode(image_signature_of_file(path)))
+  const ImageSignature format = image_signature_of_file(path);
+  if (!opencv_may_decode(format))
     where.fail("cannot read texture " + path.string() + " (not a " +
                std::string(kDecodableImageFormats) + " file)");
+  if (format == ImageSignature::png)
+    if (const std::optional<std::string> problem = png_file_chunk_problem(path))
+      where.fail("cannot read texture " + path.string() + ": " + *problem);
   cv::Mat image;
   try {
     image = cv::imread(path.string(), cv::IMREAD_COLOR);

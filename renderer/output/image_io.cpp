@@ -19,6 +19,7 @@
 #include "renderer/output/temporary_files.h"
 #include "scenes/texture_image.h"
 #include "util/image_signature.h"
+#include "util/png_chunks.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -84,6 +85,9 @@ cv::Mat read_image(const std::string& path, int flags, ImageSignature format) {
     throw InputError(path, "not a " + std::string(image_signature_name(format)) + " file (it is " +
                                (found == ImageSignature::other ? "" : "a ") +
                                std::string(image_signature_name(found)) + ")");
+  if (format == ImageSignature::png)
+    if (const std::optional<std::string> problem = png_file_chunk_problem(path))
+      throw InputError(path, *problem);
   cv::Mat image;
   try {
     image = cv::imread(path, flags);

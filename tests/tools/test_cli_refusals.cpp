@@ -153,6 +153,19 @@ TEST_F(CliRefusals, FilesAreNamedForTheirOwnProblems) {
   const std::string gltf = path("cut.gltf");
   write_text(gltf, R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [)");
   refused("info '" + gltf + "'", gltf, "truncated or corrupt");
+  // a frame cut short and one with a changed byte: kinray's line alone, not libpng's before it
+  ASSERT_EQ(kinray("render " + std::string(kTiny) + " --backend embree --size 16x16 --frames 2 -q "
+                   "--out '" + path("frames") + "'")
+                .status,
+            0);
+  const std::string frame = path("frames/frame_00001.png");
+  const std::string bytes = test::read_text(frame);
+  write_text(frame, bytes.substr(0, bytes.size() / 2));
+  refused("video '" + path("frames") + "' --out '" + path("v.avi") + "'", frame, "cut short");
+  std::string changed = bytes;
+  changed[bytes.size() / 2] = char(changed[bytes.size() / 2] ^ 0x10);
+  write_text(frame, changed);
+  refused("video '" + path("frames") + "' --out '" + path("v.avi") + "'", frame, "fails its CRC");
   const std::string ply = path("cut.ply");
   write_text(ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nprop");
   refused("info '" + ply + "'", ply, "without an 'end_header' line");
