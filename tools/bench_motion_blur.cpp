@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "renderer/output/image_io.h"
+#include "renderer/output/output_check.h"
 #include "tools/cli_options.h"
 #include "util/input_error.h"
 #include "verification/benchmark.h"
@@ -111,7 +112,7 @@ void run_motion_blur_bench_command(const RenderParams& base, const MotionBlurBen
   if (!json.empty())
     write_file_atomically(json, nlohmann::json({{"motion_blur", all}}).dump(2) + "\n");
   if (!charts.empty()) {
-    create_folder(charts, "--charts");
+    create_output_folder(charts, "--charts");
     const std::string path = (std::filesystem::path(charts) / "motion_blur.png").string();
     write_motion_blur_chart(results, path);
     std::printf("chart: %s\n", path.c_str());

@@ -204,13 +204,4 @@ void add_render_options(CLI::App& command, RenderOptions& options) {
   add_output_options(command, options);
 }
 
-void create_folder(const std::filesystem::path& folder, const char* flag) {
-  if (folder.empty()) return;
-  std::error_code error;
-  std::filesystem::create_directories(folder, error);
-  if (error)
-    throw InputError(flag,
-                     "cannot create the folder '" + folder.string() + "': " + error.message());
-}
-
 }  // namespace kinray

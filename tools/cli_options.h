@@ -86,8 +86,4 @@ void add_render_options(CLI::App& command, RenderOptions& options);
 /// (renderer/output/output_check.h) on the paths before they start. Returns `option`.
 CLI::Option* output_path(CLI::Option* option);
 
-/// Creates `folder` (and its parents) for the output named by `flag`; an empty path is the
-/// working folder. Throws InputError naming the flag when it cannot.
-void create_folder(const std::filesystem::path& folder, const char* flag);
-
 }  // namespace kinray

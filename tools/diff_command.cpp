@@ -112,8 +112,8 @@ void run_diff(const DiffOptions& options) {
   std::unique_ptr<Backend> reference = job.make_backend(options.against);
 
   // Everything is valid: from here on files are written.
-  create_folder(options.report, "--report");
-  create_folder(fs::path(options.json).parent_path(), "--json");
+  create_output_folder(options.report, "--report");
+  create_output_folder(fs::path(options.json).parent_path(), "--json");
   const fs::path report(options.report);
   DiffSummary summary;
   summary.scene = params.scene;

@@ -4,6 +4,7 @@
 #include <string>
 #include <system_error>
 
+#include "renderer/output/output_check.h"
 #include "tools/cli_options.h"
 #include "util/input_error.h"
 
@@ -15,7 +16,7 @@ inline void prepare_json_output(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
     throw InputError("--json", "'" + path + "' is a folder");
-  create_folder(std::filesystem::path(path).parent_path(), "--json");
+  create_output_folder(std::filesystem::path(path).parent_path(), "--json");
 }
 
 }  // namespace kinray

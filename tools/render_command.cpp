@@ -94,7 +94,7 @@ std::string summary_details(const RenderTimings& timings, const Backend& backend
 /// sides differ from the frames'.
 std::unique_ptr<VideoWriter> open_video(const RenderParams& params, const RenderJob& job) {
   if (params.video.empty()) return nullptr;
-  create_folder(fs::path(params.video).parent_path(), "--video");
+  create_output_folder(fs::path(params.video).parent_path(), "--video");
   auto video = std::make_unique<VideoWriter>(params.video, params.width, params.height,
                                              video_fps(params, job.frame_times()));
   const auto [width, height] = VideoWriter::encoded_size(params.width, params.height);
@@ -191,7 +191,7 @@ void run_render(const RenderParams& flags) {
     status.finish();
 
   // Everything is valid: from here on files are written.
-  create_folder(out, "--out");
+  create_output_folder(out, "--out");
   const std::unique_ptr<VideoWriter> video = open_video(params, job);
   const bool write_id = std::find(params.aov.begin(), params.aov.end(), "id") != params.aov.end();
   const bool write_depth =
@@ -224,7 +224,7 @@ void run_render(const RenderParams& flags) {
   status.finish();  // already cleared by the bar: only marks the note as gone
   if (video) video->close();
   if (!params.stats.empty()) {
-    create_folder(fs::path(params.stats).parent_path(), "--stats");
+    create_output_folder(fs::path(params.stats).parent_path(), "--stats");
     nlohmann::json stats = render_stats(job, *backend);
     if (video)
       stats["video"] = {

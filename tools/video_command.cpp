@@ -63,7 +63,7 @@ void run_video(const VideoOptions& options) {
     throw InputError(frames.front().string(),
                      "is " + std::to_string(first.cols) + "x" + std::to_string(first.rows) +
                          "; video encoders need frames of at least 2x2 pixels");
-  create_folder(fs::path(options.out).parent_path(), "--out");
+  create_output_folder(fs::path(options.out).parent_path(), "--out");
   VideoWriter video(options.out, first.cols, first.rows, options.fps);
   for (const fs::path& path : frames) {
     const cv::Mat image = path == frames.front() ? first : read_color_png(path.string());
