@@ -21,6 +21,7 @@
 #include "scenes/model_skinning.h"
 #include "scenes/model_textures.h"
 #include "scenes/model_xfile_check.h"
+#include "scenes/obj_reader.h"
 #include "scenes/ply_reader.h"
 #include "util/input_error.h"
 #include "util/parallel.h"
@@ -515,6 +516,7 @@ Scene load_model(const std::string& path, const ModelOptions& options, ModelCata
     throw InputError(path, "the import timeout must be a positive number of seconds");
   check_x_skin_weights(path);
   check_ply_file(path);
+  check_obj_file(path);
   auto read = [&](Assimp::Importer& importer) {
     return importer.ReadFile(path, model_import_flags());
   };

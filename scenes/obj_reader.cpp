@@ -1,8 +1,13 @@
 #include "scenes/obj_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+#include <vector>
 
 #include "util/input_error.h"
 
@@ -142,6 +147,29 @@ MeshFile parse_obj(std::string_view bytes, const std::string& source) {
 
 MeshFile read_obj(const std::string& path) {
   return parse_obj(read_mesh_bytes(path), path);
+}
+
+void check_obj_file(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".obj") return;
+  std::ifstream file(path, std::ios::binary);
+  static const char* const kAxes[3] = {"x", "y", "z"};
+  size_t number = 0;
+  for (std::string text; std::getline(file, text);) {
+    ++number;
+    const std::vector<std::string_view> w = split_words(text);
+    if (w.size() < 4 || w[0] != "v") continue;
+    for (size_t a = 0; a < 3; ++a) {
+      const std::string_view token = w[a + 1];
+      const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
+      double value = 0;
+      const auto [end, error] = std::from_chars(begin, token.data() + token.size(), value);
+      // Only what parses as a number is judged here; a malformed token is assimp's to report.
+      if (error == std::errc() && end == token.data() + token.size())
+        check_mesh_coordinate(value, kAxes[a], path + ":" + std::to_string(number));
+    }
+  }
 }
 
 }  // namespace kinray

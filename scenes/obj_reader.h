@@ -21,4 +21,10 @@ namespace kinray {
 /// Reads and parses the file at `path`; throws InputError naming it when it cannot be read.
 [[nodiscard]] MeshFile read_obj(const std::string& path);
 
+/// When `path` ends in .obj, throws InputError at `file:line` for a `v` line whose x, y or z is
+/// NaN, infinite or beyond +-kMaxCoordinate: assimp's OBJ reader takes "nan" as a number and
+/// renders the vertex somewhere. Run before assimp reads a model; everything else about the file
+/// is left to assimp.
+void check_obj_file(const std::string& path);
+
 }  // namespace kinray

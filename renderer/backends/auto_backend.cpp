@@ -103,9 +103,25 @@ class AutoBackend final : public Backend {
   }
 
   /// After Embree's second frame at t: is the rest of the shot long enough to try the grid?
+  /// Frames per keyframe interval over the plan: its frames over the key intervals it spans.
+  [[nodiscard]] double frames_per_interval() const {
+    if (m_plan.size() < 2) return double(m_plan.size());
+    const auto inside = std::upper_bound(m_keys.begin(), m_keys.end(), m_plan.front());
+    const auto beyond = std::lower_bound(m_keys.begin(), m_keys.end(), m_plan.back());
+    return double(m_plan.size()) / double(std::max<std::ptrdiff_t>(beyond - inside, 0) + 1);
+  }
+
   void decide_on_trial(double t) {
     const double embree_left = m_embree_frame_s * double(frames_after(t));
     char text[200];
+    if (frames_per_interval() < kMinFramesPerInterval) {
+      std::snprintf(text, sizeof text,
+                    "Embree: %.1f frames per keyframe interval, fewer than the %.0f below which "
+                    "the grid has not won on any scene measured",
+                    frames_per_interval(), kMinFramesPerInterval);
+      decide(Phase::embree, text);
+      return;
+    }
     const std::optional<double> available = available_memory_bytes();
     if (available && estimate_render_memory(size_of(*m_scene.scene), m_config.width,
                                             m_config.height, "kinetic")

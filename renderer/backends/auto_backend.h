@@ -6,9 +6,10 @@
 // 100 on BART), so no rule of thumb decides it; what the first frames cost does:
 //   1. Embree (refit, its widest native packet up to 8) renders the first two frames: its BVH build and
 //      the cost of one more frame, E.
-//   2. When the frames left cost less with Embree than kInitInEmbreeBuilds first Embree frames
-//      (the grid's initialisation is 7-35 of them on the built-in scenes), Embree renders the
-//      rest: the grid could not pay its initialisation back.
+//   2. When the shot has fewer than kMinFramesPerInterval frames per keyframe interval, or the
+//      frames left cost less with Embree than kInitInEmbreeBuilds first Embree frames (the grid's
+//      initialisation is 7-35 of them on the built-in scenes), Embree renders the rest: the
+//      grid could not pay its initialisation back.
 //   3. Otherwise the grid is built at the third frame and renders the frames of that frame's
 //      keyframe interval: the interval's events and read-outs give its cost per second of shot.
 //      Projected over the rest of the shot against E per frame left, the cheaper one renders the
@@ -28,6 +29,10 @@ namespace kinray {
 /// The frames left after Embree's first two must cost more than this many first Embree frames
 /// (its BVH build and trace) before the grid is tried.
 inline constexpr double kInitInEmbreeBuilds = 20;
+/// Nor is it tried with fewer frames per keyframe interval than this: its break-even lies at 9
+/// to more than 128 on every scene measured (docs/performance.md), and a trial below it costs
+/// the initialisation for nothing.
+inline constexpr double kMinFramesPerInterval = 8;
 
 /// The auto backend for `scene` (or the kinetic or Embree backend itself when a flag of `config`
 /// chooses it). Its stats hold "auto": how many frames each backend rendered, the costs measured

@@ -95,6 +95,11 @@ TEST_F(CliRefusals, NonFiniteAndHugeValuesAreRefused) {
   const std::string inf = path("inf.ply");
   write_text(inf, test::read_text(ply).replace(test::read_text(ply).find("nan"), 3, "inf"));
   refused(render(inf), inf + ":11", "coordinate z is NaN or infinite");
+  const std::string obj = path("nan.obj");
+  write_text(obj, "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+  refused("info '" + obj + "'", obj + ":2", "coordinate z is NaN or infinite");
+  write_text(obj, "v 0 0 0\nv 1 0 0\nv 0 1e300 0\nf 1 2 3\n");
+  refused("info '" + obj + "'", obj + ":3", "beyond +-1e15");
   refused(render() + "--light point:1e300,2,3", "--light", "beyond +-1e15");
   refused(render() + "--light dir:0,nan,1", "--light", "");
 }
