@@ -9,6 +9,7 @@
 #include <regex>
 #include <string>
 
+#include "tests/address_sanitizer.h"
 #include "tests/tools/kinray_process.h"
 
 namespace kinray {
@@ -73,7 +74,9 @@ TEST_F(CliRenderFeedback, AutoGivesSlowMotionToTheGridAndAShortShotToEmbree) {
   // 256 frames per keyframe interval: the grid, by a wide margin (at 64 it was even with
   // Embree on this small image; the choice is measured, so the test asserts a margin, not the
   // exact split)
-  EXPECT_GE(stats["auto"]["frames"]["kinetic"].get<int>(), 700) << stats["auto"].dump();
+  // (Under AddressSanitizer the grid's code runs instrumented and Embree's does not: no margin.)
+  if (!test::kUnderAddressSanitizer)
+    EXPECT_GE(stats["auto"]["frames"]["kinetic"].get<int>(), 700) << stats["auto"].dump();
   EXPECT_EQ(stats["auto"]["frames"]["kinetic"].get<int>() +
                 stats["auto"]["frames"]["embree"].get<int>(),
             769);
