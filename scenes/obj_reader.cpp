@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -13,6 +14,15 @@
 
 namespace kinray {
 namespace {
+
+/// A `v` line's value: a number in full (an optional leading '+'), or nothing.
+std::optional<double> obj_number(std::string_view token) {
+  const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
+  double value = 0;
+  const auto [end, error] = std::from_chars(begin, token.data() + token.size(), value);
+  if (error != std::errc() || end != token.data() + token.size()) return std::nullopt;
+  return value;
+}
 
 /// A part while the file is read: its faces in the file's global vertex numbering.
 struct RawPart {
@@ -50,14 +60,11 @@ class ObjParser {
     Vec3 p;
     for (size_t a = 0; a < w.size() - 1; ++a) {
       const std::string_view token = w[a + 1];
-      const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
-      double value = 0;
-      const auto [end, error] = std::from_chars(begin, token.data() + token.size(), value);
-      if (error != std::errc() || end != token.data() + token.size())
-        fail("expected a number, got '" + std::string(token.substr(0, 40)) + "'");
+      const std::optional<double> value = obj_number(token);
+      if (!value) fail("expected a number, got '" + std::string(token.substr(0, 40)) + "'");
       if (a < 3) {
-        check_mesh_coordinate(value, kAxes[a], where());
-        p[int(a)] = value;
+        check_mesh_coordinate(*value, kAxes[a], where());
+        p[int(a)] = *value;
       }
     }
     if (m_positions.size() >= size_t(UINT32_MAX)) fail("too many vertices for 32-bit indices");
@@ -160,15 +167,10 @@ void check_obj_file(const std::string& path) {
     ++number;
     const std::vector<std::string_view> w = split_words(text);
     if (w.size() < 4 || w[0] != "v") continue;
-    for (size_t a = 0; a < 3; ++a) {
-      const std::string_view token = w[a + 1];
-      const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
-      double value = 0;
-      const auto [end, error] = std::from_chars(begin, token.data() + token.size(), value);
+    for (size_t a = 0; a < 3; ++a)
       // Only what parses as a number is judged here; a malformed token is assimp's to report.
-      if (error == std::errc() && end == token.data() + token.size())
-        check_mesh_coordinate(value, kAxes[a], path + ":" + std::to_string(number));
-    }
+      if (const std::optional<double> value = obj_number(w[a + 1]))
+        check_mesh_coordinate(*value, kAxes[a], path + ":" + std::to_string(number));
   }
 }
 
