@@ -30,6 +30,8 @@ class CameraSpaceLights {
   explicit CameraSpaceLights(const Scene& scene);
   [[nodiscard]] bool empty() const { return m_count == 0; }
   [[nodiscard]] size_t size() const { return m_count; }
+  /// The camera has one key: every light is where at(t) says at any time.
+  [[nodiscard]] bool still() const { return m_key_times.size() < 2; }
   /// Every light at time t (the camera keys' transforms interpolated linearly).
   [[nodiscard]] std::vector<CameraSpaceLight> at(double t) const;
 

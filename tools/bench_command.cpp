@@ -192,6 +192,7 @@ void register_bench_command(CLI::App& app) {
                                                 "Restrict the shot to [A, B] (seconds), as A:B");
   add_threads_option(*command, options->render.params.threads, "Base thread count (0: all cores)");
   add_sort_option(*command, options->render.params.sort);
+  add_light_option(*command, options->render.params.lights);
   command->add_option("--inbetweens", options->inbetweens, "In-betweens per keyframe interval, a list: 1,2,4,...")
       ->capture_default_str();
   command->add_option("--triangles", options->triangles,

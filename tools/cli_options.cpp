@@ -116,6 +116,14 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
       ->group(group);
 }
 
+CLI::Option* add_light_option(CLI::App& command, std::vector<std::string>& lights) {
+  return command
+      .add_option("--light", lights,
+                  "A world-space light, point:X,Y,Z[:R,G,B] or dir:X,Y,Z[:R,G,B] (repeatable; "
+                  "replaces the scene's lights)")
+      ->allow_extra_args(false);
+}
+
 void add_backend_options(CLI::App& command, RenderOptions& options) {
   const char* group = "Backend";
   command.add_option("--backend", options.params.backend,
@@ -133,12 +141,7 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
       ->capture_default_str()
       ->group(group);
   add_sort_option(command, options.params.sort)->group(group);
-  command
-      .add_option("--light", options.params.lights,
-                  "A world-space light, point:X,Y,Z[:R,G,B] or dir:X,Y,Z[:R,G,B] (repeatable; "
-                  "replaces the scene's lights)")
-      ->allow_extra_args(false)
-      ->group(group);
+  add_light_option(command, options.params.lights)->group(group);
   add_enum_option(command, "--shadow-tree", options.params.shadow_tree, kShadowTreeNames,
                   "Kinetic: what traces shadow rays")
       ->group(group);

@@ -74,6 +74,8 @@ void add_scene_options(CLI::App& command, RenderOptions& options);
 void add_frame_options(CLI::App& command, RenderOptions& options);
 /// --backend, --embree-mode, --packet, --sort, --light, --shadow-tree, --audit.
 void add_backend_options(CLI::App& command, RenderOptions& options);
+/// --light (repeatable) into `lights`.
+CLI::Option* add_light_option(CLI::App& command, std::vector<std::string>& lights);
 /// --camera, --eye, --target, --fov (renderer/camera_flags.h).
 void add_camera_options(CLI::App& command, CameraParams& camera);
 /// --out, --video, --aov, --stats, --quiet.

@@ -76,7 +76,8 @@ std::vector<std::string> TreeBenchReport::write_charts(const std::string& folder
   std::map<std::string, std::vector<const TreeBenchPoint*>> sweeps;
   for (const TreeBenchPoint& p : points) sweeps[p.sweep].push_back(&p);
   std::vector<std::string> written;
-  for (const auto& [sweep, sweep_points] : sweeps) {
+  for (const auto& [sweep_name, sweep_points] : sweeps) {
+    const std::string& sweep = sweep_name;  // clang 14's lambdas cannot capture a binding
     const bool by_k = sweep == "inbetweens";
     auto x_of = [&](const TreeBenchPoint& p) {
       return by_k ? double(p.inbetweens) : double(p.triangles);

@@ -173,7 +173,10 @@ class EmbreeBackend final : public Backend {
     const uint64_t mark = m_device.error_count();
     m_meshes.resize(scene.objects.size());
     // Shadow rays only when the scene has lights: without them nothing changes.
-    if (!scene.scene->lights.empty()) m_shadows = std::make_unique<EmbreeShadowTracer>();
+    if (!scene.scene->lights.empty()) {
+      m_shadows = std::make_unique<EmbreeShadowTracer>();
+      m_lights = CameraSpaceLights(*scene.scene);
+    }
     for (size_t o = 0; o < scene.objects.size(); ++o) {
       const CameraSpaceObject& cs = scene.objects[o];
       const std::vector<Triangle>& triangles = scene.triangles(o);
@@ -273,7 +276,7 @@ class EmbreeBackend final : public Backend {
       frame.resize(m_config.width, m_config.height);
     if (!m_motion_blur)
       m_motion_blur = std::make_unique<EmbreeMotionBlur>(m_scene, m_device.handle(), m_threads,
-                                                         m_config.shutter.samples);
+                                                         m_config.shutter.samples, &m_lights);
     const uint64_t mark = m_device.error_count();
     m_motion_blur->render(window, frame);
     m_device.check(mark, "motion blur");
@@ -489,6 +492,7 @@ class EmbreeBackend final : public Backend {
   RTCScene m_rtc_scene = nullptr;
   std::vector<Mesh> m_meshes;
   std::unique_ptr<EmbreeShadowTracer> m_shadows;  ///< when the scene has lights
+  CameraSpaceLights m_lights;                     ///< the scene's, for motion blur's shading
   std::vector<double> m_build_s, m_trace_s, m_depth_s;
 };
 

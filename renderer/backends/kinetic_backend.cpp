@@ -35,8 +35,10 @@ class KineticBackend final : public Backend {
     m_grid_config.init_progress = &m_init_progress;
     // Primary hits come from the grid; shadow rays, only when there are lights, from the tracer
     // --shadow-tree chooses.
-    if (!scene.scene->lights.empty())
+    if (!scene.scene->lights.empty()) {
       m_shadows = make_kinetic_shadow_tracer(scene, config.shadow_tree, config.audit);
+      m_lights = CameraSpaceLights(*scene.scene);
+    }
   }
 
   [[nodiscard]] ShadowTracer* shadow_tracer() override { return m_shadows.get(); }
@@ -96,7 +98,8 @@ class KineticBackend final : public Backend {
       m_grid = std::make_unique<FrustumGrid>(
           kinetic_grid_input(m_scene, m_config.width, m_config.height), window.open, m_grid_config);
     if (!m_shutter)
-      m_shutter = std::make_unique<KineticShutter>(m_scene, m_config.shutter.order, m_config.threads);
+      m_shutter = std::make_unique<KineticShutter>(m_scene, m_config.shutter.order,
+                                                   m_config.threads, &m_lights);
     m_shutter->render(*m_grid, window, frame);
     m_events_s.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     m_readout_s.push_back(0);
@@ -213,6 +216,7 @@ class KineticBackend final : public Backend {
   WorkProgress m_init_progress;  ///< the grid's scan conversion, counted while it is built
   std::unique_ptr<FrustumGrid> m_grid;
   std::unique_ptr<ShadowTracer> m_shadows;  ///< when the scene has lights
+  CameraSpaceLights m_lights;               ///< the scene's, for motion blur's shading
   std::unique_ptr<KineticShutter> m_shutter;  ///< motion blur, made by the first render_shutter
   std::vector<double> m_events_s, m_readout_s;
   std::vector<uint64_t> m_events;

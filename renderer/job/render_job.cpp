@@ -202,12 +202,6 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
   for (size_t index = m_slice.begin; index < m_slice.end; ++index) m_to_render.push_back(index);
-  // The blurred frames are shaded by the headlight inside the backends' window integration;
-  // shadow rays over a shutter window are not integrated, so lights and a shutter are refused
-  // rather than shaded wrongly.
-  if (m_params.shutter.enabled() && !m_scene.lights.empty())
-    throw InputError("--shutter", "motion blur of a scene with lights (shadows) is not supported; "
-                                  "drop --shutter, or the scene's lights and --light");
   if (m_params.shutter.enabled())
     m_windows = kinray::shutter_windows(m_frame_times, m_scene.key_times(), m_params.shutter.shutter);
   m_timings.load = now_s() - m_started;

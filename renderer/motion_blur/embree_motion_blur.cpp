@@ -10,6 +10,8 @@
 #include "renderer/flush_denormals.h"
 #include "renderer/plane_depth.h"
 #include "renderer/shading.h"
+#include "renderer/shadows/embree_shadow_tracer.h"
+#include "renderer/shadows/lighting.h"
 #include "util/parallel.h"
 
 namespace kinray {
@@ -38,8 +40,12 @@ void write_vertices(RTCGeometry geometry, unsigned slot, const std::vector<Vec3>
 }  // namespace
 
 EmbreeMotionBlur::EmbreeMotionBlur(const CameraSpaceScene& scene, RTCDevice device, int threads,
-                                   int samples)
-    : m_scene(scene), m_device(device), m_threads(resolve_threads(threads)), m_samples(samples) {
+                                   int samples, const CameraSpaceLights* lights)
+    : m_scene(scene),
+      m_lights(lights != nullptr && !lights->empty() ? lights : nullptr),
+      m_device(device),
+      m_threads(resolve_threads(threads)),
+      m_samples(samples) {
   m_static.assign(scene.objects.size(), nullptr);
   std::vector<Vec3> positions;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
@@ -64,6 +70,8 @@ RTCGeometry EmbreeMotionBlur::new_geometry(size_t object, unsigned time_steps) c
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, triangles.data(),
                              0, sizeof(Triangle), triangles.size());
   rtcSetGeometryTimeStepCount(geometry, time_steps);
+  // Shadow rays skip the triangle they leave from.
+  if (m_lights) EmbreeShadowTracer::install_filter(geometry);
   return geometry;
 }
 
@@ -130,24 +138,51 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
   // samples is not correlated with the reference.
   const uint64_t seed = (++m_frame << 20) ^ uint64_t(m_samples);
   // The piece a time falls in, and the ray time inside it.
-  auto trace = [&](const Vec3& d, double t, RTCIntersectContext& context) {
-    const size_t k = std::min<size_t>(
+  auto piece_of = [&](double t) {
+    return std::min<size_t>(
         size_t(std::max<ptrdiff_t>(
             std::upper_bound(m_breaks.begin(), m_breaks.end(), t) - m_breaks.begin() - 1, 0)),
         m_pieces.size() - 1);
+  };
+  auto piece_time = [&](size_t k, double t) {
     const double s0 = m_breaks[k], s1 = m_breaks[k + 1];
+    return s1 > s0 ? float(std::clamp((t - s0) / (s1 - s0), 0.0, 1.0)) : 0.0f;
+  };
+  auto trace = [&](const Vec3& d, double t, RTCIntersectContext& context) {
+    const size_t k = piece_of(t);
     RTCRayHit rh{};
     rh.ray.dir_x = float(d.x());
     rh.ray.dir_y = float(d.y());
     rh.ray.dir_z = 1.0f;
     rh.ray.tnear = 0.0f;
     rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.time = s1 > s0 ? float(std::clamp((t - s0) / (s1 - s0), 0.0, 1.0)) : 0.0f;
+    rh.ray.time = piece_time(k, t);
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_pieces[k], &context, &rh);
     return rh.hit;
   };
+  // The light mask of a hit at t: its shadow rays through the piece and ray time of t.
+  auto mask_of = [&](const LitHit& hit, const std::vector<CameraSpaceLight>& lights,
+                     uint32_t object, uint32_t prim, double t) {
+    const size_t k = piece_of(t);
+    return light_mask(hit, lights, object, prim, [&](const ShadowRay& ray) {
+      return embree_occluded(m_pieces[k], ray, piece_time(k, t));
+    });
+  };
+  // Lights that do not move (a camera of one key) are found once.
+  const std::vector<CameraSpaceLight> still_lights =
+      m_lights && m_lights->still() ? m_lights->at(0) : std::vector<CameraSpaceLight>{};
+  auto shade = [&](const RTCHit& hit, int i, int j, const Vec3& d, double t) -> Color {
+    if (hit.geomID == RTC_INVALID_GEOMETRY_ID) return kBackgroundColor;
+    if (!m_lights) return shade_hit(m_scene, image, i, j, hit.geomID, hit.primID, t);
+    const LitHit lit = lit_hit(m_scene, hit.geomID, hit.primID, d, t);
+    if (!still_lights.empty())
+      return lit_color(lit, still_lights, mask_of(lit, still_lights, hit.geomID, hit.primID, t));
+    const std::vector<CameraSpaceLight> lights = m_lights->at(t);
+    return lit_color(lit, lights, mask_of(lit, lights, hit.geomID, hit.primID, t));
+  };
+  if (m_lights) frame.lit.assign(frame.pixel_count(), 0u);
   parallel_for_dynamic(size_t(frame.height), m_threads, [&](size_t row) {
     const FlushDenormals row_flush;
     RTCIntersectContext context;
@@ -159,11 +194,7 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
       ColorAverage average;
       for (int s = 0; s < m_samples; ++s) {
         const double t = stratified_time(window, uint32_t(p), s, m_samples, seed);
-        const RTCHit hit = trace(d, t, context);
-        average.add(hit.geomID == RTC_INVALID_GEOMETRY_ID
-                        ? kBackgroundColor
-                        : shade_hit(m_scene, image, i, j, hit.geomID, hit.primID, t),
-                    1.0);
+        average.add(shade(trace(d, t, context), i, j, d, t), 1.0);
       }
       frame.color[p] = average.result();
       const RTCHit hit = trace(d, window.time, context);
@@ -174,6 +205,9 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
         frame.object[p] = hit.geomID;
         frame.prim[p] = hit.primID;
         frame.depth[p] = exact_plane_depth(m_scene, hit.geomID, hit.primID, d, window.time);
+        if (m_lights)
+          frame.lit[p] = mask_of(lit_hit(m_scene, hit.geomID, hit.primID, d, window.time),
+                                 m_lights->at(window.time), hit.geomID, hit.primID, window.time);
       }
     }
   });

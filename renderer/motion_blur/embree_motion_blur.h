@@ -8,7 +8,9 @@
 // time) inside it, and each piece gets its own scene whose moving geometries have two time steps,
 // the camera-space positions at the piece's ends: within a piece that is exactly the flightplan,
 // and each ray is traced in the piece its time falls in. Static objects are one geometry shared
-// by every piece. N samples per pixel, stratified with a fixed per-pixel jitter.
+// by every piece. N samples per pixel, stratified with a fixed per-pixel jitter. With lights, each
+// sample's hit traces one shadow ray per light through the same piece at the same ray time, and
+// is shaded as renderer/shadows/lighting.h shades a sharp frame's.
 #include <embree3/rtcore.h>
 
 #include <nlohmann/json_fwd.hpp>
@@ -17,19 +19,22 @@
 #include "renderer/frame.h"
 #include "renderer/motion_blur/shutter.h"
 #include "scenes/camera_space.h"
+#include "scenes/camera_space_lights.h"
 
 namespace kinray {
 
 class EmbreeMotionBlur {
  public:
-  /// `device` must outlive this; `samples` time samples per pixel.
-  EmbreeMotionBlur(const CameraSpaceScene& scene, RTCDevice device, int threads, int samples);
+  /// `device` must outlive this; `samples` time samples per pixel. With `lights` (not empty;
+  /// they must outlive this) samples are lit and shadowed, else lit by the headlight.
+  EmbreeMotionBlur(const CameraSpaceScene& scene, RTCDevice device, int threads, int samples,
+                   const CameraSpaceLights* lights = nullptr);
   ~EmbreeMotionBlur();
   EmbreeMotionBlur(const EmbreeMotionBlur&) = delete;
   EmbreeMotionBlur& operator=(const EmbreeMotionBlur&) = delete;
 
   /// frame.color: the mean of `samples` shaded samples per pixel over the window; object, prim
-  /// and depth: the hit at window.time (one more ray per pixel).
+  /// and depth (and with lights the light mask): the hit at window.time (one more ray per pixel).
   void render(const ShutterWindow& window, Frame& frame);
   /// Adds "motion_blur": {samples, pieces, build_s, trace_s (totals and per frame)}.
   void write_stats(nlohmann::json& stats) const;
@@ -41,6 +46,7 @@ class EmbreeMotionBlur {
   RTCGeometry new_geometry(size_t object, unsigned time_steps) const;
 
   const CameraSpaceScene& m_scene;
+  const CameraSpaceLights* m_lights = nullptr;  ///< nullptr: the headlight
   RTCDevice m_device;
   int m_threads;
   int m_samples;

@@ -12,11 +12,15 @@
 
 namespace kinray {
 
-KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int threads)
+KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int threads,
+                               const CameraSpaceLights* lights)
     : m_scene(scene),
       m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
       m_threads(threads),
-      m_fixed_tan_half_fov(scene.fixed_tan_half_fov()) {}
+      m_fixed_tan_half_fov(scene.fixed_tan_half_fov()) {
+  if (lights != nullptr && !lights->empty())
+    m_shadows = std::make_unique<ShutterShadows>(scene, *lights, m_rule);
+}
 
 void KineticShutter::start_logging(FrustumGrid& grid) {
   if (!m_started) {
@@ -81,8 +85,8 @@ ShadingInstant KineticShutter::instant(uint32_t object, double t, size_t next) c
 }
 
 void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int j, double t0,
-                               double t1, double length, SegmentCache& cache, uint64_t& nodes,
-                               ColorAverage& average) const {
+                               double t1, double length, SegmentCache& cache,
+                               ShutterShadowCounts& counts, ColorAverage& average) const {
   if (!(t1 > t0)) return;
   if (front == kNoGridHit) {
     average.add(kBackgroundColor, (t1 - t0) / length);
@@ -91,18 +95,22 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
   const uint32_t m = grid.mesh_of_triangle(front);
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
   const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
+  if (m_shadows) {
+    m_shadows->integrate(object, prim, d, t0, t1, average, counts);
+    return;
+  }
   ViewCache view;
   for_each_node(object, t0, t1, length, [&](double t, double w, size_t next) {
     const ShadingInstant at = instant(object, t, next);
     const TriangleAtInstant triangle = cache.get(m_scene, object, prim, at.segment.k).at(at);
-    ++nodes;
+    ++counts.shading_nodes;
     average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), w);
   });
 }
 
 void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int i, int j,
                                       FrontNodes& memo, SegmentCache& cache,
-                                      uint64_t& node_count, ColorAverage& average) const {
+                                      ShutterShadowCounts& counts, ColorAverage& average) const {
   if (front == kNoGridHit) {
     average.add(kBackgroundColor, 1.0);
     return;
@@ -119,7 +127,7 @@ void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int
   }
   const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
   ViewCache view;
-  node_count += nodes.size();
+  counts.shading_nodes += nodes.size();
   for (size_t k = 0; k < nodes.size(); ++k) {
     const TriangleAtInstant& triangle = memo.triangles[k];
     average.add(headlight_color(triangle, d, view.at(d, triangle.tan_half_fov)), nodes[k].weight);
@@ -144,6 +152,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   // events to the close in one go, and the log says where the fronts were at the open.
   grid.advance_to(std::max(window.close, grid.now()));
   roll_to(grid, window.open);
+  if (m_shadows) m_shadows->begin_window(window);
   m_stats.events_s += seconds_since(clock);
   const GridScene& scene = grid.scene();
   const int w = scene.width(), h = scene.height();
@@ -168,10 +177,15 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
     m_split_at_time.assign(n, kNoGridHit);
   }
   std::vector<size_t> split_end(offset.begin(), offset.end() - 1);
-  std::atomic<uint64_t> changes{0}, nodes{0};
+  std::atomic<uint64_t> changes{0}, nodes{0}, rays{0}, mask_changes{0};
+  const auto add_counts = [&](const ShutterShadowCounts& c) {
+    nodes.fetch_add(c.shading_nodes, std::memory_order_relaxed);
+    rays.fetch_add(c.shadow_rays, std::memory_order_relaxed);
+    mask_changes.fetch_add(c.mask_changes, std::memory_order_relaxed);
+  };
   parallel_for_dynamic(logs.size(), m_threads, [&](size_t b) {
     SegmentCache cache;
-    uint64_t band_nodes = 0;
+    ShutterShadowCounts band_counts;
     size_t& end = split_end[b];
     for (const FrontChange& c : logs[b].changes) {
       if (c.time > window.close) break;
@@ -183,26 +197,26 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
         m_split[end++] = SplitPixel{ColorAverage{}, window.open, m_open_front[p], m_open_front[p]};
       }
       SplitPixel& s = m_split[index];
-      integrate(scene, s.front, i, j, s.since, c.time, length, cache, band_nodes, s.average);
+      integrate(scene, s.front, i, j, s.since, c.time, length, cache, band_counts, s.average);
       s.front = c.front;
       s.since = c.time;
       if (c.time <= window.time) s.at_time = c.front;
     }
     changes.fetch_add(logs[b].changes.size(), std::memory_order_relaxed);
-    nodes.fetch_add(band_nodes, std::memory_order_relaxed);
+    add_counts(band_counts);
   });
   const PixelRays image{w, h};
   parallel_for(size_t(h), m_threads, [&](size_t row) {
     const int j = int(row);
     FrontNodes memo;  // neighbours along a row mostly share their front
     SegmentCache cache;
-    uint64_t row_nodes = 0;
+    ShutterShadowCounts row_counts;
     for (int i = 0; i < w; ++i) {
       const size_t p = size_t(j) * size_t(w) + size_t(i);
       const uint32_t index = m_split_index[p];
       if (index != kNotSplit) {
         SplitPixel& s = m_split[index];
-        integrate(scene, s.front, i, j, s.since, window.close, length, cache, row_nodes,
+        integrate(scene, s.front, i, j, s.since, window.close, length, cache, row_counts,
                   s.average);
         frame.color[p] = s.average.result();
         m_split_at_time[p] = s.at_time;  // for the read-out, in pixel order
@@ -210,14 +224,21 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
       }
       // A window of length zero has no intervals: its pixels average nothing.
       ColorAverage average;
-      if (window.close > window.open)
-        integrate_window(scene, m_open_front[p], i, j, memo, cache, row_nodes, average);
+      if (window.close > window.open) {
+        if (m_shadows)  // the window's nodes are not shared: each pixel's masks are its own
+          integrate(scene, m_open_front[p], i, j, window.open, window.close, length, cache,
+                    row_counts, average);
+        else
+          integrate_window(scene, m_open_front[p], i, j, memo, cache, row_counts, average);
+      }
       frame.color[p] = average.result();
     }
-    nodes.fetch_add(row_nodes, std::memory_order_relaxed);
+    add_counts(row_counts);
   });
   m_stats.integrate_s += seconds_since(clock);
-  // The id and depth buffers: the front at the frame time, as the sharp frame has it.
+  // The id and depth buffers: the front at the frame time, as the sharp frame has it; with
+  // lights, its light mask there too.
+  if (m_shadows) frame.lit.assign(n, 0u);
   parallel_for(size_t(h), m_threads, [&](size_t row) {
     const int j = int(row);
     for (int i = 0; i < w; ++i) {
@@ -237,6 +258,9 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
       frame.prim[p] = front - scene.triangle_begin(m);
       frame.depth[p] = exact_plane_depth(m_scene, frame.object[p], frame.prim[p],
                                          image.direction(i, j), window.time);
+      if (m_shadows)
+        frame.lit[p] =
+            m_shadows->mask_at(frame.object[p], frame.prim[p], image.direction(i, j), window.time);
     }
   });
   uint64_t split_count = 0;
@@ -244,6 +268,8 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   m_stats.front_changes += changes.load();
   m_stats.pixels_split += split_count;
   m_stats.shading_nodes += nodes.load();
+  m_stats.shadow_rays += rays.load();
+  m_stats.mask_changes += mask_changes.load();
   m_stats.readout_s += seconds_since(clock);
 }
 

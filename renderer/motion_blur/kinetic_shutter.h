@@ -6,28 +6,36 @@
 // exact. Each interval's shading (which varies smoothly while the front is fixed) is integrated
 // by Gauss-Legendre quadrature; the background counts for its share of the window.
 //
+// With lights, each interval's shading is integrated piecewise between the changes of its light
+// mask (shutter_shadows.h), and the light mask AOV is the front's at the frame time.
+//
 // The timeline keeps the fronts at the open time of the last window and the grid's log of the
 // changes since, so windows may overlap (an irregular schedule): the grid only ever moves forward.
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "kinetic/core/counters.h"
 #include "kinetic/grid/frustum_grid.h"
 #include "renderer/frame.h"
-#include "renderer/shading.h"
 #include "renderer/motion_blur/shutter.h"
+#include "renderer/motion_blur/shutter_shadows.h"
+#include "renderer/shading.h"
 #include "scenes/camera_space.h"
+#include "scenes/camera_space_lights.h"
 
 namespace kinray {
 
 // X(member, "stats key") of KineticShutterStats (kinetic/core/counters.h).
-#define KINRAY_SHUTTER_COUNTERS(X)                                                   \
-  X(front_changes, "front_changes") /* logged changes inside the windows */         \
-  X(pixels_split, "pixels_split")   /* pixels whose window has several intervals */ \
-  X(shading_nodes, "shading_nodes") /* shadings of a front at a node (background excluded) */
+#define KINRAY_SHUTTER_COUNTERS(X)                                                            \
+  X(front_changes, "front_changes") /* logged changes inside the windows */                   \
+  X(pixels_split, "pixels_split")   /* pixels whose window has several intervals */           \
+  X(shading_nodes, "shading_nodes") /* shadings of a front at a node (background excluded) */ \
+  X(shadow_rays, "shadow_rays")     /* with lights: traced at probes and bisections */        \
+  X(mask_changes, "mask_changes")   /* with lights: change times of a light mask found */
 
 /// Counters and timings of the blurred frames, for --stats ("shutter").
 struct KineticShutterStats {
@@ -40,8 +48,10 @@ struct KineticShutterStats {
 
 class KineticShutter {
  public:
-  /// `order` Gauss-Legendre nodes per interval (0: kDefaultShutterOrder).
-  KineticShutter(const CameraSpaceScene& scene, int order, int threads);
+  /// `order` Gauss-Legendre nodes per interval (0: kDefaultShutterOrder). With `lights` (not
+  /// empty; they must outlive this) the shading is lit and shadowed, else the headlight's.
+  KineticShutter(const CameraSpaceScene& scene, int order, int threads,
+                 const CameraSpaceLights* lights = nullptr);
 
   /// Renders `window` from `grid` (at a time <= window.open on the first call; the grid is
   /// advanced to window.close): frame.color is the time average over the window; object, prim
@@ -81,9 +91,9 @@ class KineticShutter {
     std::array<TriangleOverSegment, kSlots> m_slots;
   };
   /// Adds the front's shading over [t0, t1] (of a window of length `length`) to `average`, and
-  /// the nodes it shaded to `nodes`.
+  /// the nodes it shaded (and, with lights, the shadow rays it traced) to `counts`.
   void integrate(const GridScene& grid, uint32_t front, int i, int j, double t0, double t1,
-                 double length, SegmentCache& cache, uint64_t& nodes,
+                 double length, SegmentCache& cache, ShutterShadowCounts& counts,
                  ColorAverage& average) const;
   /// A front's triangle at each node of the window, kept while the next pixel has the same front.
   struct FrontNodes {
@@ -111,10 +121,12 @@ class KineticShutter {
   /// Adds the front's shading over the whole window (the nodes of place_window_nodes); `memo`
   /// holds the last front's triangle at those nodes.
   void integrate_window(const GridScene& grid, uint32_t front, int i, int j, FrontNodes& memo,
-                        SegmentCache& cache, uint64_t& node_count, ColorAverage& average) const;
+                        SegmentCache& cache, ShutterShadowCounts& counts,
+                        ColorAverage& average) const;
 
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
+  std::unique_ptr<ShutterShadows> m_shadows;  ///< with lights
   int m_threads;
   std::optional<double> m_fixed_tan_half_fov;  ///< set when the fov is the same at every key
   bool m_started = false;

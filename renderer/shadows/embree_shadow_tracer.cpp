@@ -28,6 +28,18 @@ void skip_origin_triangle(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
+bool embree_occluded(RTCScene scene, const ShadowRay& ray, float time) {
+  ShadowContext shadow;
+  rtcInitIntersectContext(&shadow.context);
+  RTCRay embree_ray = embree_shadow_ray(ray);
+  embree_ray.time = time;
+  shadow.skip_object = ray.object;
+  shadow.skip_prim = ray.prim;
+  rtcOccluded1(scene, &shadow.context, &embree_ray);
+  // Embree sets tfar to -inf when the ray is occluded.
+  return embree_ray.tfar < 0;
+}
+
 void EmbreeShadowTracer::install_filter(RTCGeometry geometry) {
   rtcSetGeometryOccludedFilterFunction(geometry, &skip_origin_triangle);
 }
@@ -40,17 +52,9 @@ void EmbreeShadowTracer::advance_to(double t) {
 void EmbreeShadowTracer::occluded(std::span<const ShadowRay> rays,
                                   std::span<uint8_t> blocked) const {
   const FlushDenormals flush_denormals;
-  ShadowContext shadow;
-  rtcInitIntersectContext(&shadow.context);
   uint64_t count = 0;
   for (size_t r = 0; r < rays.size(); ++r) {
-    const ShadowRay& in = rays[r];
-    RTCRay ray = embree_shadow_ray(in);
-    shadow.skip_object = in.object;
-    shadow.skip_prim = in.prim;
-    rtcOccluded1(m_rtc_scene, &shadow.context, &ray);
-    // Embree sets tfar to -inf when the ray is occluded.
-    blocked[r] = ray.tfar < 0 ? 1 : 0;
+    blocked[r] = embree_occluded(m_rtc_scene, rays[r]) ? 1 : 0;
     count += blocked[r];
   }
   m_rays.fetch_add(rays.size(), std::memory_order_relaxed);

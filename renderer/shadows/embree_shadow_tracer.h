@@ -27,6 +27,10 @@ namespace kinray {
   return ray;
 }
 
+/// Whether `ray` meets a triangle of `scene` (whose geometries carry install_filter's filter)
+/// other than its own, at Embree's ray time `time` (in [0, 1]; motion blur's time steps).
+[[nodiscard]] bool embree_occluded(RTCScene scene, const ShadowRay& ray, float time = 0.0f);
+
 /// Occlusion queries on the scene an Embree backend has committed for the current frame.
 class EmbreeShadowTracer final : public ShadowTracer {
  public:

@@ -18,6 +18,8 @@ struct HitShadowRays {
   uint32_t traced = 0;  ///< bit l: light l faces the hit, its ray is in the batch
 };
 
+}  // namespace
+
 Color lit_color(const SurfacePoint& surface, const Vec3& origin,
                 const std::vector<CameraSpaceLight>& lights, uint32_t mask) {
   // The interpolated normal turned towards the eye (the visible side).
@@ -33,7 +35,19 @@ Color lit_color(const SurfacePoint& surface, const Vec3& origin,
   return surface.base.cwiseProduct(Color::Constant(kAmbient) + kDiffuse * irradiance);
 }
 
-}  // namespace
+LitHit lit_hit(const TriangleAtInstant& triangle, const Vec3& d, const Eigen::Vector3f& view) {
+  LitHit hit{surface_point(triangle, d, view)};
+  const SurfacePoint& s = hit.surface;
+  hit.origin = plane_hit(s.ray, s.p0, s.p1, s.p2);
+  return hit;
+}
+
+LitHit lit_hit(const CameraSpaceScene& scene, uint32_t object, uint32_t prim, const Vec3& d,
+               double t) {
+  const TriangleAtInstant triangle =
+      triangle_at_instant(scene, object, prim, shading_instant(scene, object, t));
+  return lit_hit(triangle, d, view_direction(d, triangle.tan_half_fov));
+}
 
 void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lights,
                      ShadowTracer& tracer, Frame& frame, int threads) {
@@ -45,8 +59,7 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
   frame.lit.assign(frame.pixel_count(), 0u);
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
-    std::vector<SurfacePoint> surfaces;
-    std::vector<Vec3> origins;
+    std::vector<LitHit> hits;
     std::vector<HitShadowRays> pixels;
     std::vector<ShadowRay> rays;
     RowTriangles triangles(scene, frame.time);
@@ -58,13 +71,11 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
       }
       const TriangleAtInstant& triangle = triangles.at(frame.object[p], frame.prim[p]);
       const Vec3 d = image.direction(i, j);
-      const SurfacePoint& s = surfaces.emplace_back(
-          surface_point(triangle, d, view_direction(d, triangle.tan_half_fov)));
-      const Vec3& origin = origins.emplace_back(plane_hit(s.ray, s.p0, s.p1, s.p2));
+      const LitHit& hit =
+          hits.emplace_back(lit_hit(triangle, d, view_direction(d, triangle.tan_half_fov)));
       HitShadowRays& pixel = pixels.emplace_back(HitShadowRays{i, rays.size(), 0u});
       for (size_t l = 0; l < at_t.size(); ++l)
-        if (auto ray = shadow_ray(origin, s.ray, s.p0, s.p1, s.p2, at_t[l], frame.object[p],
-                                  frame.prim[p])) {
+        if (auto ray = shadow_ray(hit, at_t[l], frame.object[p], frame.prim[p])) {
           rays.push_back(*ray);
           pixel.traced |= 1u << l;
         }
@@ -80,7 +91,7 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
           if (!blocked[r++]) mask |= 1u << l;
       const size_t p = frame.index(pixel.i, j);
       frame.lit[p] = mask;
-      frame.color[p] = lit_color(surfaces[k], origins[k], at_t, mask);
+      frame.color[p] = lit_color(hits[k], at_t, mask);
     }
   });
 }

@@ -6,12 +6,63 @@
 //   base * (ambient + diffuse * sum over reaching lights of colour_l * max(0, n . l)),
 // n the interpolated vertex normal turned towards the eye, l the unit vector to the light in true
 // camera space. Lights do not fall off with distance: a light's colour is its irradiance.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
 #include "renderer/frame.h"
+#include "renderer/shading.h"
+#include "renderer/shadows/shadow_rays.h"
 #include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
 
 namespace kinray {
+
+/// The hit of a pixel's ray on a triangle at one instant, with what its lit shading and its
+/// shadow rays start from: the surface point and the exact hit on the triangle's plane.
+struct LitHit {
+  SurfacePoint surface;
+  Vec3 origin = Vec3::Zero();
+};
+
+/// The LitHit of pixel direction d on `triangle` (its view direction given, as surface_point
+/// takes it).
+[[nodiscard]] LitHit lit_hit(const TriangleAtInstant& triangle, const Vec3& d,
+                             const Eigen::Vector3f& view);
+
+/// The LitHit of pixel direction d on (object, prim) at time t, as every backend shades it.
+[[nodiscard]] LitHit lit_hit(const CameraSpaceScene& scene, uint32_t object, uint32_t prim,
+                             const Vec3& d, double t);
+
+/// The shadow ray of `hit` on (object, prim) towards light l; nullopt when the light does not face
+/// the visible side (shadow_rays.h).
+[[nodiscard]] inline std::optional<ShadowRay> shadow_ray(const LitHit& hit,
+                                                         const CameraSpaceLight& light,
+                                                         uint32_t object, uint32_t prim) {
+  const SurfacePoint& s = hit.surface;
+  return shadow_ray(hit.origin, s.ray, s.p0, s.p1, s.p2, light, object, prim);
+}
+
+/// Bit l set when light l faces `hit` and its shadow ray is not blocked: blocked(ray) answers.
+template <class Blocked>
+[[nodiscard]] uint32_t light_mask(const LitHit& hit, const std::vector<CameraSpaceLight>& lights,
+                                  uint32_t object, uint32_t prim, Blocked&& blocked) {
+  uint32_t mask = 0;
+  for (size_t l = 0; l < lights.size(); ++l)
+    if (const auto ray = shadow_ray(hit, lights[l], object, prim); ray && !blocked(*ray))
+      mask |= 1u << l;
+  return mask;
+}
+
+/// The Lambert colour of a surface point lit by the lights of `mask` (bit l: light l reaches
+/// it), `origin` its exact hit.
+[[nodiscard]] Color lit_color(const SurfacePoint& surface, const Vec3& origin,
+                              const std::vector<CameraSpaceLight>& lights, uint32_t mask);
+[[nodiscard]] inline Color lit_color(const LitHit& hit, const std::vector<CameraSpaceLight>& lights,
+                                     uint32_t mask) {
+  return lit_color(hit.surface, hit.origin, lights, mask);
+}
 
 /// Brings `tracer` to frame.time, traces every pixel's shadow rays (rows in parallel, `threads`
 /// as parallel_for takes them; the tracer's occluded() is called concurrently) and fills

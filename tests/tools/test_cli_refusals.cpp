@@ -177,8 +177,6 @@ TEST_F(CliRefusals, FilesAreNamedForTheirOwnProblems) {
 }
 
 TEST_F(CliRefusals, WhatTheRendererCannotDoYetIsRefusedNotApproximated) {
-  refused(render() + "--shutter 0.5 --light point:1,2,3", "--shutter",
-          "motion blur of a scene with lights (shadows) is not supported");
   const std::string aff = path("lit.aff");
   write_text(aff,
              "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0.1\nresolution 32 24\n"

@@ -1,0 +1,63 @@
+#pragma once
+// Rays at any time of a time window: motion blur's shadow rays (renderer/motion_blur/). The
+// kinetic trees answer at one time and only move forward, while a shutter window's shadow rays
+// come at every quadrature node and bisection time of every pixel, in no order. This tree keeps
+// one shape (the kinetic trees' builder, binned SAH, run on the first window) and, per window,
+// boxes that bound each triangle over the whole window: a vertex moves linearly between its
+// mesh's keys, so its positions at the window's ends and at the keys inside span its path. A ray
+// at time t descends through those boxes and meets the triangles placed at t as
+// FlightplanMesh::position places them (the Embree reference's arithmetic), so its answer is the
+// exact one at t; the boxes only decide how much of the tree it visits. This is Embree's own
+// approach to motion blur (boxes over the shutter, primitives at the ray's time), with the
+// window's sweep a pass over the vertices and the nodes, not a build.
+#include <cstdint>
+#include <vector>
+
+#include "kinetic/tree/bvh_topology.h"
+#include "kinetic/tree/tree_meshes.h"
+#include "kinetic/tree/tree_query.h"
+
+namespace kinray {
+
+class WindowBvh {
+ public:
+  /// The spans of `meshes` must outlive this object.
+  explicit WindowBvh(std::vector<FlightplanMesh> meshes);
+
+  /// Boxes over [open, close] (open <= close): every triangle of a mesh present at some time of
+  /// the window, over its path through the window. The first call builds the shape.
+  void sweep(double open, double close);
+  /// Whether the ray meets a triangle present at time t (t in the last swept window), other
+  /// than ray.skip, at s_min < s < s_max. Thread-safe between sweeps.
+  [[nodiscard]] bool occluded(const TreeRay& ray, double t) const;
+  /// The same answer from every triangle, without the tree (tests).
+  [[nodiscard]] bool occluded_brute_force(const TreeRay& ray, double t) const;
+
+  [[nodiscard]] const TreeMeshes& meshes() const { return m_meshes; }
+  [[nodiscard]] const BvhTopology& topology() const { return m_topology; }
+  [[nodiscard]] uint64_t sweeps() const { return m_sweeps; }
+
+ private:
+  /// Triangle tri at time t (present at t), hit by the ray within (s_min, s_max)?
+  [[nodiscard]] bool hits(uint32_t tri, const TreeRay& ray, double t) const;
+
+  TreeMeshes m_meshes;
+  BvhTopology m_topology;
+  /// A node as the traversal reads it, half a cache line: its box over the window in floats
+  /// (padded for the rays' own rounding to floats and rounded outward, so no hit is lost), its
+  /// children, or for a leaf kNoNode and its triangle.
+  struct alignas(32) Node {
+    float lo[3];
+    uint32_t left = kNoNode;
+    float hi[3];
+    uint32_t right_or_triangle = kNoNode;
+  };
+
+  std::vector<Aabb> m_boxes;         ///< per node, over the last window (the sweep's)
+  std::vector<Node> m_nodes;         ///< the same boxes as the traversal reads them
+  std::vector<Aabb> m_vertex_boxes;  ///< per global vertex: its path over the last window
+  double m_open = 0, m_close = 0;
+  uint64_t m_sweeps = 0;
+};
+
+}  // namespace kinray
