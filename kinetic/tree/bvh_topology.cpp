@@ -99,6 +99,53 @@ struct Builder {
 
 }  // namespace
 
+FourWideTopology collapse_four_wide(const BvhTopology& topology) {
+  const auto& nodes = topology.nodes;
+  FourWideTopology out;
+  if (nodes.empty() || nodes[0].leaf()) return out;
+  // Leaves below each node (children have larger indices).
+  std::vector<uint32_t> leaves(nodes.size(), 1);
+  for (uint32_t i = uint32_t(nodes.size()); i-- > 0;)
+    if (!nodes[i].leaf()) leaves[i] = leaves[nodes[i].left] + leaves[nodes[i].right];
+  struct Pending {
+    uint32_t binary, wide;
+  };
+  std::vector<Pending> pending{{0, 0}};
+  auto add = [&](uint32_t binary) {
+    out.binary.push_back(binary);
+    out.children.emplace_back().fill(kNoNode);
+    out.wide.emplace_back().fill(kNoNode);
+    return uint32_t(out.binary.size() - 1);
+  };
+  add(0);
+  while (!pending.empty()) {
+    const Pending p = pending.back();
+    pending.pop_back();
+    std::array<uint32_t, 4> child{nodes[p.binary].left, nodes[p.binary].right, kNoNode, kNoNode};
+    int count = 2;
+    while (count < 4) {
+      int largest = -1;
+      for (int k = 0; k < count; ++k)
+        if (!nodes[child[size_t(k)]].leaf() &&
+            (largest < 0 || leaves[child[size_t(k)]] > leaves[child[size_t(largest)]]))
+          largest = k;
+      if (largest < 0) break;
+      const BvhNode& opened = nodes[child[size_t(largest)]];
+      child[size_t(largest)] = opened.left;
+      child[size_t(count++)] = opened.right;
+    }
+    out.children[p.wide] = child;
+    for (int k = 0; k < count; ++k) {
+      const uint32_t c = child[size_t(k)];
+      if (nodes[c].leaf()) continue;
+      const uint32_t w = add(c);
+      out.wide[p.wide][size_t(k)] = w;
+      pending.push_back({c, w});
+    }
+  }
+  return out;
+}
+
 uint32_t BvhTopology::height() const {
   std::vector<uint32_t> depth(nodes.size(), 0);
   uint32_t h = 0;

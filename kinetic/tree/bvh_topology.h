@@ -50,4 +50,17 @@ struct BvhTopology {
 /// logarithmic in practice and bounded by the triangle count.
 [[nodiscard]] BvhTopology build_binned_sah(std::span<const Aabb> triangle_boxes);
 
+/// The tree collapsed to four children per node, for traversals that test four boxes at once:
+/// wide node 0 holds the root's children, and each wide node up to four binary nodes, found by
+/// opening the inner child with the most leaves below it first (which keeps the wide tree
+/// balanced). Wide nodes are numbered in the order a depth-first walk creates them.
+struct FourWideTopology {
+  std::vector<uint32_t> binary;  ///< per wide node: the binary node it opens
+  std::vector<std::array<uint32_t, 4>>
+      children;                               ///< per wide node: slot k's binary node or kNoNode
+  std::vector<std::array<uint32_t, 4>> wide;  ///< per wide node: an inner slot's wide node
+};
+/// The collapse of a tree whose root is an inner node (two triangles or more).
+[[nodiscard]] FourWideTopology collapse_four_wide(const BvhTopology& topology);
+
 }  // namespace kinray

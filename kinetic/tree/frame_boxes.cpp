@@ -82,53 +82,24 @@ void FrameBoxes::prepare(const BvhTopology& topology, const TreeMeshes& meshes,
   m_children.clear();
   m_root_link = nodes.empty() ? kNoLink : nodes[0].leaf() ? kLeaf | nodes[0].triangle : 0;
   if (nodes.empty() || nodes[0].leaf()) return;
-  // Leaves below each node (children have larger indices): the collapse opens the largest inner
-  // child first, which keeps the wide tree balanced.
-  std::vector<uint32_t> leaves(nodes.size(), 1);
-  for (uint32_t i = uint32_t(nodes.size()); i-- > 0;)
-    if (!nodes[i].leaf()) leaves[i] = leaves[nodes[i].left] + leaves[nodes[i].right];
-  struct Pending {
-    uint32_t binary, wide;
-  };
-  std::vector<Pending> pending{{0, 0}};
-  m_nodes.emplace_back();
-  m_children.emplace_back();
-  while (!pending.empty()) {
-    const Pending p = pending.back();
-    pending.pop_back();
-    std::array<uint32_t, 4> child{nodes[p.binary].left, nodes[p.binary].right, kNoNode, kNoNode};
-    int count = 2;
-    while (count < 4) {
-      int largest = -1;
-      for (int k = 0; k < count; ++k)
-        if (!nodes[child[size_t(k)]].leaf() &&
-            (largest < 0 || leaves[child[size_t(k)]] > leaves[child[size_t(largest)]]))
-          largest = k;
-      if (largest < 0) break;
-      const BvhNode& opened = nodes[child[size_t(largest)]];
-      child[size_t(largest)] = opened.left;
-      child[size_t(count++)] = opened.right;
-    }
+  // The collapse opens the largest inner child first, which keeps the wide tree balanced.
+  const FourWideTopology wide = collapse_four_wide(topology);
+  m_nodes.resize(wide.binary.size());
+  m_children = wide.children;
+  for (uint32_t w = 0; w < wide.binary.size(); ++w) {
     Node n;
     for (int r = 0; r < 6; ++r)
       for (int k = 0; k < 4; ++k) n.bound[r][k] = kEmpty[size_t(r)];
     n.link.fill(kNoLink);
-    n.binary = p.binary;
-    for (int k = 0; k < count; ++k) {
-      const uint32_t c = child[size_t(k)];
-      m_slot[c] = p.wide * 4 + uint32_t(k);
+    n.binary = wide.binary[w];
+    for (int k = 0; k < 4; ++k) {
+      const uint32_t c = wide.children[w][size_t(k)];
+      if (c == kNoNode) continue;
+      m_slot[c] = w * 4 + uint32_t(k);
       n.used |= 1u << k;
-      if (nodes[c].leaf()) {
-        n.link[size_t(k)] = kLeaf | nodes[c].triangle;
-      } else {
-        n.link[size_t(k)] = uint32_t(m_nodes.size());
-        pending.push_back({c, uint32_t(m_nodes.size())});
-        m_nodes.emplace_back();
-        m_children.emplace_back();
-      }
+      n.link[size_t(k)] = nodes[c].leaf() ? kLeaf | nodes[c].triangle : wide.wide[w][size_t(k)];
     }
-    m_nodes[p.wide] = n;
-    m_children[p.wide] = child;
+    m_nodes[w] = n;
   }
 }
 

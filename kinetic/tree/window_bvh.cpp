@@ -1,10 +1,12 @@
 #include "kinetic/tree/window_bvh.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
 #include "kinetic/tree/ray_triangle.h"
+#include "kinetic/tree/wide_slab_test.h"
 #include "util/check.h"
 
 namespace kinray {
@@ -57,27 +59,32 @@ void WindowBvh::sweep(double open, double close) {
       b.extend(m_boxes[n.right]);
     }
   }
-  // The traversal's floats: each side moved out by the pad that covers a ray's origin and
-  // direction rounded to floats (a relative 2^-24 of coordinates within the scale, over the
-  // distances inside the scene), then rounded outward.
-  const float float_pad = float(1e-6 * m_meshes.scale());
-  m_nodes.resize(m_topology.nodes.size());
-  for (size_t i = 0; i < m_nodes.size(); ++i) {
-    const BvhNode& n = m_topology.nodes[i];
-    Node& out = m_nodes[i];
-    for (int a = 0; a < 3; ++a) {
-      const Aabb& b = m_boxes[i];
-      if (!(b.lo[a] <= b.hi[a])) {  // empty: both sides at +inf, so every ray's slab is empty
-        out.lo[a] = out.hi[a] = std::numeric_limits<float>::infinity();
-        continue;
+  // The traversal's wide nodes: each child's box rounded outward to floats.
+  if (m_sweeps == 0) {
+    m_wide = collapse_four_wide(m_topology);
+    m_nodes.resize(m_wide.binary.size());
+    const auto& nodes = m_topology.nodes;
+    m_root_link = nodes.empty() ? kNoNode : nodes[0].leaf() ? kLeaf | nodes[0].triangle : 0;
+    for (size_t w = 0; w < m_nodes.size(); ++w)
+      for (size_t k = 0; k < 4; ++k) {
+        const uint32_t c = m_wide.children[w][k];
+        m_nodes[w].link[k] = c == kNoNode      ? kNoNode
+                             : nodes[c].leaf() ? kLeaf | nodes[c].triangle
+                                               : m_wide.wide[w][k];
       }
-      out.lo[a] =
-          std::nextafter(float(b.lo[a]) - float_pad, -std::numeric_limits<float>::infinity());
-      out.hi[a] =
-          std::nextafter(float(b.hi[a]) + float_pad, std::numeric_limits<float>::infinity());
+  }
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (size_t w = 0; w < m_nodes.size(); ++w) {
+    Node& out = m_nodes[w];
+    for (size_t k = 0; k < 4; ++k) {
+      const uint32_t c = m_wide.children[w][k];
+      const Aabb* b = c == kNoNode ? nullptr : &m_boxes[c];
+      for (int a = 0; a < 3; ++a) {
+        const bool empty = b == nullptr || !(b->lo[a] <= b->hi[a]);
+        out.bound[a][k] = empty ? kInf : float_down(b->lo[a]);
+        out.bound[a + 3][k] = empty ? -kInf : float_up(b->hi[a]);
+      }
     }
-    out.left = n.leaf() ? kNoNode : n.left;
-    out.right_or_triangle = n.leaf() ? n.triangle : n.right;
   }
   ++m_sweeps;
 }
@@ -98,42 +105,22 @@ bool WindowBvh::hits(uint32_t tri, const TreeRay& ray, double t) const {
 bool WindowBvh::occluded(const TreeRay& ray, double t) const {
   KINRAY_CHECK_MSG(m_sweeps > 0 && t >= m_open && t <= m_close,
                    "window tree: a ray outside the swept window");
-  if (m_nodes.empty()) return false;
-  // The slab test in floats. A direction component of 0 becomes a tiny one of its sign: the
-  // ray then runs parallel to the slab for any distance that matters, inside it or not.
-  float origin[3], inverse[3];
-  for (int a = 0; a < 3; ++a) {
-    origin[a] = float(ray.origin[a]);
-    float d = float(ray.direction[a]);
-    if (std::abs(d) < 1e-30f) d = std::signbit(d) ? -1e-30f : 1e-30f;
-    inverse[a] = 1.0f / d;
-  }
-  // The parameter range, widened by a few float roundings of the slab arithmetic.
-  const float s_min = float(ray.s_min) * (1 - 4e-7f) - 1e-30f;
-  const float s_max = float(std::min(ray.s_max, 1e30)) * (1 + 4e-7f);
-  auto enters = [&](const Node& n) {
-    float near = s_min, far = s_max;
-    for (int a = 0; a < 3; ++a) {
-      const float t0 = (n.lo[a] - origin[a]) * inverse[a];
-      const float t1 = (n.hi[a] - origin[a]) * inverse[a];
-      near = std::max(near, std::min(t0, t1));
-      far = std::min(far, std::max(t0, t1));
-    }
-    return near <= far;
-  };
-  uint32_t stack[128];
+  if (m_root_link == kNoNode) return false;
+  const WideRay wide_ray(ray.origin, ray.direction, ray.s_min, ray.s_max);
+  uint32_t stack[256];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = m_root_link;
+  float entry[4];
   while (top > 0) {
-    const Node& n = m_nodes[stack[--top]];
-    if (!enters(n)) continue;
-    if (n.left == kNoNode) {
-      if (hits(n.right_or_triangle, ray, t)) return true;
+    const uint32_t link = stack[--top];
+    if (link & kLeaf) {
+      if (hits(link & ~kLeaf, ray, t)) return true;
       continue;
     }
-    KINRAY_CHECK_MSG(top + 2 <= 128, "window tree: the tree is deeper than the traversal stack");
-    stack[top++] = n.right_or_triangle;
-    stack[top++] = n.left;
+    const Node& n = m_nodes[link];
+    KINRAY_CHECK_MSG(top + 4 <= 256, "window tree: the tree is deeper than the traversal stack");
+    for (int enter = wide_ray.test(n.bound, entry); enter != 0; enter &= enter - 1)
+      stack[top++] = n.link[size_t(std::countr_zero(unsigned(enter)))];
   }
   return false;
 }

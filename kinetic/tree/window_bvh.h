@@ -10,6 +10,7 @@
 // exact one at t; the boxes only decide how much of the tree it visits. This is Embree's own
 // approach to motion blur (boxes over the shutter, primitives at the ray's time), with the
 // window's sweep a pass over the vertices and the nodes, not a build.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -43,18 +44,19 @@ class WindowBvh {
 
   TreeMeshes m_meshes;
   BvhTopology m_topology;
-  /// A node as the traversal reads it, half a cache line: its box over the window in floats
-  /// (padded for the rays' own rounding to floats and rounded outward, so no hit is lost), its
-  /// children, or for a leaf kNoNode and its triangle.
-  struct alignas(32) Node {
-    float lo[3];
-    uint32_t left = kNoNode;
-    float hi[3];
-    uint32_t right_or_triangle = kNoNode;
+  /// A wide node as the traversal reads it: its four children's boxes over the window, rounded
+  /// outward to floats (row r, slot k; an unused slot empty), side by side for wide_slab_test.h's
+  /// one test of all four, and each slot's link: a wide node, kLeaf | triangle, or kNoNode.
+  struct alignas(64) Node {
+    float bound[6][4];
+    std::array<uint32_t, 4> link;
   };
+  static constexpr uint32_t kLeaf = 1u << 31;
 
   std::vector<Aabb> m_boxes;         ///< per node, over the last window (the sweep's)
-  std::vector<Node> m_nodes;         ///< the same boxes as the traversal reads them
+  FourWideTopology m_wide;           ///< the shape, four children per node
+  std::vector<Node> m_nodes;         ///< per wide node, its children's boxes over the window
+  uint32_t m_root_link = kNoNode;    ///< wide node 0, a lone triangle's leaf, or kNoNode
   std::vector<Aabb> m_vertex_boxes;  ///< per global vertex: its path over the last window
   double m_open = 0, m_close = 0;
   uint64_t m_sweeps = 0;
