@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <utility>
 
@@ -13,6 +14,7 @@
 #include "kinetic/collision/interval_ccd.h"
 #include "kinetic/core/interval_arithmetic.h"
 #include "util/check.h"
+#include "util/parallel.h"
 
 namespace kinray {
 namespace {
@@ -102,6 +104,25 @@ std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motio
   std::vector<double> times = exact_contact_times(type, to_rational(motion), window);
   count.contacts += !times.empty();
   return times;
+}
+
+std::vector<std::optional<double>> first_contact_times(std::span<const PrimitiveQuery> queries,
+                                                       PrimitiveCcdCounters* counters,
+                                                       const PrimitiveCcdBatchConfig& config) {
+  std::vector<std::optional<double>> first(queries.size());
+  std::mutex sum;
+  parallel_chunks(queries.size(), config.threads, [&](size_t begin, size_t end) {
+    PrimitiveCcdCounters count;
+    for (size_t i = begin; i < end; ++i) {
+      const std::vector<double> times = contact_times(queries[i].type, queries[i].motion, &count);
+      if (!times.empty()) first[i] = times.front();
+    }
+    if (counters) {
+      const std::lock_guard lock(sum);
+      *counters += count;
+    }
+  });
+  return first;
 }
 
 Eigen::Vector3d contact_point(ContactType type, const PrimitiveMotion& motion, double t) {
