@@ -336,6 +336,54 @@ TEST(IntervalCcd, DecidesARootWithinRoundingOfTheSegmentsEnd) {
   EXPECT_GT(decided, kTrials * 9 / 10);
 }
 
+TEST(IntervalCcd, DecidesAContactOrAMissJustBesideAnEdgeOrAnEnd) {
+  // A vertex through its triangle, or an edge through another, at mid-segment, a distance of
+  // 1e-12 to 1e-8 inside or outside the triangle's edge (the other edge's end): the 2-D test's
+  // polynomials are that small at the root and change faster over any piece the bisection
+  // reaches (the wedges of Erleben's tests). The root's grid cell decides them, as the rational
+  // decision does.
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<double> unit(-1, 1), exponent(-12, -8);
+  for (const ContactType type : {ContactType::vertex_face, ContactType::edge_edge}) {
+    int decided = 0, with_contact = 0;
+    constexpr int kTrials = 200;
+    for (int trial = 0; trial < kTrials; ++trial) {
+      const V p0(unit(rng), unit(rng), unit(rng)), p1(unit(rng), unit(rng), unit(rng));
+      const V q(unit(rng), unit(rng), unit(rng));
+      const V normal = (p1 - p0).cross(q - p0).normalized();
+      // the crossing point beside the edge p0 p1 (the triangle p0 p1 q's, or edge a's end p1),
+      // in the plane, on the side of q or away from it
+      const V inward =
+          normal.cross(p1 - p0).normalized() * ((q - p0).dot(normal.cross(p1 - p0)) > 0 ? 1 : -1);
+      const double offset = (trial % 2 == 0 ? 1 : -1) * std::pow(10.0, exponent(rng));
+      PrimitiveMotion m;
+      const V through = 0.5 * normal + 0.1 * V(unit(rng), unit(rng), unit(rng));
+      if (type == ContactType::vertex_face) {
+        const V x = p0 + 0.4 * (p1 - p0) + offset * inward;
+        m.start = {x + through, p0, p1, q};
+        m.end = {x - through, p0, p1, q};
+      } else {
+        // edge a from p1 back along q - p1 (so p1 is its end), edge b through p1 + offset along
+        // a's direction: inside a or beyond its end
+        const V dir = (q - p1).normalized(), cross_dir = normal.cross(dir).normalized();
+        const V x = p1 + offset * dir;
+        m.start = {p1 + through, q + through, x - 0.5 * cross_dir, x + 0.5 * cross_dir};
+        m.end = {p1 - through, q - through, x - 0.5 * cross_dir, x + 0.5 * cross_dir};
+      }
+      const std::vector<double> exact = exact_contact_times(type, to_rational(m));
+      with_contact += !exact.empty();
+      IntervalCcdCounters counters;
+      const std::optional<std::vector<double>> times = interval_contact_times(type, m, counters);
+      if (!times) continue;
+      ++decided;
+      EXPECT_EQ(*times, exact) << contact_type_name(type) << " trial " << trial;
+    }
+    EXPECT_GT(with_contact, kTrials / 3) << contact_type_name(type);
+    EXPECT_LT(with_contact, kTrials * 2 / 3) << contact_type_name(type);
+    EXPECT_GT(decided, kTrials * 9 / 10) << contact_type_name(type);
+  }
+}
+
 TEST(IntervalCcd, DecidesEdgesSlidingInAnAxisPlanePastEachOthersEnds) {
   // An edge sliding in an axis plane whose end passes close by the end of another edge there:
   // both edges' orientations change sign within a short time of each other (the distance over
