@@ -152,16 +152,9 @@ void run_ccd_queries(const CcdQueriesOptions& options) {
     throw InputError("--threads",
                      "expected 0 (all cores) or more, got " + std::to_string(options.threads));
   const std::vector<std::string> files = query_files(options.paths);
+  prepare_json_output(options.json);
   std::vector<SetResult> results;
-  for (const std::string& file : files) {
-    if (results.empty()) {
-      // the first file read and typed before any output, so that bad input prints nothing else
-      results.push_back(run_set(options, file));
-      prepare_json_output(options.json);
-    } else {
-      results.push_back(run_set(options, file));
-    }
-  }
+  for (const std::string& file : files) results.push_back(run_set(options, file));
   SetResult total;
   total.set = "all";
   double total_us = 0;
