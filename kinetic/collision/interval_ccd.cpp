@@ -230,10 +230,11 @@ struct Piece {
   std::array<BernsteinBound<4>, 4> conditions;
 };
 
-/// A piece with one simple root of the cubic: an interval of doubles around it, the cubic's sign
-/// at its start, and whether the 2-D test still has to be decided at the root (`at_root`): near
-/// a segment's end or an edge the test's polynomials are small at the root but change over any
-/// piece the bisection reaches, and the root's grid cell (found for its time anyway) decides them.
+/// A piece with one simple root of the cubic: an interval of doubles around it (a point for a
+/// root exactly at a double), the cubic's sign at its start, and whether the 2-D test still has to
+/// be decided at the root (`at_root`): near a segment's end or an edge the test's polynomials are
+/// small at the root but change over any piece the bisection reaches, and the root's grid cell
+/// (found for its time anyway) decides them.
 struct ContactPiece {
   Interval time;
   int sign_lo = 0;
@@ -301,6 +302,14 @@ class Bisection {
       if (at_start == 0 && start.lo == start.hi) at_start = m_cubic_sign(start.lo);
       if (at_end == 0 && end.lo == end.hi) at_end = m_cubic_sign(end.lo);
       if (at_start != 0 && at_start == at_end) return true;  // monotone: no root
+      // Exactly zero at an end that is a double (a key pose in contact, or a pair coplanar at a
+      // piece boundary) and of certain sign at the other: that end is the piece's only root.
+      const bool zero_start = at_start == 0 && start.lo == start.hi;
+      const bool zero_end = at_end == 0 && end.lo == end.hi;
+      if ((zero_start && at_end != 0) || (zero_end && at_start != 0)) {
+        contacts.push_back({Interval::point(zero_start ? start.lo : end.lo), 0, true});
+        return true;
+      }
       // The root lies strictly inside the piece; where an end is not a double, the few ulps
       // between it and the double outside it must hold no root either.
       const auto clear = [&](Interval sliver, int sign) {
@@ -693,7 +702,10 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
     if (!Bisection(pair, window, cubic_sign).classify(cubic, contacts)) return std::nullopt;
     std::vector<double> times;
     for (const ContactPiece& c : contacts) {
-      const double g = grid_floor_of_cubic_root(cubic, window, c.time, c.sign_lo, cubic_sign);
+      // a root at a double is its own cell's: floor(t / e) e is exact (e a power of two)
+      const double g = c.time.lo == c.time.hi
+                           ? std::floor(c.time.lo / kContactTimeEarliness) * kContactTimeEarliness
+                           : grid_floor_of_cubic_root(cubic, window, c.time, c.sign_lo, cubic_sign);
       if (c.at_root) {
         // the root t* lies in [g, g + e) (e a power of two, g a multiple of it in [0, 1]: both
         // ends exact) and in the piece

@@ -165,10 +165,6 @@ TEST(IntervalCcd, LeavesDegenerateMotionToTheRationalDecision) {
   const PrimitiveMotion sliding = {{V(0.2, 0.2, 0), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)},
                                    {V(2, 2, 0), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}};
   EXPECT_FALSE(interval_contact_times(ContactType::vertex_face, sliding, counters));
-  // contact exactly at the segment end: the cubic is zero there
-  const PrimitiveMotion landing = {{V(0.2, 0.2, 1), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)},
-                                   {V(0.2, 0.2, 0), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}};
-  EXPECT_FALSE(interval_contact_times(ContactType::vertex_face, landing, counters));
   // the vertex hits the triangle's edge: a barycentric sign is zero at the contact (the edge
   // along (1, 1, 1) - (0, 0, 0), so that no axis plane holds the vertex and the edge)
   const PrimitiveMotion on_edge = {
@@ -182,7 +178,15 @@ TEST(IntervalCcd, LeavesDegenerateMotionToTheRationalDecision) {
       interval_contact_times(ContactType::vertex_face, hit, counters);
   ASSERT_TRUE(times);
   EXPECT_EQ(*times, exact_contact_times(ContactType::vertex_face, to_rational(hit)));
-  EXPECT_EQ(counters.contacts, 1u);
+  // so is a contact exactly at the segment end, where the cubic's exact sign is zero and the
+  // vertex certainly inside the triangle
+  const PrimitiveMotion landing = {{V(0.2, 0.2, 1), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)},
+                                   {V(0.2, 0.2, 0), V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}};
+  const std::optional<std::vector<double>> landed =
+      interval_contact_times(ContactType::vertex_face, landing, counters);
+  ASSERT_TRUE(landed);
+  EXPECT_EQ(*landed, std::vector<double>{1.0});
+  EXPECT_EQ(counters.contacts, 2u);
 }
 
 /// Three points on the plane `axis` = c for the whole segment, jittered: P crosses the line of
@@ -307,6 +311,40 @@ void decide_edges(const PrimitiveMotion& m, int trial, int& with_contact, int& d
   if (!times) return;
   ++decided;
   EXPECT_EQ(*times, exact) << "trial " << trial;
+}
+
+TEST(IntervalCcd, DecidesARootExactlyAtADouble) {
+  // A vertex reaching a tilted triangle's plane exactly at local time 0, 1/2 or 1 (a key pose in
+  // contact, or a piece boundary of the bisection), inside the triangle or beside it: the cubic's
+  // exact sign there is zero, and the 2-D test at that time decides, as the rational decision
+  // does.
+  std::mt19937 rng(29);
+  // dyadic coordinates, so that every position below is exact and the root exactly at t
+  std::uniform_int_distribution<int> pick(0, 2), sixty_fourths(-20, 60), sixteenths(-4, 4);
+  int decided = 0, with_contact = 0;
+  constexpr int kTrials = 300;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const V f0(0, 0, 0), f1(1, 0, 0.5), f2(0, 1, 0.25);
+    // a point of the plane z = x / 2 + y / 4, in or out of the triangle
+    const double x = sixty_fourths(rng) / 64.0, y = sixty_fourths(rng) / 64.0;
+    const V on(x, y, x / 2 + y / 4);
+    const double when[3] = {0, 0.5, 1};
+    const double t = when[pick(rng)];
+    // linear motion through `on` at t: at t = 0 start there, at 1 end there, at 1/2 symmetric
+    const V d = V(sixteenths(rng) / 16.0, sixteenths(rng) / 16.0, 1);
+    const PrimitiveMotion m = {{on - t * d, f0, f1, f2}, {on + (1 - t) * d, f0, f1, f2}};
+    const std::vector<double> exact = exact_contact_times(ContactType::vertex_face, to_rational(m));
+    with_contact += !exact.empty();
+    IntervalCcdCounters counters;
+    const std::optional<std::vector<double>> times =
+        interval_contact_times(ContactType::vertex_face, m, counters);
+    if (!times) continue;
+    ++decided;
+    EXPECT_EQ(*times, exact) << "trial " << trial;
+  }
+  EXPECT_GT(with_contact, kTrials / 5);
+  EXPECT_LT(with_contact, kTrials * 4 / 5);
+  EXPECT_GT(decided, kTrials * 9 / 10);
 }
 
 TEST(IntervalCcd, DecidesARootWithinRoundingOfTheSegmentsEnd) {
