@@ -66,6 +66,7 @@ std::vector<CcdQuery> read_ccd_queries(const std::string& path) {
   if (row % 8 != 0)
     throw InputError(path, std::to_string(row) + " rows, not a multiple of 8 (8 rows per query)");
   if (queries.empty()) throw InputError(path, "no queries");
+  for (CcdQuery& query : queries) query.doubles = exactly_as_doubles(query.motion);
   return queries;
 }
 

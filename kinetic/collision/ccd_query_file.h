@@ -15,6 +15,9 @@ namespace kinray {
 /// One query: the primitive pair's motion, exact, and whether the pair truly collides.
 struct CcdQuery {
   RationalMotion motion;
+  /// The motion in doubles when every coordinate is exactly one (exactly_as_doubles), converted
+  /// and checked once when the file is read, so that a timed run of the queries pays neither.
+  std::optional<PrimitiveMotion> doubles;
   bool truth = false;
   int line = 0;  ///< first line of the query in the file
 };

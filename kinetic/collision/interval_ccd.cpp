@@ -109,6 +109,30 @@ class PairMotion {
   [[nodiscard]] Interval cubic(Interval t) const {
     return det(at(0, 1, t), at(0, 2, t), at(0, 3, t));
   }
+  /// The polynomials of conditions_on, each up to its positive factor, enclosed over t (a cell
+  /// around a root, too narrow for the Bernstein bounds to halve down to); returns how many.
+  int conditions_over(Interval t, std::array<Interval, 4>& out) const {
+    if (m_plane) {
+      const auto [s0, s1] = m_plane->segment;
+      out[0] = dot(at(s0, m_plane->point, t), at(s0, s1, t));
+      out[1] = dot(at(s1, m_plane->point, t), at(s1, s0, t));
+      return 2;
+    }
+    if (m_type == ContactType::vertex_face) {
+      const IntervalVec n = cross(at(1, 2, t), at(1, 3, t));
+      constexpr int corner[3][2] = {{1, 2}, {2, 3}, {3, 1}};
+      for (int i = 0; i < 3; ++i)
+        out[size_t(i)] = dot(n, cross(at(corner[i][0], corner[i][1], t), at(corner[i][0], 0, t)));
+      return 3;
+    }
+    const IntervalVec ea = at(0, 1, t), eb = at(2, 3, t), d = at(0, 2, t);
+    const IntervalVec n = cross(ea, eb);
+    out[0] = dot(cross(d, eb), n);
+    out[1] = dot(cross(at(2, 1, t), eb), n);
+    out[2] = dot(cross(d, ea), n);
+    out[3] = dot(cross(ea, at(0, 3, t)), n);
+    return 4;
+  }
   /// The 2-D test's polynomials on [lo, hi] in Bernstein form (each times a positive factor);
   /// returns how many (3 for vertex-face, 4 for edge-edge, 2 for three points on an axis plane).
   int conditions_on(double lo, double hi, std::array<BernsteinBound<4>, 4>& out) const {
@@ -206,10 +230,15 @@ struct Piece {
   std::array<BernsteinBound<4>, 4> conditions;
 };
 
-/// A contact piece's times: an interval of doubles around it, and the cubic's sign at its start.
+/// A piece with one simple root of the cubic: an interval of doubles around it (a point for a
+/// root exactly at a double), the cubic's sign at its start, and whether the 2-D test still has to
+/// be decided at the root (`at_root`): near a segment's end or an edge the test's polynomials are
+/// small at the root but change over any piece the bisection reaches, and the root's grid cell
+/// (found for its time anyway) decides them.
 struct ContactPiece {
   Interval time;
   int sign_lo = 0;
+  bool at_root = false;
 };
 
 /// The coplanarity cubic's exact sign at a double local time g: its enclosure in doubles, else
@@ -273,14 +302,21 @@ class Bisection {
       if (at_start == 0 && start.lo == start.hi) at_start = m_cubic_sign(start.lo);
       if (at_end == 0 && end.lo == end.hi) at_end = m_cubic_sign(end.lo);
       if (at_start != 0 && at_start == at_end) return true;  // monotone: no root
+      // Exactly zero at an end that is a double (a key pose in contact, or a pair coplanar at a
+      // piece boundary) and of certain sign at the other: that end is the piece's only root.
+      const bool zero_start = at_start == 0 && start.lo == start.hi;
+      const bool zero_end = at_end == 0 && end.lo == end.hi;
+      if ((zero_start && at_end != 0) || (zero_end && at_start != 0)) {
+        contacts.push_back({Interval::point(zero_start ? start.lo : end.lo), 0, true});
+        return true;
+      }
       // The root lies strictly inside the piece; where an end is not a double, the few ulps
       // between it and the double outside it must hold no root either.
       const auto clear = [&](Interval sliver, int sign) {
         return sliver.lo == sliver.hi || m_pair.cubic(sliver).certain_sign() == sign;
       };
-      if (all_positive && at_start != 0 && at_end == -at_start && clear(start, at_start) &&
-          clear(end, at_end)) {
-        contacts.push_back({{start.lo, end.hi}, at_start});
+      if (at_start != 0 && at_end == -at_start && clear(start, at_start) && clear(end, at_end)) {
+        contacts.push_back({{start.lo, end.hi}, at_start, !all_positive});
         return true;
       }
     }
@@ -665,8 +701,28 @@ std::optional<std::vector<double>> interval_contact_times(ContactType type,
     CubicSign cubic_sign(pair, motion, counters);
     if (!Bisection(pair, window, cubic_sign).classify(cubic, contacts)) return std::nullopt;
     std::vector<double> times;
-    for (const ContactPiece& c : contacts)
-      times.push_back(grid_floor_of_cubic_root(cubic, window, c.time, c.sign_lo, cubic_sign));
+    for (const ContactPiece& c : contacts) {
+      // a root at a double is its own cell's: floor(t / e) e is exact (e a power of two)
+      const double g = c.time.lo == c.time.hi
+                           ? std::floor(c.time.lo / kContactTimeEarliness) * kContactTimeEarliness
+                           : grid_floor_of_cubic_root(cubic, window, c.time, c.sign_lo, cubic_sign);
+      if (c.at_root) {
+        // the root t* lies in [g, g + e) (e a power of two, g a multiple of it in [0, 1]: both
+        // ends exact) and in the piece
+        const Interval cell = {std::max(g, c.time.lo),
+                               std::min(g + kContactTimeEarliness, c.time.hi)};
+        std::array<Interval, 4> condition;
+        const int n = pair.conditions_over(cell, condition);
+        bool all_positive = true, some_negative = false;
+        for (int i = 0; i < n; ++i) {
+          all_positive = all_positive && condition[size_t(i)].certainly_positive();
+          some_negative = some_negative || condition[size_t(i)].certainly_negative();
+        }
+        if (some_negative) continue;             // the root is no contact
+        if (!all_positive) return std::nullopt;  // a contact on the boundary, or rounding
+      }
+      times.push_back(g);
+    }
     times.erase(std::unique(times.begin(), times.end()), times.end());  // two roots, one cell
     if (!times.empty()) {
       ++counters.contacts;

@@ -4,6 +4,8 @@
 // their times (interval_ccd.h), and the exact rational decision (exact_ccd.h) for every pair
 // floating point cannot certify. Conservative: no contact is ever missed.
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "kinetic/collision/contact_pair.h"
@@ -32,6 +34,24 @@ struct PrimitiveCcdCounters {
 [[nodiscard]] std::vector<double> contact_times(ContactType type, const PrimitiveMotion& motion,
                                                 PrimitiveCcdCounters* counters = nullptr,
                                                 LocalWindow window = {});
+
+/// One primitive pair of a batch (first_contact_times).
+struct PrimitiveQuery {
+  ContactType type = ContactType::vertex_face;
+  PrimitiveMotion motion;
+};
+
+/// Options of first_contact_times.
+struct PrimitiveCcdBatchConfig {
+  int threads = 1;  ///< 0: all cores
+};
+
+/// Each pair's first time of contact in [0, 1] (contact_times' first), std::nullopt where it
+/// has none, in input order: the primitive tests of a simulator's step in one call, spread over
+/// `config.threads` threads. Counters are summed over the batch.
+[[nodiscard]] std::vector<std::optional<double>> first_contact_times(
+    std::span<const PrimitiveQuery> queries, PrimitiveCcdCounters* counters = nullptr,
+    const PrimitiveCcdBatchConfig& config = {});
 
 /// Where the pair touches at local time t (a point of the vertex, or the midpoint of the two
 /// edges' closest points), in double precision.

@@ -1,5 +1,5 @@
 // `kinray ccd-queries` on every query set of ../shared/data/ccd (exact ground truth): no false
-// negatives, ever.
+// negatives and no false positives, on any number of threads.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -41,29 +41,48 @@ TEST(CcdQueriesCommand, EveryQueryOfEverySharedSetAnsweredAsItsGroundTruth) {
   if (!fs::is_directory(data)) GTEST_SKIP() << "no query sets: " << data << " is absent";
   const fs::path folder = fs::temp_directory_path() / ("kinray_ccd_queries_test_" + std::to_string(::getpid()));
   fs::create_directories(folder);
-  int sets = 0, queries = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(data)) {
-    if (entry.path().extension() != ".csv") continue;
-    SCOPED_TRACE(entry.path().string());
+  // the whole folder in one run, one row per set; then again on two threads
+  nlohmann::json by_threads[2];
+  for (int threads : {1, 2}) {
     const fs::path json = folder / "result.json";
     const test::CommandRun run = test::run_kinray(
-        "ccd-queries '" + entry.path().string() + "' --json '" + json.string() + "'", folder);
+        "ccd-queries '" + data.string() + "' --threads " + std::to_string(threads) +
+            " --repetitions 1 --json '" + json.string() + "'",
+        folder);
     ASSERT_EQ(run.status, 0) << run.err;
     const nlohmann::json result = nlohmann::json::parse(test::read_text(json));
-    const GroundTruth truth = ground_truth(entry.path());
-    // exact: neither a missed contact nor a contact that is not one
-    EXPECT_EQ(result["queries"].get<int>(), truth.queries);
-    EXPECT_EQ(result["true_positives"].get<int>(), truth.contacts);
-    EXPECT_EQ(result["true_negatives"].get<int>(), truth.queries - truth.contacts);
+    by_threads[threads - 1] = result;
+    int queries = 0;
+    for (const nlohmann::json& set : result["sets"]) {
+      const fs::path file = set["file"].get<std::string>();
+      SCOPED_TRACE(file.string());
+      const GroundTruth truth = ground_truth(file);
+      // exact: neither a missed contact nor a contact that is not one
+      EXPECT_EQ(set["queries"].get<int>(), truth.queries);
+      EXPECT_EQ(set["true_positives"].get<int>(), truth.contacts);
+      EXPECT_EQ(set["true_negatives"].get<int>(), truth.queries - truth.contacts);
+      EXPECT_EQ(set["false_negatives"], 0);
+      EXPECT_EQ(set["false_positives"], 0);
+      EXPECT_GE(set["us_per_query"].get<double>(), 0.0);
+      // the table's row: "| erleben-wedges data_0_1 | ee | 125 | ..."
+      const std::string row = "| " + set["set"].get<std::string>() + " | " +
+                              set["type"].get<std::string>() + " | " +
+                              std::to_string(truth.queries) + " | ";
+      EXPECT_NE(run.out.find(row), std::string::npos) << run.out;
+      queries += truth.queries;
+    }
+    // ../shared/data/ccd holds 28 sets of Sample-Queries, 3,324 queries in all
+    EXPECT_EQ(result["sets"].size(), 28u);
+    EXPECT_EQ(queries, 3324);
+    EXPECT_EQ(result["queries"], 3324);
     EXPECT_EQ(result["false_negatives"], 0);
     EXPECT_EQ(result["false_positives"], 0);
-    EXPECT_GE(result["us_per_query"].get<double>(), 0.0);
-    ++sets;
-    queries += truth.queries;
+    EXPECT_NE(run.out.find("| all | | 3324 | "), std::string::npos) << run.out;
   }
-  // ../shared/data/ccd holds 28 sets of Sample-Queries, 3,324 queries in all
-  EXPECT_EQ(sets, 28);
-  EXPECT_EQ(queries, 3324);
+  // threads change the time, not one answer nor how it was decided
+  for (size_t i = 0; i < by_threads[0]["sets"].size(); ++i)
+    for (const char* key : {"true_positives", "false_positives", "exact_decisions", "stats"})
+      EXPECT_EQ(by_threads[0]["sets"][i][key], by_threads[1]["sets"][i][key]) << key;
   fs::remove_all(folder);
 }
 
@@ -120,6 +139,7 @@ TEST(CcdQueriesCommand, ACoordinateBeyondTheDoublesRangeIsDecidedExactly) {
   EXPECT_EQ(result["false_negatives"], 1);  // the far vertex: no contact, though truth says 1
   EXPECT_EQ(result["true_positives"], 1);   // the vertex near (1/4, 1/4) goes through the face
   EXPECT_EQ(result["exact_decisions"], 0);  // neither motion is doubles: the exact path alone
+  EXPECT_EQ(result["rational_queries"], 2);
   fs::remove_all(folder);
 }
 

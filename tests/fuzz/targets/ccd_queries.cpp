@@ -30,7 +30,7 @@ KINRAY_FUZZ_TARGET(ccd_queries) {
   for (std::size_t i = 0; i < queries.size() && i < 4; ++i) {
     const kinray::CcdQuery& query = queries[i];
     if (!small_enough(query.motion)) continue;
-    const std::optional<kinray::PrimitiveMotion> doubles = kinray::exactly_as_doubles(query.motion);
+    const std::optional<kinray::PrimitiveMotion>& doubles = query.doubles;
     for (const kinray::ContactType type :
          {kinray::ContactType::vertex_face, kinray::ContactType::edge_edge}) {
       const bool exact_hit = !kinray::exact_contact_times(type, query.motion).empty();

@@ -248,6 +248,31 @@ TEST(PrimitiveCcd, WindowsSplitTheContactsOfTheWholeSegment) {
   EXPECT_GT(split_contacts, 50);  // contacts on both sides of a cut, and at cuts
 }
 
+TEST(PrimitiveCcd, BatchGivesEachPairsFirstContactInInputOrderOnAnyThreads) {
+  // both kinds mixed in one batch, in an order no thread count could keep by accident
+  std::mt19937 rng(18);
+  std::vector<PrimitiveQuery> queries;
+  for (int trial = 0; trial < 400; ++trial)
+    queries.push_back({trial % 3 == 0 ? ContactType::edge_edge : ContactType::vertex_face,
+                       half_integer_motion(rng)});
+  std::vector<std::optional<double>> expected;
+  PrimitiveCcdCounters one_by_one;
+  for (const PrimitiveQuery& q : queries) {
+    const std::vector<double> times = contact_times(q.type, q.motion, &one_by_one);
+    expected.push_back(times.empty() ? std::nullopt : std::optional(times.front()));
+  }
+  ASSERT_GT(std::ranges::count_if(expected, [](auto t) { return t.has_value(); }), 40);
+  for (int threads : {1, 2, 3, 0}) {
+    PrimitiveCcdCounters batch;
+    EXPECT_EQ(first_contact_times(queries, &batch, {.threads = threads}), expected)
+        << threads << " threads";
+    EXPECT_EQ(batch.tests, queries.size());
+    EXPECT_EQ(batch.contacts, one_by_one.contacts);
+    EXPECT_EQ(batch.exact_decisions, one_by_one.exact_decisions);
+  }
+  EXPECT_TRUE(first_contact_times({}, nullptr, {.threads = 2}).empty());
+}
+
 TEST(PrimitiveCcd, ContactPointOfCrossingEdges) {
   const PrimitiveMotion m = motion({V(-1, 0, 1), V(1, 0, 1), V(0, -1, 0), V(0, 1, 0)},
                                    {V(-1, 0, -1), V(1, 0, -1), V(0, -1, 0), V(0, 1, 0)});
