@@ -89,16 +89,21 @@ void WindowBvh::sweep(double open, double close) {
   ++m_sweeps;
 }
 
-bool WindowBvh::hits(uint32_t tri, const TreeRay& ray, double t) const {
+bool WindowBvh::hits(uint32_t tri, const TreeRay& ray, double t, MeshAtTime& at) const {
   if (tri == ray.skip) return false;
-  const FlightplanMesh& mesh = m_meshes.mesh(m_meshes.mesh_of_triangle(tri));
-  if (!mesh.present(t)) return false;
-  const FlightplanMesh::KeyBlend blend = mesh.blend_at(t);
-  const uint32_t begin = m_meshes.vertex_begin(m_meshes.mesh_of_triangle(tri));
+  const uint32_t m = m_meshes.mesh_of_triangle(tri);
+  const FlightplanMesh& mesh = m_meshes.mesh(m);
+  if (m != at.mesh) {
+    at.mesh = m;
+    at.present = mesh.present(t);
+    at.blend = mesh.blend_at(t);
+  }
+  if (!at.present) return false;
+  const uint32_t begin = m_meshes.vertex_begin(m);
   const auto& v = m_meshes.triangle(tri);
   const std::optional<double> s =
-      ray_triangle(ray.origin, ray.direction, mesh.position(v[0] - begin, blend),
-                   mesh.position(v[1] - begin, blend), mesh.position(v[2] - begin, blend));
+      ray_triangle(ray.origin, ray.direction, mesh.position(v[0] - begin, at.blend),
+                   mesh.position(v[1] - begin, at.blend), mesh.position(v[2] - begin, at.blend));
   return s && *s > ray.s_min && *s < ray.s_max;
 }
 
@@ -111,10 +116,11 @@ bool WindowBvh::occluded(const TreeRay& ray, double t) const {
   int top = 0;
   stack[top++] = m_root_link;
   float entry[4];
+  MeshAtTime at;
   while (top > 0) {
     const uint32_t link = stack[--top];
     if (link & kLeaf) {
-      if (hits(link & ~kLeaf, ray, t)) return true;
+      if (hits(link & ~kLeaf, ray, t, at)) return true;
       continue;
     }
     const Node& n = m_nodes[link];
@@ -127,7 +133,7 @@ bool WindowBvh::occluded(const TreeRay& ray, double t) const {
 
 bool WindowBvh::occluded_brute_force(const TreeRay& ray, double t) const {
   for (uint32_t tri = 0; tri < m_meshes.triangle_count(); ++tri)
-    if (hits(tri, ray, t)) return true;
+    if (MeshAtTime at; hits(tri, ray, t, at)) return true;
   return false;
 }
 

@@ -39,8 +39,15 @@ class WindowBvh {
   [[nodiscard]] uint64_t sweeps() const { return m_sweeps; }
 
  private:
+  /// A ray's last mesh and its key blend at the ray's time: the triangles a ray tests mostly
+  /// belong to a few meshes, and finding the blend is a search of the mesh's keys.
+  struct MeshAtTime {
+    uint32_t mesh = kNoNode;
+    bool present = false;
+    FlightplanMesh::KeyBlend blend;
+  };
   /// Triangle tri at time t (present at t), hit by the ray within (s_min, s_max)?
-  [[nodiscard]] bool hits(uint32_t tri, const TreeRay& ray, double t) const;
+  [[nodiscard]] bool hits(uint32_t tri, const TreeRay& ray, double t, MeshAtTime& at) const;
 
   TreeMeshes m_meshes;
   BvhTopology m_topology;
