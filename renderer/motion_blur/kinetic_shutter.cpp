@@ -18,6 +18,13 @@ KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int thr
       m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
       m_threads(threads),
       m_fixed_tan_half_fov(scene.fixed_tan_half_fov()) {
+  const int base = int(m_rule.nodes.size());
+  m_textured_rule = base >= kTexturedShutterOrder ? m_rule : gauss_legendre(kTexturedShutterOrder);
+  for (const CameraSpaceObject& cs : scene.objects) {
+    const Object& source = scene.scene->objects[cs.object];
+    const Material& material = scene.scene->materials[source.material];
+    m_textured.push_back(material.texture >= 0 && !source.uvs.empty());
+  }
   if (lights != nullptr && !lights->empty())
     m_shadows = std::make_unique<ShutterShadows>(scene, *lights, m_rule);
 }
@@ -60,8 +67,9 @@ void KineticShutter::for_each_node(uint32_t object, double t0, double t1, double
     const size_t next = size_t(key - keys.begin());
     const double b = key != keys.end() && *key < t1 ? *key++ : t1;
     const double middle = (a + b) / 2, half = (b - a) / 2;
-    for (size_t k = 0; k < m_rule.nodes.size(); ++k)
-      visit(middle + half * m_rule.nodes[k], share * (half / (t1 - t0)) * m_rule.weights[k], next);
+    const GaussLegendre& r = rule(object);
+    for (size_t k = 0; k < r.nodes.size(); ++k)
+      visit(middle + half * r.nodes[k], share * (half / (t1 - t0)) * r.weights[k], next);
     a = b;
   }
 }
@@ -96,7 +104,7 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
   const Vec3 d = PixelRays{grid.width(), grid.height()}.direction(i, j);
   if (m_shadows) {
-    m_shadows->integrate(object, prim, d, t0, t1, average, counts);
+    m_shadows->integrate(object, prim, d, t0, t1, rule(object), average, counts);
     return;
   }
   ViewCache view;

@@ -124,8 +124,17 @@ class KineticShutter {
                         SegmentCache& cache, ShutterShadowCounts& counts,
                         ColorAverage& average) const;
 
+  /// The rule of `object`'s intervals: m_textured_rule for a textured object, else m_rule.
+  [[nodiscard]] const GaussLegendre& rule(uint32_t object) const {
+    return m_textured[object] ? m_textured_rule : m_rule;
+  }
+
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
+  /// A textured front's shading varies at the scale of its texels, which slide under the pixel
+  /// as it moves: it gets at least kTexturedShutterOrder nodes per interval.
+  GaussLegendre m_textured_rule;
+  std::vector<uint8_t> m_textured;            ///< per object
   std::unique_ptr<ShutterShadows> m_shadows;  ///< with lights
   int m_threads;
   std::optional<double> m_fixed_tan_half_fov;  ///< set when the fov is the same at every key

@@ -21,6 +21,8 @@ struct ShutterParams {
 
 /// The kinetic backend's Gauss-Legendre order when --shutter-order is 0 (see docs/motion_blur.md).
 inline constexpr int kDefaultShutterOrder = 4;
+/// The kinetic backend's least order on a textured front (its texels slide under the pixel).
+inline constexpr int kTexturedShutterOrder = 16;
 inline constexpr int kMaxShutterOrder = 16;
 inline constexpr int kMaxShutterSamples = 65536;
 

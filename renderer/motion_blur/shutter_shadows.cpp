@@ -73,7 +73,8 @@ uint32_t ShutterShadows::mask_at(uint32_t object, uint32_t prim, const Vec3& d, 
 }
 
 void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, double t0, double t1,
-                               ColorAverage& average, ShutterShadowCounts& counts) const {
+                               const GaussLegendre& shading, ColorAverage& average,
+                               ShutterShadowCounts& counts) const {
   if (!(t1 > t0)) return;
   const double length = m_window.length();
   // The shading is smooth between the object's keys, not across them: the pieces between keys
@@ -102,7 +103,7 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   std::sort(probes.begin(), probes.end(), [](const Probe& a, const Probe& b) { return a.t < b.t; });
   const bool steady = std::all_of(probes.begin(), probes.end(),
                                   [&](const Probe& p) { return p.mask == probes.front().mask; });
-  if (steady) {
+  if (steady && &shading == &m_rule) {
     // No light changed: the nodes' shadings are the integral's, as without shadows.
     for (size_t k = 1; k + 1 < probes.size(); ++k) {
       const Probe& p = probes[k];
@@ -113,7 +114,7 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   }
 
   // 2. Each light that differs between adjacent probes changes once in between (as far as the
-  // probes can tell): its time, bisected.
+  // probes can tell): its time, bisected. (None when steady: the shading rule is another.)
   const double precision = kChangeTimePrecision * length;
   std::vector<std::pair<double, uint32_t>> flips;  // (time, the light's bit)
   for (size_t k = 0; k + 1 < probes.size(); ++k) {
@@ -132,7 +133,7 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   std::sort(flips.begin(), flips.end());
   counts.mask_changes += flips.size();
 
-  // 3. The pieces between keys and changes, each under its own mask.
+  // 3. The pieces between keys and changes, each under its own mask, by the shading's rule.
   for (const auto& flip : flips) cuts.push_back(flip.first);
   std::sort(cuts.begin(), cuts.end());
   uint32_t mask = probes.front().mask;
@@ -143,12 +144,12 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
       mask ^= flips[next_flip].second;
     if (!(b > a)) continue;
     const double middle = (a + b) / 2, half = (b - a) / 2;
-    for (size_t k = 0; k < order; ++k) {
-      const double t = middle + half * m_rule.nodes[k];
+    for (size_t k = 0; k < shading.nodes.size(); ++k) {
+      const double t = middle + half * shading.nodes[k];
       average.add(lit_color(lit_hit(m_scene, object, prim, d, t), lights_at(t, scratch), mask),
-                  half / length * m_rule.weights[k]);
+                  half / length * shading.weights[k]);
     }
-    counts.shading_nodes += order;
+    counts.shading_nodes += shading.nodes.size();
   }
 }
 

@@ -7,8 +7,9 @@
 //      interval's ends and at its Gauss-Legendre nodes;
 //   2. between two probes whose masks differ, each light that differs is bisected until the
 //      change time is bracketed to kChangeTimePrecision of the window's length;
-//   3. the interval, cut at those times and at its object's keys, is integrated with the same
-//      Gauss-Legendre rule on every piece, each piece under its own constant mask.
+//   3. the interval, cut at those times and at its object's keys, is integrated with a
+//      Gauss-Legendre rule on every piece (the front's: a textured one's has more nodes), each
+//      piece under its own constant mask.
 // A mask that changes and changes back between two adjacent probes (an occluder narrower than
 // the node spacing crossing the light's path) is missed; every other change is found, to the
 // precision stated. Shadow rays go through a tree whose boxes bound the window (WindowBvh), so
@@ -44,9 +45,12 @@ class ShutterShadows {
   /// Sweeps the shadow rays' tree over the window: call before the window's integrations.
   void begin_window(const ShutterWindow& window);
   /// Adds the lit shading of (object, prim) seen along pixel direction d over [t0, t1] (inside
-  /// the window) to `average`, weighted as shares of the window. Thread-safe.
+  /// the window) to `average`, weighted as shares of the window: the masks probed at the
+  /// constructor's rule, the pieces shaded by `shading` (a textured front's may have more nodes).
+  /// Thread-safe.
   void integrate(uint32_t object, uint32_t prim, const Vec3& d, double t0, double t1,
-                 ColorAverage& average, ShutterShadowCounts& counts) const;
+                 const GaussLegendre& shading, ColorAverage& average,
+                 ShutterShadowCounts& counts) const;
   /// The light mask of (object, prim) along d at time t of the window (Frame::lit).
   [[nodiscard]] uint32_t mask_at(uint32_t object, uint32_t prim, const Vec3& d, double t) const;
 
