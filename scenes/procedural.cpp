@@ -39,6 +39,16 @@ const std::vector<BuiltinScene>& builtin_scenes() {
        "two wobbling spheres passing through each other (collision of deforming objects)",
        {2000, 2, 24},
        &make_crossing},
+      {"glide",
+       "two wobbling spheres gliding past each other, surfaces at least a gap apart (near misses; "
+       "their bulges meet from about gap=-0.03)",
+       {2000, 2, 24, 0.01},
+       &make_glide},
+      {"cloth-slide",
+       "a flat cloth sliding over a still sphere that lifts it, a gap above it (near misses; the "
+       "cloth's chords touch below about gap=0.008 at 2000 triangles)",
+       {2000, 2, 24, 0.01},
+       &make_cloth_slide},
   };
   return scenes;
 }
@@ -68,14 +78,22 @@ ProceduralParams builtin_scene_params(const std::string& name,
   }
   ProceduralParams values = builtin->defaults;
   const std::string where = "scene '" + name + "'";
+  const bool takes_gap = values.gap.has_value();
   for (const auto& [key, value] : params) {
+    if (key == "gap" && takes_gap) {
+      if (!std::isfinite(value))
+        throw InputError(where, "parameter gap must be finite, got " + std::to_string(value));
+      values.gap = value;
+      continue;
+    }
     double* field = key == "triangles"  ? &values.triangles
                     : key == "duration" ? &values.duration
                     : key == "keyrate"  ? &values.keyrate
                                         : nullptr;
     if (!field)
       throw InputError(where, "unknown parameter '" + key +
-                                  "'; the parameters are triangles, duration, keyrate");
+                                  "'; the parameters are triangles, duration, keyrate" +
+                                  (takes_gap ? ", gap" : ""));
     if (!std::isfinite(value) || !(value > 0))
       throw InputError(
           where, "parameter " + key + " must be a finite number > 0, got " + std::to_string(value));

@@ -3,6 +3,7 @@
 // at key times (`keyrate` keys per second over [0, duration]) and become the piecewise-linear
 // flightplans of Object::key_positions, exactly as an imported animation would.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct ProceduralParams {
   double triangles = 40000;  ///< approximate triangle count (each scene has a small floor)
   double duration = 2;       ///< seconds: the shot is [0, duration]
   double keyrate = 24;       ///< keys per second
+  /// The near-miss scenes' smallest distance between the surfaces (<= 0: they may touch); the
+  /// other scenes take no gap and leave it empty.
+  std::optional<double> gap;
 };
 
 /// A built-in scene: its name, one line on what it shows, and its default parameters.
@@ -35,9 +39,10 @@ struct BuiltinScene {
 [[nodiscard]] ProceduralParams builtin_scene_params(const std::string& name,
                                                     const std::map<std::string, double>& params);
 
-/// Builds the built-in `name` with `params` (keys "triangles", "duration", "keyrate"; missing ones
-/// take the scene's defaults). Throws InputError for an unknown name or parameter, listing the
-/// valid ones, and for non-finite or non-positive values.
+/// Builds the built-in `name` with `params` (keys "triangles", "duration", "keyrate", and "gap" for
+/// the scenes that take one; missing ones take the scene's defaults). Throws InputError for an
+/// unknown name or parameter, listing the valid ones, and for non-finite values or non-positive
+/// ones (the gap may be zero or negative).
 [[nodiscard]] Scene make_builtin_scene(const std::string& name,
                                        const std::map<std::string, double>& params = {});
 
@@ -61,5 +66,9 @@ struct BuiltinScene {
 [[nodiscard]] Scene make_cloth_fold(const ProceduralParams& params);
 /// Two wobbling spheres travelling towards each other and through each other.
 [[nodiscard]] Scene make_crossing(const ProceduralParams& params);
+/// Two wobbling spheres gliding past each other, their surfaces at least `gap` apart.
+[[nodiscard]] Scene make_glide(const ProceduralParams& params);
+/// A flat cloth sliding over a still sphere that lifts it, its vertices `gap` above it.
+[[nodiscard]] Scene make_cloth_slide(const ProceduralParams& params);
 
 }  // namespace kinray

@@ -95,10 +95,12 @@ std::string describe_scene_spec_syntax() {
           "a JSON scene file (*.json, see docs/scene_format.md), a BART scene (*.aff, docs/bart.md)\n"
           "a model file assimp can import (glTF, FBX, COLLADA, OBJ, ...), or a mesh sequence: a folder\n"
           "of .ply or .obj files or a quoted glob 'sim/frame_*.ply' (docs/mesh_sequences.md). Built-in scenes (defaults in brackets):\n";
-  for (const BuiltinScene& scene : builtin_scenes())
+  for (const BuiltinScene& scene : builtin_scenes()) {
     text << "  " << scene.name << " [triangles=" << scene.defaults.triangles
-         << ", duration=" << scene.defaults.duration << ", keyrate=" << scene.defaults.keyrate
-         << "]: " << scene.description << "\n";
+         << ", duration=" << scene.defaults.duration << ", keyrate=" << scene.defaults.keyrate;
+    if (scene.defaults.gap) text << ", gap=" << *scene.defaults.gap;
+    text << "]: " << scene.description << "\n";
+  }
   text << "Example: cloth:triangles=2000,duration=1.5";
   return text.str();
 }

@@ -142,7 +142,8 @@ void run_bench(const BenchOptions& options, const CLI::App& command) {
                        options.structure.find("swept") != std::string::npos;
   if (collide) {
     run_collide_bench(options.render.params.scene, options.structure, options.inbetweens,
-                      options.triangles, options.repetitions, options.json, options.quiet);
+                      options.triangles, options.repetitions, options.json, options.charts,
+                      options.quiet);
     return;
   }
   if (options.structure != "grid") {
