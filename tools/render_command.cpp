@@ -13,23 +13,43 @@
 #include <system_error>
 #include <utility>
 
+#include "renderer/contact_frames.h"
+#include "renderer/job/frame_schedule.h"
+#include "renderer/job/render_forecast.h"
 #include "renderer/output/background_writes.h"
 #include "renderer/output/image_io.h"
-#include "tools/option_scope.h"
 #include "renderer/output/output_check.h"
 #include "renderer/output/progress.h"
-#include "renderer/job/render_forecast.h"
 #include "renderer/output/video_writer.h"
 #include "scenes/scene_loader.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
-#include "renderer/contact_frames.h"
 #include "tools/frame_sequence.h"
+#include "tools/option_scope.h"
 #include "util/input_error.h"
 #include "util/warning.h"
 
 namespace kinray {
 namespace {
+
+/// The forecast speaks after the grid's first keyframe interval. With fewer frames than the
+/// keyframe intervals they span, every event between two frames is processed before the second,
+/// and on a large scene that first wait alone is long (BART robots, two frames: minutes), so the
+/// user hears it before: when the frames are fewer than half the intervals and the scene's
+/// triangles times those intervals exceed kLongAdvance.
+void warn_before_a_long_advance(const RenderJob& job) {
+  constexpr double kLongAdvance = 1e7;  // triangle-intervals (40,000 triangles over 250)
+  std::vector<double> times;
+  for (size_t index : job.frames_to_render()) times.push_back(job.frame_times()[index]);
+  const std::vector<double> keys = job.scene().key_times();
+  const size_t intervals = key_intervals_spanned(times, keys);
+  if (2 * times.size() >= intervals ||
+      double(job.scene().triangle_count()) * double(intervals) < kLongAdvance)
+    return;
+  warn(std::to_string(times.size()) + " frames over " + std::to_string(intervals) +
+       " keyframe intervals: the kinetic grid processes every event of those intervals, Embree "
+       "renders the frames alone; --backend auto or embree is likely much faster");
+}
 
 namespace fs = std::filesystem;
 
@@ -185,6 +205,7 @@ void run_render(const RenderParams& flags) {
     });
   std::unique_ptr<Backend> backend = job.make_backend();
   const bool kinetic = backend->name() == "kinetic";
+  if (kinetic && !params.quiet) warn_before_a_long_advance(job);
   if (kinetic)
     status.working("initialising the kinetic grid...", backend->initialisation_progress());
   else

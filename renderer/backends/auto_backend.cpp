@@ -10,6 +10,7 @@
 
 #include "renderer/backends/embree_backend.h"
 #include "renderer/backends/kinetic_backend.h"
+#include "renderer/job/frame_schedule.h"
 #include "renderer/job/memory_estimate.h"
 
 namespace kinray {
@@ -105,10 +106,7 @@ class AutoBackend final : public Backend {
   /// After Embree's second frame at t: is the rest of the shot long enough to try the grid?
   /// Frames per keyframe interval over the plan: its frames over the key intervals it spans.
   [[nodiscard]] double frames_per_interval() const {
-    if (m_plan.size() < 2) return double(m_plan.size());
-    const auto inside = std::upper_bound(m_keys.begin(), m_keys.end(), m_plan.front());
-    const auto beyond = std::lower_bound(m_keys.begin(), m_keys.end(), m_plan.back());
-    return double(m_plan.size()) / double(std::max<std::ptrdiff_t>(beyond - inside, 0) + 1);
+    return frames_per_key_interval(m_plan, m_keys);
   }
 
   void decide_on_trial(double t) {

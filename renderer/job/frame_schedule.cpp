@@ -117,4 +117,11 @@ std::vector<double> frame_times(std::span<const double> key_times,
   return times;
 }
 
+size_t key_intervals_spanned(std::span<const double> frames, std::span<const double> key_times) {
+  if (frames.size() < 2) return 1;
+  const auto inside = std::upper_bound(key_times.begin(), key_times.end(), frames.front());
+  const auto beyond = std::lower_bound(key_times.begin(), key_times.end(), frames.back());
+  return size_t(std::max<std::ptrdiff_t>(beyond - inside, 0)) + 1;
+}
+
 }  // namespace kinray

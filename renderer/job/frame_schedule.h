@@ -37,4 +37,15 @@ void validate(const FrameScheduleParams& params);
 [[nodiscard]] std::vector<double> frame_times(std::span<const double> key_times,
                                               const FrameScheduleParams& params);
 
+/// The keyframe intervals that `frames` (increasing) span on the grid `key_times`: those that
+/// hold a frame or lie between two (at least 1).
+[[nodiscard]] size_t key_intervals_spanned(std::span<const double> frames,
+                                           std::span<const double> key_times);
+/// Frames per keyframe interval over a schedule: the kinetic grid processes every event of the
+/// intervals it spans, Embree only renders the frames.
+[[nodiscard]] inline double frames_per_key_interval(std::span<const double> frames,
+                                                    std::span<const double> key_times) {
+  return double(frames.size()) / double(key_intervals_spanned(frames, key_times));
+}
+
 }  // namespace kinray

@@ -40,6 +40,28 @@ TEST_F(CliRenderFeedback, SummaryGivesTotalTimeWithLoadingAndTheKineticEventCoun
   EXPECT_NEAR(std::stod(match[2].str()), stats["time_s"]["load"].get<double>(), 0.006);
 }
 
+TEST_F(CliRenderFeedback, TwoFramesOverManyIntervalsOfALargeSceneAreForecastBeforeTheWait) {
+  // 250,000 triangles, two frames 48 keyframe intervals apart: the grid processes every event in
+  // between before the second frame. The warning comes before the first frame.
+  const test::CommandRun run = kinray(
+      "render --backend kinetic wavy-sphere:triangles=250000 --size 16x12 --frames 2 "
+      "--threads 2 --out '" +
+      path("frames") + "'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.err.find("kinray: warning: 2 frames over 48 keyframe intervals: the kinetic grid "
+                         "processes every event of those intervals"),
+            std::string::npos)
+      << run.err;
+  // A small scene over as many intervals, or frames enough for the intervals: no warning.
+  for (const std::string flags : {"wavy-sphere --frames 2", "wavy-sphere --frames 30"}) {
+    const test::CommandRun quiet = kinray("render --backend kinetic " + flags +
+                                          " --size 16x12 --threads 2 --out '" + path("q") + "'");
+    ASSERT_EQ(quiet.status, 0) << quiet.err;
+    EXPECT_EQ(quiet.err.find("keyframe intervals"), std::string::npos)
+        << flags << ": " << quiet.err;
+  }
+}
+
 TEST_F(CliRenderFeedback, EmbreeSummaryHasNoKineticEvents) {
   const test::CommandRun run = kinray(
       "render wavy-sphere:triangles=600 --size 64x48 --frames 3 "
