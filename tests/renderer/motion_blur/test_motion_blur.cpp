@@ -8,11 +8,12 @@
 #include <vector>
 
 #include "renderer/backends/backend.h"
-#include "renderer/shading.h"
 #include "renderer/motion_blur/shutter.h"
+#include "renderer/shading.h"
 #include "scenes/camera_space.h"
 #include "scenes/procedural.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "tests/renderer/motion_blur/blur_config.h"
 #include "util/input_error.h"
 #include "verification/image_diff.h"
 #include "verification/shutter_error.h"
@@ -20,16 +21,7 @@
 namespace kinray {
 namespace {
 
-BackendConfig blur_config(int width, int height, int samples = 16, bool audit = true) {
-  BackendConfig c;
-  c.width = width;
-  c.height = height;
-  c.threads = 2;
-  c.audit = audit;
-  c.shutter.shutter = 0.5;
-  c.shutter.samples = samples;
-  return c;
-}
+using test::blur_config;
 
 TEST(GaussLegendre, IntegratesPolynomialsOfDegree2nMinus1Exactly) {
   for (int n = 1; n <= 8; ++n) {

@@ -17,22 +17,14 @@
 #include "scenes/camera_space.h"
 #include "scenes/procedural.h"
 #include "tests/renderer/analytic_scenes.h"
+#include "tests/renderer/motion_blur/blur_config.h"
 #include "verification/image_diff.h"
 #include "verification/shutter_error.h"
 
 namespace kinray {
 namespace {
 
-BackendConfig lit_blur_config(int width, int height, int samples = 16, bool audit = true) {
-  BackendConfig c;
-  c.width = width;
-  c.height = height;
-  c.threads = 2;
-  c.audit = audit;
-  c.shutter.shutter = 0.5;
-  c.shutter.samples = samples;
-  return c;
-}
+using test::blur_config;
 
 constexpr int kW = 64, kH = 32;
 
@@ -69,8 +61,8 @@ int check_sweeping_shadow(double width) {
   const Scene scene = sweeping_shadow(width);
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   const CameraSpaceLights lights(scene);
-  auto kinetic = make_backend("kinetic", cs, lit_blur_config(kW, kH));
-  auto embree = make_backend("embree", cs, lit_blur_config(kW, kH, 64, false));
+  auto kinetic = make_backend("kinetic", cs, blur_config(kW, kH));
+  auto embree = make_backend("embree", cs, blur_config(kW, kH, 64, false));
   const ShutterWindow window{0.3, 0.5, 0.7};
   Frame blurred, sampled;
   kinetic->render_shutter(window, blurred);
@@ -140,7 +132,8 @@ TEST(ShutterShadows, TheWindowTreeAnswersAsEveryTriangleTested) {
   EXPECT_GT(free, 200);
 }
 
-TEST(ShutterShadows, TheLightMaskIsTheSharpFramesAtTheFrameTime) {
+/// wavy-sphere (2,000 triangles) lit by a point light and a directional one.
+Scene wavy_sphere_with_two_lights() {
   Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 2000}});
   Light point;
   point.position = Vec3(2, 3, 4);
@@ -148,11 +141,16 @@ TEST(ShutterShadows, TheLightMaskIsTheSharpFramesAtTheFrameTime) {
   sun.kind = Light::Kind::directional;
   sun.direction = Vec3(1, -1, -1).normalized();
   scene.lights = {point, sun};
+  return scene;
+}
+
+TEST(ShutterShadows, TheLightMaskIsTheSharpFramesAtTheFrameTime) {
+  const Scene scene = wavy_sphere_with_two_lights();
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   const CameraSpaceLights lights(scene);
   for (const char* name : {"kinetic", "embree"}) {
-    auto blurred_backend = make_backend(name, cs, lit_blur_config(48, 48));
-    auto sharp_backend = make_backend(name, cs, lit_blur_config(48, 48));
+    auto blurred_backend = make_backend(name, cs, blur_config(48, 48));
+    auto sharp_backend = make_backend(name, cs, blur_config(48, 48));
     Frame blurred, sharp;
     blurred_backend->render_shutter({0.95, 1.0, 1.05}, blurred);
     sharp_backend->render(1.0, sharp);
@@ -167,18 +165,12 @@ TEST(ShutterShadows, TheLightMaskIsTheSharpFramesAtTheFrameTime) {
 }
 
 TEST(ShutterShadows, KineticIsAsCloseToTheReferenceAsManySamples) {
-  Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 2000}});
-  Light point;
-  point.position = Vec3(2, 3, 4);
-  Light sun;
-  sun.kind = Light::Kind::directional;
-  sun.direction = Vec3(1, -1, -1).normalized();
-  scene.lights = {point, sun};
+  const Scene scene = wavy_sphere_with_two_lights();
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
   const ShutterWindow window{0.9, 1.0, 1.1};
-  auto kinetic = make_backend("kinetic", cs, lit_blur_config(48, 48));  // audited
-  auto reference = make_backend("embree", cs, lit_blur_config(48, 48, 1024, false));
-  auto sampled = make_backend("embree", cs, lit_blur_config(48, 48, 16, false));
+  auto kinetic = make_backend("kinetic", cs, blur_config(48, 48));  // audited
+  auto reference = make_backend("embree", cs, blur_config(48, 48, 1024, false));
+  auto sampled = make_backend("embree", cs, blur_config(48, 48, 16, false));
   Frame k, r, s;
   kinetic->render_shutter(window, k);
   reference->render_shutter(window, r);
