@@ -31,17 +31,21 @@ CameraSpaceLights::CameraSpaceLights(const Scene& scene) : m_count(scene.lights.
 }
 
 std::vector<CameraSpaceLight> CameraSpaceLights::at(double t) const {
-  std::vector<CameraSpaceLight> lights(
-      m_keys.begin(), m_keys.begin() + std::ptrdiff_t(std::min(m_count, m_keys.size())));
-  if (m_key_times.size() < 2) return lights;
+  std::vector<CameraSpaceLight> lights;
+  at(t, lights);
+  return lights;
+}
+
+void CameraSpaceLights::at(double t, std::vector<CameraSpaceLight>& out) const {
+  out.assign(m_keys.begin(), m_keys.begin() + std::ptrdiff_t(std::min(m_count, m_keys.size())));
+  if (m_key_times.size() < 2) return;
   const KeySegment s = locate(m_key_times, t);
   for (size_t l = 0; l < m_count; ++l) {
     const CameraSpaceLight& a = m_keys[s.k * m_count + l];
     const CameraSpaceLight& b = m_keys[(s.k + 1) * m_count + l];
-    lights[l].position = a.position + s.alpha * (b.position - a.position);
-    lights[l].towards = a.towards + s.alpha * (b.towards - a.towards);
+    out[l].position = a.position + s.alpha * (b.position - a.position);
+    out[l].towards = a.towards + s.alpha * (b.towards - a.towards);
   }
-  return lights;
 }
 
 }  // namespace kinray

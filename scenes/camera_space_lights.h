@@ -34,6 +34,8 @@ class CameraSpaceLights {
   [[nodiscard]] bool still() const { return m_key_times.size() < 2; }
   /// Every light at time t (the camera keys' transforms interpolated linearly).
   [[nodiscard]] std::vector<CameraSpaceLight> at(double t) const;
+  /// The same into `out`, reusing its storage (motion blur asks at every node of every pixel).
+  void at(double t, std::vector<CameraSpaceLight>& out) const;
 
  private:
   size_t m_count = 0;

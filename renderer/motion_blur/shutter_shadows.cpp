@@ -13,7 +13,6 @@ struct ShutterShadows::Probe {
   double t = 0;
   double weight = 0;  ///< a node's share of the window; 0 at the interval's ends
   LitHit hit;
-  std::vector<CameraSpaceLight> moving_lights;  ///< the lights at t when they move
   uint32_t mask = 0;
 };
 
@@ -33,7 +32,7 @@ ShutterShadows::ShutterShadows(const CameraSpaceScene& scene, const CameraSpaceL
 const std::vector<CameraSpaceLight>& ShutterShadows::lights_at(
     double t, std::vector<CameraSpaceLight>& scratch) const {
   if (m_lights.still()) return m_still_lights;
-  scratch = m_lights.at(t);
+  m_lights.at(t, scratch);
   return scratch;
 }
 
@@ -43,23 +42,23 @@ void ShutterShadows::begin_window(const ShutterWindow& window) {
 }
 
 ShutterShadows::Probe ShutterShadows::probe(uint32_t object, uint32_t prim, const Vec3& d, double t,
-                                            ShutterShadowCounts& counts) const {
+                                            ShutterShadowCounts& counts,
+                                            std::vector<CameraSpaceLight>& scratch) const {
   Probe p;
   p.t = t;
   p.hit = lit_hit(m_scene, object, prim, d, t);
   const uint32_t skip = m_first_triangle.at(object) + prim;
-  p.mask =
-      light_mask(p.hit, lights_at(t, p.moving_lights), object, prim, [&](const ShadowRay& ray) {
-        ++counts.shadow_rays;
-        return m_tree.occluded(TreeRay{ray.origin, ray.direction, 0.0, ray.s_max, skip}, t);
-      });
+  p.mask = light_mask(p.hit, lights_at(t, scratch), object, prim, [&](const ShadowRay& ray) {
+    ++counts.shadow_rays;
+    return m_tree.occluded(TreeRay{ray.origin, ray.direction, 0.0, ray.s_max, skip}, t);
+  });
   return p;
 }
 
 bool ShutterShadows::reaches(uint32_t object, uint32_t prim, const Vec3& d, double t, size_t l,
-                             ShutterShadowCounts& counts) const {
+                             ShutterShadowCounts& counts,
+                             std::vector<CameraSpaceLight>& scratch) const {
   const LitHit hit = lit_hit(m_scene, object, prim, d, t);
-  std::vector<CameraSpaceLight> scratch;
   const auto ray = shadow_ray(hit, lights_at(t, scratch)[l], object, prim);
   if (!ray) return false;
   ++counts.shadow_rays;
@@ -69,7 +68,8 @@ bool ShutterShadows::reaches(uint32_t object, uint32_t prim, const Vec3& d, doub
 
 uint32_t ShutterShadows::mask_at(uint32_t object, uint32_t prim, const Vec3& d, double t) const {
   ShutterShadowCounts counts;
-  return probe(object, prim, d, t, counts).mask;
+  std::vector<CameraSpaceLight> scratch;
+  return probe(object, prim, d, t, counts, scratch).mask;
 }
 
 void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, double t0, double t1,
@@ -89,16 +89,16 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   // 1. The masks at the ends and at every node.
   std::vector<Probe> probes;
   probes.reserve(2 + order * (cuts.size() - 1));
-  probes.push_back(probe(object, prim, d, t0, counts));
+  probes.push_back(probe(object, prim, d, t0, counts, scratch));
   for (size_t c = 0; c + 1 < cuts.size(); ++c) {
     const double middle = (cuts[c] + cuts[c + 1]) / 2, half = (cuts[c + 1] - cuts[c]) / 2;
     for (size_t k = 0; k < order; ++k) {
-      Probe& p =
-          probes.emplace_back(probe(object, prim, d, middle + half * m_rule.nodes[k], counts));
+      Probe& p = probes.emplace_back(
+          probe(object, prim, d, middle + half * m_rule.nodes[k], counts, scratch));
       p.weight = half / length * m_rule.weights[k];
     }
   }
-  probes.push_back(probe(object, prim, d, t1, counts));
+  probes.push_back(probe(object, prim, d, t1, counts, scratch));
   // In time order (the rule's nodes need not be): adjacent probes bracket the changes.
   std::sort(probes.begin(), probes.end(), [](const Probe& a, const Probe& b) { return a.t < b.t; });
   const bool steady = std::all_of(probes.begin(), probes.end(),
@@ -125,7 +125,7 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
       while (hi - lo > precision) {
         const double mid = lo + (hi - lo) / 2;
         if (!(mid > lo && mid < hi)) break;  // adjacent doubles
-        (reaches(object, prim, d, mid, size_t(l), counts) == before ? lo : hi) = mid;
+        (reaches(object, prim, d, mid, size_t(l), counts, scratch) == before ? lo : hi) = mid;
       }
       flips.emplace_back(lo + (hi - lo) / 2, 1u << l);
     }

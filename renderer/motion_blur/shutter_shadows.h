@@ -57,11 +57,14 @@ class ShutterShadows {
  private:
   /// One instant of the front: its lit hit, the lights and its mask there.
   struct Probe;
+  /// (`scratch` holds the lights at t when they move.)
   [[nodiscard]] Probe probe(uint32_t object, uint32_t prim, const Vec3& d, double t,
-                            ShutterShadowCounts& counts) const;
+                            ShutterShadowCounts& counts,
+                            std::vector<CameraSpaceLight>& scratch) const;
   /// Whether light l reaches the hit of (object, prim) along d at t.
   [[nodiscard]] bool reaches(uint32_t object, uint32_t prim, const Vec3& d, double t, size_t l,
-                             ShutterShadowCounts& counts) const;
+                             ShutterShadowCounts& counts,
+                             std::vector<CameraSpaceLight>& scratch) const;
 
   /// The lights at t: m_still_lights when the camera has one key, else `scratch` filled.
   [[nodiscard]] const std::vector<CameraSpaceLight>& lights_at(
