@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/shade_rows.h"
 #include "util/check.h"
-#include "util/parallel.h"
 
 namespace kinray {
 
@@ -158,21 +158,15 @@ Color shade_hit(const CameraSpaceScene& scene, const PixelRays& image, int i, in
 }
 
 void shade_frame(const CameraSpaceScene& scene, Frame& frame, int threads) {
-  const PixelRays image{frame.width, frame.height};
-  parallel_for(size_t(frame.height), threads, [&](size_t row) {
-    const int j = int(row);
-    RowTriangles triangles(scene, frame.time);
-    for (int i = 0; i < frame.width; ++i) {
-      const size_t p = frame.index(i, j);
-      if (frame.object[p] == kNoHit) {
-        frame.color[p] = kBackgroundColor;
-        continue;
-      }
-      const TriangleAtInstant& triangle = triangles.at(frame.object[p], frame.prim[p]);
-      const Vec3 d = image.direction(i, j);
-      frame.color[p] = headlight_color(triangle, d, view_direction(d, triangle.tan_half_fov));
+  struct HeadlightRow {
+    Frame& frame;
+    void hit(size_t p, const TriangleAtInstant& triangle, const Vec3& d,
+             const Eigen::Vector3f& view) {
+      frame.color[p] = headlight_color(triangle, d, view);
     }
-  });
+    void finish() {}
+  };
+  shade_rows(scene, frame, threads, [&](int) { return HeadlightRow{frame}; });
 }
 
 }  // namespace kinray

@@ -10,20 +10,21 @@
 #include <tuple>
 #include <vector>
 
-#include "renderer/output/image_io.h"
 #include "renderer/job/memory_estimate.h"
-#include "tools/option_scope.h"
+#include "renderer/output/image_io.h"
 #include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"
+#include "tools/cli/image_flags.h"
 #include "tools/cli_errors.h"
 #include "tools/cli_options.h"
-#include "verification/collide_bench.h"
 #include "tools/commands.h"
+#include "tools/option_scope.h"
 #include "tools/tree_bench_command.h"
 #include "util/input_error.h"
 #include "verification/benchmark.h"
+#include "verification/collide_bench.h"
 
 namespace kinray {
 namespace {
@@ -185,7 +186,7 @@ void register_bench_command(CLI::App& app) {
       "bench", "Time per frame of the kinetic backend against every Embree mode, side by side, with sweeps");
   auto options = std::make_shared<BenchOptions>();
   add_scene_options(*command, options->render);
-  add_camera_options(*command, options->render.params.camera);
+  add_camera_options(*command, options->render.camera);
   command->get_option("SCENE")->required(false);  // not with --suite; without it, validate() asks
   add_size_option(*command, options->render,
                   "Base image size WxH (default: the scene's own, else 512x512)");
@@ -193,7 +194,7 @@ void register_bench_command(CLI::App& app) {
                                                 "Restrict the shot to [A, B] (seconds), as A:B");
   add_threads_option(*command, options->render.params.threads, "Base thread count (0: all cores)");
   add_sort_option(*command, options->render.params.sort);
-  add_light_option(*command, options->render.params.lights);
+  add_light_option(*command, options->render.lights);
   command->add_option("--inbetweens", options->inbetweens, "In-betweens per keyframe interval, a list: 1,2,4,...")
       ->capture_default_str();
   command->add_option("--triangles", options->triangles,

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "renderer/job/frame_schedule.h"
+#include "tools/cli/image_flags.h"
+#include "tools/cli/light_flag.h"
 #include "tools/slurm_chunk.h"
 #include "util/input_error.h"
 
@@ -21,6 +23,8 @@ RenderParams RenderOptions::resolve() const {
   if (time_option && time_option->count() > 0) resolved.time = parse_time_range(time);
   if (aov_option && aov_option->count() > 0) resolved.aov = parse_aov(aov);
   if (resolved.chunk == "slurm") resolved.chunk = slurm_array_chunk(std::getenv);
+  for (const std::string& light : lights) resolved.lights.push_back(parse_light_flag(light));
+  resolved.camera = parse_camera_params(camera);
   validate(resolved);
   return resolved;
 }
@@ -141,7 +145,7 @@ void add_backend_options(CLI::App& command, RenderOptions& options) {
       ->capture_default_str()
       ->group(group);
   add_sort_option(command, options.params.sort)->group(group);
-  add_light_option(command, options.params.lights)->group(group);
+  add_light_option(command, options.lights)->group(group);
   add_enum_option(command, "--shadow-tree", options.params.shadow_tree, kShadowTreeNames,
                   "Kinetic: what traces shadow rays")
       ->group(group);
@@ -203,7 +207,7 @@ void add_render_options(CLI::App& command, RenderOptions& options) {
   add_scene_options(command, options);
   add_frame_options(command, options);
   add_backend_options(command, options);
-  add_camera_options(command, options.params.camera);
+  add_camera_options(command, options.camera);
   add_output_options(command, options);
 }
 

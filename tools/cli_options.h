@@ -9,6 +9,7 @@
 #include <string>
 
 #include "renderer/job/render_job.h"
+#include "tools/cli/camera_flags.h"
 #include "util/enum_names.h"
 
 namespace kinray {
@@ -20,6 +21,8 @@ struct RenderOptions {
   int frames = 0, inbetweens = 0;
   double fps = 0;
   std::string time, aov;
+  std::vector<std::string> lights;  ///< --light, parsed by parse_light_flag
+  CameraParams camera;              ///< --camera, --eye, --target, --fov: parse_camera_params
   CLI::Option* size_option = nullptr;
   CLI::Option* frames_option = nullptr;
   CLI::Option* fps_option = nullptr;
@@ -76,7 +79,7 @@ void add_frame_options(CLI::App& command, RenderOptions& options);
 void add_backend_options(CLI::App& command, RenderOptions& options);
 /// --light (repeatable) into `lights`.
 CLI::Option* add_light_option(CLI::App& command, std::vector<std::string>& lights);
-/// --camera, --eye, --target, --fov (renderer/camera_flags.h).
+/// --camera, --eye, --target, --fov (tools/cli/camera_flags.h).
 void add_camera_options(CLI::App& command, CameraParams& camera);
 /// --out, --video, --aov, --stats, --quiet.
 void add_output_options(CLI::App& command, RenderOptions& options);

@@ -173,7 +173,7 @@ void register_diff_command(CLI::App& app) {
   add_scene_options(*command, options->render);
   add_frame_options(*command, options->render);
   add_backend_options(*command, options->render);
-  add_camera_options(*command, options->render.params.camera);
+  add_camera_options(*command, options->render.camera);
   command->add_option("--against", options->against, "The reference: embree | osmesa")
       ->capture_default_str();
   command->add_option(

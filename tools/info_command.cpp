@@ -7,9 +7,9 @@
 #include <sstream>
 #include <string>
 
-#include "renderer/camera_flags.h"
 #include "scenes/mesh_sequence.h"
 #include "scenes/scene_loader.h"
+#include "tools/cli/camera_flags.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "util/input_error.h"
@@ -278,10 +278,11 @@ void register_info_command(CLI::App& app) {
     ModelOptions model;
     model.animation = options->animation;
     model.keyrate = options->keyrate;
-    model.camera = model_camera_choice(options->camera);
+    const CameraChoice camera = parse_camera_params(options->camera);
+    model.camera = model_camera_choice(camera);
     ModelCatalog catalog;
     Scene scene = load_scene(options->scene, model, &catalog);
-    apply_camera_params(options->camera, scene);
+    apply_camera_choice(camera, scene);
     scene.validate(options->scene);
     nlohmann::json info = describe(options->scene, scene);
     if (is_mesh_sequence(options->scene))

@@ -8,12 +8,12 @@
 
 #include "renderer/backends/backend.h"
 #include "renderer/frame.h"
+#include "renderer/output/tree_stats_json.h"
+#include "renderer/shadows/embree_shadow_tracer.h"
 #include "renderer/shadows/kinetic_shadow_tracer.h"
 #include "renderer/shadows/tree_shadow_tracer.h"
-#include "renderer/output/tree_stats_json.h"
 #include "util/input_error.h"
 #include "verification/bench_support.h"
-#include "verification/embree_shadow_peer.h"
 
 namespace kinray {
 
@@ -208,8 +208,11 @@ std::vector<TreeBenchPoint> measure(const TreeBenchParams& bench, const std::str
   Peers peers;
   peers.bottom_up =
       measure_tracer([&] { return make_tree_shadow_tracer(cs, ShadowTree::refit, false); });
-  peers.refit = measure_tracer([&] { return make_embree_shadow_tracer(cs, true); });
-  peers.rebuild = measure_tracer([&] { return make_embree_shadow_tracer(cs, false); });
+  peers.refit = measure_tracer(
+      [&] { return std::make_unique<EmbreeShadowTracer>(cs, EmbreeShadowTracer::Update::kRefit); });
+  peers.rebuild = measure_tracer([&] {
+    return std::make_unique<EmbreeShadowTracer>(cs, EmbreeShadowTracer::Update::kRebuild);
+  });
 
   std::vector<TreeBenchPoint> points;
   const size_t intervals = std::max<size_t>(1, (times.size() - 1) / size_t(inbetweens));

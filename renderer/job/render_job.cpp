@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -14,14 +12,13 @@
 #include <tuple>
 
 #include "renderer/contact_tint.h"
-#include "renderer/shadows/kinetic_shadow_tracer.h"
-#include "renderer/light_flag.h"
-#include "renderer/shadows/lighting.h"
 #include "renderer/job/memory_estimate.h"
 #include "renderer/output/progress.h"
-#include "renderer/shading.h"
-#include "renderer/shadows/shadow_rays.h"
 #include "renderer/output/video_writer.h"
+#include "renderer/shading.h"
+#include "renderer/shadows/kinetic_shadow_tracer.h"
+#include "renderer/shadows/lighting.h"
+#include "renderer/shadows/shadow_rays.h"
 #include "scenes/scene_loader.h"
 #include "util/check.h"
 #include "util/input_error.h"
@@ -31,16 +28,6 @@ namespace {
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-bool parse_int(const std::string& text, int& value) {
-  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text.front()))) return false;
-  char* end = nullptr;
-  errno = 0;
-  const long parsed = std::strtol(text.c_str(), &end, 10);
-  if (errno != 0 || end != text.c_str() + text.size() || parsed > 1'000'000'000L) return false;
-  value = int(parsed);
-  return true;
 }
 
 /// The problem with `value` when it is none of `allowed`, else nothing: the flag parser and
@@ -57,32 +44,8 @@ std::optional<std::string> not_one_of(const std::string& value,
 
 }  // namespace
 
-std::pair<int, int> parse_size(const std::string& text, const char* flag) {
-  const size_t x = text.find_first_of("xX");
-  int width = 0, height = 0;
-  if (x == std::string::npos || !parse_int(text.substr(0, x), width) ||
-      !parse_int(text.substr(x + 1), height))
-    throw InputError(flag,
-                     "expected WxH with two positive integers, e.g. 512x512, got '" + text + "'");
-  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
-    throw InputError(flag, "width and height must lie in 1.." + std::to_string(kMaxImageSide) +
-                                   ", got '" + text + "'");
-  return {width, height};
-}
-
-std::vector<std::string> parse_aov(const std::string& text) {
-  std::vector<std::string> aovs;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = std::min(text.find(',', start), text.size());
-    const std::string name = text.substr(start, comma - start);
-    if (const auto problem = not_one_of(name, {"id", "depth"})) throw InputError("--aov", *problem);
-    if (std::find(aovs.begin(), aovs.end(), name) != aovs.end())
-      throw InputError("--aov", "'" + name + "' is given twice");
-    aovs.push_back(name);
-    start = comma + 1;
-  }
-  return aovs;
+std::optional<std::string> aov_problem(const std::string& name) {
+  return not_one_of(name, {"id", "depth"});
 }
 
 void validate(const RenderParams& params) {
@@ -99,7 +62,7 @@ void validate(const RenderParams& params) {
   if (!is_embree_packet_width(params.packet))
     throw OptionError("packet", "must be 1, 4, 8 or 16, got " + std::to_string(params.packet));
   for (const std::string& aov : params.aov)
-    if (const auto problem = not_one_of(aov, {"id", "depth"})) throw OptionError("aov", *problem);
+    if (const auto problem = aov_problem(aov)) throw OptionError("aov", *problem);
   if (!std::isfinite(params.keyrate) || params.keyrate < 0 || params.keyrate > kMaxKeyrate)
     throw OptionError("keyrate", "must be a number in [0, 1e6] (0: the model's own keys)");
   if (params.skip_existing && !params.video.empty())
@@ -113,14 +76,12 @@ void validate(const RenderParams& params) {
                         "video encoders need frames of at least 2x2 pixels, and --size is " +
                             std::to_string(params.width) + "x" + std::to_string(params.height));
   }
-  for (const std::string& light : params.lights) (void)parse_light_flag(light);
   if (params.lights.size() > kMaxLights)
     throw OptionError("lights", "at most " + std::to_string(kMaxLights) + " lights, got " +
                                     std::to_string(params.lights.size()));
   if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
   if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
   validate(params.shutter);
-  (void)parse_camera_params(params.camera);
   if (params.contacts && params.shutter.enabled())
     throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
 }
@@ -180,13 +141,9 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   validate(m_params);
   check_render_memory(m_params, nullptr);  // a built-in that cannot fit is not built
   m_scene = load_scene(m_params.scene, model_options(m_params));
-  apply_camera_params(m_params.camera, m_scene, m_params.time);
+  apply_camera_choice(m_params.camera, m_scene, m_params.time);
   m_scene.validate(m_params.scene);
-  if (!m_params.lights.empty()) {
-    m_scene.lights.clear();
-    for (const std::string& light : m_params.lights)
-      m_scene.lights.push_back(parse_light_flag(light));
-  }
+  if (!m_params.lights.empty()) m_scene.lights = m_params.lights;
   if (m_scene.lights.size() > kMaxLights)
     throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
                                          " lights; at most " + std::to_string(kMaxLights) +

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "renderer/backends/backend.h"
-#include "renderer/output/background_writes.h"
-#include "renderer/camera_flags.h"
+#include "renderer/camera_choice.h"
 #include "renderer/frame.h"
 #include "renderer/job/frame_schedule.h"
 #include "renderer/job/frame_slice.h"
+#include "renderer/output/background_writes.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
 #include "scenes/model_import.h"
@@ -24,7 +24,8 @@
 
 namespace kinray {
 
-/// Every flag of `kinray render` (and of diff and bench, which share them), one field each.
+/// Every flag of `kinray render` (and of diff and bench, which share them), one field each, as
+/// typed values: the command line parses the flags' text (tools/cli/).
 struct RenderParams {
   std::string scene;  ///< SCENE: built-in name with parameters, .json file or model file
   std::string backend = "kinetic";                ///< --backend
@@ -42,7 +43,7 @@ struct RenderParams {
   int packet = 1;                                 ///< --packet (kEmbreePacketWidths)
   DepthSortKind sort = DepthSortKind::kList;      ///< --sort (kDepthSortNames)
   bool audit = false;                             ///< --audit
-  std::vector<std::string> lights;                ///< --light (repeatable): replace the scene's
+  std::vector<Light> lights;                      ///< --light (repeatable): replace the scene's
   ShadowTree shadow_tree = ShadowTree::aabb;      ///< --shadow-tree (kShadowTreeNames)
   std::string animation;                          ///< --animation NAME|INDEX (model files)
   double keyrate = 0;                             ///< --keyrate HZ (model files)
@@ -53,15 +54,13 @@ struct RenderParams {
   bool skip_existing = false;  ///< --skip-existing: render only the frames whose files are missing
   bool contacts = false;    ///< --contacts: tint the triangles in contact (set_contact_tint)
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
-  CameraParams camera;    ///< --camera, --eye, --target, --fov
+  CameraChoice camera;    ///< --camera, --eye, --target, --fov
 };
 
 inline constexpr int kMaxImageSide = 16384;
 
-/// Parses "WxH" into width and height (1..kMaxImageSide each). Throws InputError naming `flag`.
-[[nodiscard]] std::pair<int, int> parse_size(const std::string& text, const char* flag = "--size");
-/// Parses "id,depth" (any of id, depth; no repeats). Throws InputError naming --aov.
-[[nodiscard]] std::vector<std::string> parse_aov(const std::string& text);
+/// What is wrong with `name` as an AOV ("must be one of id, depth, got '...'"), or nothing.
+[[nodiscard]] std::optional<std::string> aov_problem(const std::string& name);
 
 /// Checks every field that can be checked without the scene; throws OptionError naming the
 /// field (the command line turns it into the flag), or InputError naming a flag for the checks

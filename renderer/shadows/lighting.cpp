@@ -4,18 +4,60 @@
 #include <stdexcept>
 #include <vector>
 
+#include "renderer/shade_rows.h"
 #include "renderer/shading.h"
 #include "renderer/shadows/shadow_rays.h"
-#include "util/parallel.h"
 
 namespace kinray {
 namespace {
 
-/// One hit pixel of a row: its surface and the first of its shadow rays in the row's batch.
+/// One hit pixel of a row: its index and the first of its shadow rays in the row's batch.
 struct HitShadowRays {
-  int i = 0;
+  size_t p = 0;
   size_t first = 0;
   uint32_t traced = 0;  ///< bit l: light l faces the hit, its ray is in the batch
+};
+
+/// A row of shade_frame_lit: each hit's shadow rays are gathered into one batch, traced when the
+/// row ends, and the masks and colours written then.
+class LitRow {
+ public:
+  LitRow(const std::vector<CameraSpaceLight>& lights, const ShadowTracer& tracer, Frame& frame)
+      : m_lights(lights), m_tracer(tracer), m_frame(frame) {}
+
+  void hit(size_t p, const TriangleAtInstant& triangle, const Vec3& d,
+           const Eigen::Vector3f& view) {
+    const LitHit& hit = m_hits.emplace_back(lit_hit(triangle, d, view));
+    HitShadowRays& pixel = m_pixels.emplace_back(HitShadowRays{p, m_rays.size(), 0u});
+    for (size_t l = 0; l < m_lights.size(); ++l)
+      if (auto ray = shadow_ray(hit, m_lights[l], m_frame.object[p], m_frame.prim[p])) {
+        m_rays.push_back(*ray);
+        pixel.traced |= 1u << l;
+      }
+  }
+
+  void finish() {
+    std::vector<uint8_t> blocked(m_rays.size(), 0);
+    if (!m_rays.empty()) m_tracer.occluded(m_rays, blocked);
+    for (size_t k = 0; k < m_pixels.size(); ++k) {
+      const HitShadowRays& pixel = m_pixels[k];
+      uint32_t mask = 0;
+      size_t r = pixel.first;
+      for (size_t l = 0; l < m_lights.size(); ++l)
+        if (pixel.traced >> l & 1u)
+          if (!blocked[r++]) mask |= 1u << l;
+      m_frame.lit[pixel.p] = mask;
+      m_frame.color[pixel.p] = lit_color(m_hits[k], m_lights, mask);
+    }
+  }
+
+ private:
+  const std::vector<CameraSpaceLight>& m_lights;
+  const ShadowTracer& m_tracer;
+  Frame& m_frame;
+  std::vector<LitHit> m_hits;
+  std::vector<HitShadowRays> m_pixels;
+  std::vector<ShadowRay> m_rays;
 };
 
 }  // namespace
@@ -55,45 +97,8 @@ void shade_frame_lit(const CameraSpaceScene& scene, const CameraSpaceLights& lig
     throw std::invalid_argument("shade_frame_lit: 1 to 32 lights");
   tracer.advance_to(frame.time);
   const std::vector<CameraSpaceLight> at_t = lights.at(frame.time);
-  const PixelRays image{frame.width, frame.height};
   frame.lit.assign(frame.pixel_count(), 0u);
-  parallel_for(size_t(frame.height), threads, [&](size_t row) {
-    const int j = int(row);
-    std::vector<LitHit> hits;
-    std::vector<HitShadowRays> pixels;
-    std::vector<ShadowRay> rays;
-    RowTriangles triangles(scene, frame.time);
-    for (int i = 0; i < frame.width; ++i) {
-      const size_t p = frame.index(i, j);
-      if (frame.object[p] == kNoHit) {
-        frame.color[p] = kBackgroundColor;
-        continue;
-      }
-      const TriangleAtInstant& triangle = triangles.at(frame.object[p], frame.prim[p]);
-      const Vec3 d = image.direction(i, j);
-      const LitHit& hit =
-          hits.emplace_back(lit_hit(triangle, d, view_direction(d, triangle.tan_half_fov)));
-      HitShadowRays& pixel = pixels.emplace_back(HitShadowRays{i, rays.size(), 0u});
-      for (size_t l = 0; l < at_t.size(); ++l)
-        if (auto ray = shadow_ray(hit, at_t[l], frame.object[p], frame.prim[p])) {
-          rays.push_back(*ray);
-          pixel.traced |= 1u << l;
-        }
-    }
-    std::vector<uint8_t> blocked(rays.size(), 0);
-    if (!rays.empty()) tracer.occluded(rays, blocked);
-    for (size_t k = 0; k < pixels.size(); ++k) {
-      const HitShadowRays& pixel = pixels[k];
-      uint32_t mask = 0;
-      size_t r = pixel.first;
-      for (size_t l = 0; l < at_t.size(); ++l)
-        if (pixel.traced >> l & 1u)
-          if (!blocked[r++]) mask |= 1u << l;
-      const size_t p = frame.index(pixel.i, j);
-      frame.lit[p] = mask;
-      frame.color[p] = lit_color(hits[k], at_t, mask);
-    }
-  });
+  shade_rows(scene, frame, threads, [&](int) { return LitRow(at_t, tracer, frame); });
 }
 
 }  // namespace kinray

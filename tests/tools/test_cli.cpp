@@ -12,10 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "renderer/output/image_io.h"
 #include "renderer/job/render_job.h"
+#include "renderer/output/image_io.h"
 #include "scenes/scene_loader.h"
 #include "tests/tools/kinray_process.h"
+#include "tools/cli/image_flags.h"
 #include "util/input_error.h"
 
 namespace kinray {

@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "renderer/light_flag.h"
 #include "renderer/job/render_job.h"
 #include "tests/tools/kinray_process.h"
+#include "tools/cli/light_flag.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -43,7 +43,7 @@ TEST(LightFlag, BadValuesNameTheFlag) {
 TEST(LightFlag, TooManyLightsAndUnknownTreesAreRejected) {
   RenderParams params;
   params.scene = "wavy-sphere";
-  params.lights.assign(33, "point:0,0,0");
+  params.lights.assign(33, parse_light_flag("point:0,0,0"));
   try {
     validate(params);
     ADD_FAILURE() << "33 lights accepted";

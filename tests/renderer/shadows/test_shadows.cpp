@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "renderer/backends/backend.h"
+#include "renderer/job/render_job.h"
 #include "renderer/shadows/brute_force_shadow_tracer.h"
 #include "renderer/shadows/lighting.h"
-#include "renderer/job/render_job.h"
 #include "renderer/shadows/shadow_rays.h"
 #include "scenes/camera_space_lights.h"
+#include "tools/cli/light_flag.h"
 #include "verification/image_diff.h"
 
 namespace kinray {
@@ -275,7 +276,7 @@ void expect_masks_agree(const std::string& spec) {
   params.frames = 2;
   params.threads = 2;
   params.shadow_tree = ShadowTree::brute;
-  params.lights = {"point:2,5,-3", "dir:-1,-2,0.5:0.5,0.6,0.7"};
+  params.lights = {parse_light_flag("point:2,5,-3"), parse_light_flag("dir:-1,-2,0.5:0.5,0.6,0.7")};
   RenderJob job(params);
   std::unique_ptr<Backend> embree = job.make_backend("embree");
   std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
@@ -312,7 +313,7 @@ TEST(Shadows, OsmesaBorrowsEmbreesOcclusionRays) {
   params.scene = "static-moving:triangles=2000";
   params.width = params.height = 32;
   params.frames = 1;
-  params.lights = {"point:2,5,-3"};
+  params.lights = {parse_light_flag("point:2,5,-3")};
   RenderJob job(params);
   std::unique_ptr<Backend> osmesa = job.make_backend("osmesa");
   std::unique_ptr<Backend> embree = job.make_backend("embree");

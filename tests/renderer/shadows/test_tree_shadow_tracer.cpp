@@ -7,12 +7,12 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "renderer/shadows/embree_shadow_tracer.h"
 #include "renderer/shadows/tree_shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "scenes/procedural.h"
 #include "scenes/scene_loader.h"
 #include "tests/scenes/model_test_support.h"
-#include "verification/embree_shadow_peer.h"
 
 namespace kinray {
 namespace {
@@ -89,7 +89,7 @@ void check_scene(const Scene& scene, std::mt19937& rng, size_t min_blocked = 10)
   tracers.push_back(make_tree_shadow_tracer(cs, ShadowTree::aabb, true));
   tracers.push_back(make_tree_shadow_tracer(cs, ShadowTree::boxtree, true));
   tracers.push_back(make_tree_shadow_tracer(cs, ShadowTree::refit, false));
-  auto embree = make_embree_shadow_tracer(cs, true);
+  auto embree = std::make_unique<EmbreeShadowTracer>(cs, EmbreeShadowTracer::Update::kRefit);
   size_t blocked_rays = 0, clear_rays = 0, embree_real = 0;
   const std::vector<double> keys = scene.key_times();
   const double t0 = keys.front(), t1 = keys.back();

@@ -2,13 +2,11 @@
 // The camera flags of `render`, `diff`, `bench` and `info`: `--camera auto|model` picks automatic
 // framing or the scene's own camera (a model's camera, an error if the model has none);
 // `--eye X,Y,Z --target X,Y,Z` place a still camera (up = +y) and `--fov DEG` sets the vertical
-// field of view of whichever camera is used.
-#include <optional>
+// field of view of whichever camera is used. They parse into a CameraChoice
+// (renderer/camera_choice.h).
 #include <string>
-#include <utility>
 
-#include "scenes/model_import.h"
-#include "scenes/scene.h"
+#include "renderer/camera_choice.h"
 
 namespace kinray {
 
@@ -21,30 +19,10 @@ struct CameraParams {
   std::string fov;     ///< --fov DEG: vertical field of view of the camera used
 };
 
-/// What the camera flags ask for, checked.
-struct CameraChoice {
-  enum class Mode { scene, automatic, model, view };
-  Mode mode = Mode::scene;
-  Vec3 eye = Vec3::Zero(), target = Vec3::Zero();  ///< Mode::view
-  std::optional<double> fov_y_degrees;             ///< --fov
-};
-
-/// Default vertical field of view of an explicit --eye/--target camera, in degrees.
-inline constexpr double kExplicitFovDegrees = 45;
-
 /// Checks the flags and says what they ask for. Throws InputError naming the flag: --camera other
 /// than auto or model, or with --eye/--target; --eye without --target or the reverse; a point
 /// that is not three finite numbers within +-1e15; the eye at the target; --fov not a number in
 /// (0.5, 179.5) degrees (what a scene's camera may have).
 [[nodiscard]] CameraChoice parse_camera_params(const CameraParams& params);
-
-/// How a model file is to be loaded for these flags (its own camera, required or not, or none).
-[[nodiscard]] ModelCamera model_camera_choice(const CameraParams& params);
-
-/// Gives the loaded `scene` the camera the flags ask for (models already have theirs from
-/// model_camera_choice) and records where it came from in scene.camera_source. An automatic
-/// camera frames what is shown in `shot` (--time A:B) when given, else in the whole shot.
-void apply_camera_params(const CameraParams& params, Scene& scene,
-                         std::optional<std::pair<double, double>> shot = std::nullopt);
 
 }  // namespace kinray

@@ -1,6 +1,6 @@
-#include "renderer/light_flag.h"
+#include "tools/cli/light_flag.h"
 
-#include "renderer/vector_flag.h"
+#include "tools/cli/vector_flag.h"
 #include "util/input_error.h"
 
 namespace kinray {

@@ -1,4 +1,4 @@
-#include "renderer/vector_flag.h"
+#include "tools/cli/vector_flag.h"
 
 #include <cctype>
 #include <cerrno>
