@@ -23,16 +23,20 @@ void WindowBvh::sweep(double open, double close) {
   const double pad = 1e-12 * m_meshes.scale();
   m_vertex_boxes.resize(m_meshes.vertex_count());
   std::vector<double> times;
+  std::vector<FlightplanMesh::KeyBlend> blends;
   for (uint32_t m = 0; m < m_meshes.mesh_count(); ++m) {
     const FlightplanMesh& mesh = m_meshes.mesh(m);
     times = {open, close};
     for (double key : mesh.key_times)
       if (key > open && key < close) times.push_back(key);
+    // One key blend per time for the whole mesh (a search of its keys), not one per vertex.
+    blends.clear();
+    for (double t : times) blends.push_back(mesh.blend_at(t));
     const uint32_t begin = m_meshes.vertex_begin(m);
     for (uint32_t v = 0; v < mesh.vertex_count; ++v) {
       Aabb& box = m_vertex_boxes[begin + v];
       box = Aabb{};
-      for (double t : times) box.extend(mesh.position(v, t));
+      for (const FlightplanMesh::KeyBlend& blend : blends) box.extend(mesh.position(v, blend));
       box.lo.array() -= pad;
       box.hi.array() += pad;
     }

@@ -57,21 +57,7 @@ void KineticShutter::roll_to(FrustumGrid& grid, double open) {
 template <class Visit>
 void KineticShutter::for_each_node(uint32_t object, double t0, double t1, double length,
                                    Visit&& visit) const {
-  const double share = (t1 - t0) / length;
-  // The shading is smooth between the keys of the front's object, not across them (its vertices
-  // and normals turn there): each piece between keys gets its own rule.
-  const std::vector<double>& keys = m_scene.objects[object].key_times;
-  auto key = std::upper_bound(keys.begin(), keys.end(), t0);
-  for (double a = t0; a < t1;) {
-    // The piece lies in [keys[next - 1], keys[next]] (next = 0 or n: before or after the keys).
-    const size_t next = size_t(key - keys.begin());
-    const double b = key != keys.end() && *key < t1 ? *key++ : t1;
-    const double middle = (a + b) / 2, half = (b - a) / 2;
-    const GaussLegendre& r = rule(object);
-    for (size_t k = 0; k < r.nodes.size(); ++k)
-      visit(middle + half * r.nodes[k], share * (half / (t1 - t0)) * r.weights[k], next);
-    a = b;
-  }
+  for_each_quadrature_node(m_scene.objects[object].key_times, rule(object), t0, t1, length, visit);
 }
 
 void KineticShutter::place_window_nodes(const ShutterWindow& window) {

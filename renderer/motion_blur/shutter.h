@@ -3,6 +3,8 @@
 // each pixel centre, the time average of the radiance along the centre ray over the frame's shutter
 // window. This file fixes the windows of a schedule and holds the pieces every backend's time
 // average shares: Gauss-Legendre rules, stratified sample times, and the average itself.
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,6 +51,26 @@ struct GaussLegendre {
   std::vector<double> nodes, weights;
 };
 [[nodiscard]] GaussLegendre gauss_legendre(int order);
+
+/// Calls visit(t, weight, next) for each node of `rule` over [t0, t1] (t0 < t1), the weights
+/// shares of a window of length `length`. The shading is smooth between the keys of the front's
+/// object, not across them (its vertices and normals turn there): each piece between the `keys`
+/// (sorted) inside [t0, t1] gets its own rule, and the node's piece lies in
+/// [keys[next - 1], keys[next]] (next = 0 or keys.size(): before or after the keys).
+template <class Visit>
+void for_each_quadrature_node(std::span<const double> keys, const GaussLegendre& rule, double t0,
+                              double t1, double length, Visit&& visit) {
+  const double share = (t1 - t0) / length;
+  auto key = std::upper_bound(keys.begin(), keys.end(), t0);
+  for (double a = t0; a < t1;) {
+    const size_t next = size_t(key - keys.begin());
+    const double b = key != keys.end() && *key < t1 ? *key++ : t1;
+    const double middle = (a + b) / 2, half = (b - a) / 2;
+    for (size_t k = 0; k < rule.nodes.size(); ++k)
+      visit(middle + half * rule.nodes[k], share * (half / (t1 - t0)) * rule.weights[k], next);
+    a = b;
+  }
+}
 
 /// Time of stratified sample k of n in `window` for `pixel`: stratum k, jittered by a hash of
 /// (pixel, k, seed), so every backend and every run draws the same times.

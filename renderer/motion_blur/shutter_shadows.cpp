@@ -47,12 +47,15 @@ ShutterShadows::Probe ShutterShadows::probe(uint32_t object, uint32_t prim, cons
   Probe p;
   p.t = t;
   p.hit = lit_hit(m_scene, object, prim, d, t);
-  const uint32_t skip = m_first_triangle.at(object) + prim;
-  p.mask = light_mask(p.hit, lights_at(t, scratch), object, prim, [&](const ShadowRay& ray) {
-    ++counts.shadow_rays;
-    return m_tree.occluded(TreeRay{ray.origin, ray.direction, 0.0, ray.s_max, skip}, t);
-  });
+  p.mask = light_mask(p.hit, lights_at(t, scratch), object, prim,
+                      [&](const ShadowRay& ray) { return blocked(ray, t, counts); });
   return p;
+}
+
+bool ShutterShadows::blocked(const ShadowRay& ray, double t, ShutterShadowCounts& counts) const {
+  ++counts.shadow_rays;
+  const uint32_t skip = m_first_triangle.at(ray.object) + ray.prim;
+  return m_tree.occluded(TreeRay{ray.origin, ray.direction, 0.0, ray.s_max, skip}, t);
 }
 
 bool ShutterShadows::reaches(uint32_t object, uint32_t prim, const Vec3& d, double t, size_t l,
@@ -60,10 +63,7 @@ bool ShutterShadows::reaches(uint32_t object, uint32_t prim, const Vec3& d, doub
                              std::vector<CameraSpaceLight>& scratch) const {
   const LitHit hit = lit_hit(m_scene, object, prim, d, t);
   const auto ray = shadow_ray(hit, lights_at(t, scratch)[l], object, prim);
-  if (!ray) return false;
-  ++counts.shadow_rays;
-  const uint32_t skip = m_first_triangle.at(object) + prim;
-  return !m_tree.occluded(TreeRay{ray->origin, ray->direction, 0.0, ray->s_max, skip}, t);
+  return ray && !blocked(*ray, t, counts);
 }
 
 uint32_t ShutterShadows::mask_at(uint32_t object, uint32_t prim, const Vec3& d, double t) const {
@@ -77,27 +77,15 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
                                ShutterShadowCounts& counts) const {
   if (!(t1 > t0)) return;
   const double length = m_window.length();
-  // The shading is smooth between the object's keys, not across them: the pieces between keys
-  // each get the rule, as the headlight's integration does.
-  std::vector<double> cuts{t0};
-  for (double key : m_scene.objects[object].key_times)
-    if (key > t0 && key < t1) cuts.push_back(key);
-  cuts.push_back(t1);
-  const size_t order = m_rule.nodes.size();
+  const std::vector<double>& keys = m_scene.objects[object].key_times;
   std::vector<CameraSpaceLight> scratch;
 
-  // 1. The masks at the ends and at every node.
+  // 1. The masks at the ends and at every node (of each piece between keys).
   std::vector<Probe> probes;
-  probes.reserve(2 + order * (cuts.size() - 1));
   probes.push_back(probe(object, prim, d, t0, counts, scratch));
-  for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-    const double middle = (cuts[c] + cuts[c + 1]) / 2, half = (cuts[c + 1] - cuts[c]) / 2;
-    for (size_t k = 0; k < order; ++k) {
-      Probe& p = probes.emplace_back(
-          probe(object, prim, d, middle + half * m_rule.nodes[k], counts, scratch));
-      p.weight = half / length * m_rule.weights[k];
-    }
-  }
+  for_each_quadrature_node(keys, m_rule, t0, t1, length, [&](double t, double w, size_t) {
+    probes.emplace_back(probe(object, prim, d, t, counts, scratch)).weight = w;
+  });
   probes.push_back(probe(object, prim, d, t1, counts, scratch));
   // In time order (the rule's nodes need not be): adjacent probes bracket the changes.
   std::sort(probes.begin(), probes.end(), [](const Probe& a, const Probe& b) { return a.t < b.t; });
@@ -133,23 +121,21 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   std::sort(flips.begin(), flips.end());
   counts.mask_changes += flips.size();
 
-  // 3. The pieces between keys and changes, each under its own mask, by the shading's rule.
-  for (const auto& flip : flips) cuts.push_back(flip.first);
-  std::sort(cuts.begin(), cuts.end());
+  // 3. The pieces between changes, each under its own mask, by the shading's rule (cut again at
+  // the keys inside them).
   uint32_t mask = probes.front().mask;
-  size_t next_flip = 0;
-  for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-    const double a = cuts[c], b = cuts[c + 1];
-    for (; next_flip < flips.size() && flips[next_flip].first <= a; ++next_flip)
-      mask ^= flips[next_flip].second;
-    if (!(b > a)) continue;
-    const double middle = (a + b) / 2, half = (b - a) / 2;
-    for (size_t k = 0; k < shading.nodes.size(); ++k) {
-      const double t = middle + half * shading.nodes[k];
-      average.add(lit_color(lit_hit(m_scene, object, prim, d, t), lights_at(t, scratch), mask),
-                  half / length * shading.weights[k]);
+  double a = t0;
+  for (size_t f = 0; f <= flips.size(); ++f) {
+    const double b = f < flips.size() ? flips[f].first : t1;
+    if (b > a) {
+      for_each_quadrature_node(keys, shading, a, b, length, [&](double t, double w, size_t) {
+        average.add(lit_color(lit_hit(m_scene, object, prim, d, t), lights_at(t, scratch), mask),
+                    w);
+        ++counts.shading_nodes;
+      });
+      a = b;
     }
-    counts.shading_nodes += shading.nodes.size();
+    if (f < flips.size()) mask ^= flips[f].second;
   }
 }
 

@@ -20,6 +20,7 @@
 #include "kinetic/tree/window_bvh.h"
 #include "renderer/motion_blur/shutter.h"
 #include "renderer/shading.h"
+#include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
 
@@ -61,6 +62,8 @@ class ShutterShadows {
   [[nodiscard]] Probe probe(uint32_t object, uint32_t prim, const Vec3& d, double t,
                             ShutterShadowCounts& counts,
                             std::vector<CameraSpaceLight>& scratch) const;
+  /// Whether a triangle other than the one `ray` leaves from meets it at time t (counted).
+  [[nodiscard]] bool blocked(const ShadowRay& ray, double t, ShutterShadowCounts& counts) const;
   /// Whether light l reaches the hit of (object, prim) along d at t.
   [[nodiscard]] bool reaches(uint32_t object, uint32_t prim, const Vec3& d, double t, size_t l,
                              ShutterShadowCounts& counts,
