@@ -170,16 +170,17 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
       return embree_occluded(m_pieces[k], ray, piece_time(k, t));
     });
   };
-  // Lights that do not move (a camera of one key) are found once.
+  // Lights that do not move (a camera of one key) are found once; moving ones are written into
+  // the row's `scratch` at each sample's time.
   const std::vector<CameraSpaceLight> still_lights =
       m_lights && m_lights->still() ? m_lights->at(0) : std::vector<CameraSpaceLight>{};
-  auto shade = [&](const RTCHit& hit, int i, int j, const Vec3& d, double t) -> Color {
+  auto shade = [&](const RTCHit& hit, int i, int j, const Vec3& d, double t,
+                   std::vector<CameraSpaceLight>& scratch) -> Color {
     if (hit.geomID == RTC_INVALID_GEOMETRY_ID) return kBackgroundColor;
     if (!m_lights) return shade_hit(m_scene, image, i, j, hit.geomID, hit.primID, t);
     const LitHit lit = lit_hit(m_scene, hit.geomID, hit.primID, d, t);
-    if (!still_lights.empty())
-      return lit_color(lit, still_lights, mask_of(lit, still_lights, hit.geomID, hit.primID, t));
-    const std::vector<CameraSpaceLight> lights = m_lights->at(t);
+    if (still_lights.empty()) m_lights->at(t, scratch);
+    const std::vector<CameraSpaceLight>& lights = still_lights.empty() ? scratch : still_lights;
     return lit_color(lit, lights, mask_of(lit, lights, hit.geomID, hit.primID, t));
   };
   if (m_lights) frame.lit.assign(frame.pixel_count(), 0u);
@@ -187,6 +188,7 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
     const FlushDenormals row_flush;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    std::vector<CameraSpaceLight> scratch;
     const int j = int(row);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
@@ -194,7 +196,7 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
       ColorAverage average;
       for (int s = 0; s < m_samples; ++s) {
         const double t = stratified_time(window, uint32_t(p), s, m_samples, seed);
-        average.add(shade(trace(d, t, context), i, j, d, t), 1.0);
+        average.add(shade(trace(d, t, context), i, j, d, t, scratch), 1.0);
       }
       frame.color[p] = average.result();
       const RTCHit hit = trace(d, window.time, context);
