@@ -19,6 +19,7 @@ EventQueue::EventQueue(EventQueue&& other) noexcept
     : m_heap(std::exchange(other.m_heap, nullptr)),
       m_capacity(std::exchange(other.m_capacity, 0)),
       m_size(std::exchange(other.m_size, 0)),
+      m_heap_laid(std::exchange(other.m_heap_laid, 0)),
       m_slots(std::move(other.m_slots)),
       m_pos(std::move(other.m_pos)),
       m_free(std::exchange(other.m_free, kNoEvent)),
@@ -32,6 +33,7 @@ EventQueue& EventQueue::operator=(EventQueue&& other) noexcept {
     m_heap = std::exchange(other.m_heap, nullptr);
     m_capacity = std::exchange(other.m_capacity, 0);
     m_size = std::exchange(other.m_size, 0);
+    m_heap_laid = std::exchange(other.m_heap_laid, 0);
     m_slots = std::move(other.m_slots);
     m_pos = std::move(other.m_pos);
     m_free = std::exchange(other.m_free, kNoEvent);
@@ -164,6 +166,7 @@ void EventQueue::refill() {
   std::vector<Node>& bucket = m_far[k];
   if (m_size + bucket.size() > m_capacity) grow(std::max<size_t>(16, 2 * (m_size + bucket.size())));
   for (const Node& node : bucket) place(m_size++, node);
+  m_heap_laid = m_size;
   m_far.removed(bucket.size());
   bucket.clear();
   if (m_size > 1)
@@ -237,6 +240,7 @@ void EventQueue::sift_down(uint32_t r, Node node) {
 
 void EventQueue::clear() {
   m_size = 0;
+  m_heap_laid = 0;
   m_far.clear();
   m_slots.clear();
   m_pos.clear();

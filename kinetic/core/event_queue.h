@@ -177,7 +177,8 @@ class EventQueue {
   void add_heap(const Node& node) {
     if (m_size == m_capacity) grow(m_capacity < 16 ? 16 : 2 * m_capacity);
     sift_up(m_size++, node);
-    if (m_size > kLargeHeap && m_size > m_far.size() / 16) [[unlikely]] rebalance();
+    if (m_size > kLargeHeap && m_size > m_far.size() / 16 && m_size > 2 * m_heap_laid) [[unlikely]]
+      rebalance();
   }
   /// Every event back to the overflow and a new calendar from the earliest: for a heap that
   /// the events earlier than the calendar's start have filled (the first calendar is laid over
@@ -199,6 +200,11 @@ class EventQueue {
   Node* m_heap = nullptr;  ///< 64-byte aligned, m_capacity + kOffset + 1 nodes
   size_t m_capacity = 0;
   uint32_t m_size = 0;
+  /// The heap's size when its last bucket came in. A rebalance waits until pushes have doubled
+  /// it: a bucket of thousands of events at one instant (a keyframe's certificates) fills the
+  /// heap beyond a sixteenth of the queue at once, and a new calendar puts them all in its first
+  /// bucket again, so rebalancing at the next push, and the next, cost O(n) each.
+  uint32_t m_heap_laid = 0;
   std::vector<Slot> m_slots;     ///< per handle: key and payload (two slots per cache line)
   std::vector<uint32_t> m_pos;  ///< per handle: heap index r, kFar | far index, or kFreeSlot
   uint32_t m_free = kNoEvent;
