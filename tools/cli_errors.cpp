@@ -101,6 +101,9 @@ InputError name_the_flag(const OptionError& error) {
       {"fps", "--fps"},
       {"inbetweens", "--inbetweens"},
       {"time", "--time"},
+      {"chunk", "--chunk"},
+      {"frame_range", "--frame-range"},
+      {"frame_slice", "--chunk/--frame-range"},
   };
   for (const auto& [field, flag] : kFlags)
     if (error.where() == field) return InputError(flag, error.message());

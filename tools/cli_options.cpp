@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "renderer/job/frame_schedule.h"
+#include "tools/cli/frame_slice_flags.h"
 #include "tools/cli/image_flags.h"
 #include "tools/cli/light_flag.h"
 #include "tools/slurm_chunk.h"
@@ -22,7 +23,9 @@ RenderParams RenderOptions::resolve() const {
   if (inbetweens_option && inbetweens_option->count() > 0) resolved.inbetweens = inbetweens;
   if (time_option && time_option->count() > 0) resolved.time = parse_time_range(time);
   if (aov_option && aov_option->count() > 0) resolved.aov = parse_aov(aov);
-  if (resolved.chunk == "slurm") resolved.chunk = slurm_array_chunk(std::getenv);
+  if (!chunk.empty())
+    resolved.chunk = chunk == "slurm" ? slurm_array_chunk(std::getenv) : parse_chunk(chunk);
+  if (!frame_range.empty()) resolved.frame_range = parse_frame_range(frame_range);
   for (const std::string& light : lights) resolved.lights.push_back(parse_light_flag(light));
   resolved.camera = parse_camera_params(camera);
   validate(resolved);

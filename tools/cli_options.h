@@ -21,6 +21,7 @@ struct RenderOptions {
   int frames = 0, inbetweens = 0;
   double fps = 0;
   std::string time, aov;
+  std::string chunk, frame_range;   ///< --chunk I/N or slurm, --frame-range A:B
   std::vector<std::string> lights;  ///< --light, parsed by parse_light_flag
   CameraParams camera;              ///< --camera, --eye, --target, --fov: parse_camera_params
   CLI::Option* size_option = nullptr;

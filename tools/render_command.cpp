@@ -149,8 +149,8 @@ void print_summary(const RenderJob& job, const Backend& backend, const RenderTim
   const std::string last =
       slice.size() > 1 ? " .. " + numbered_file("frame", slice.end - 1, ".png") : "";
   std::string of_slice;
-  if (!params.chunk.empty()) of_slice = " (chunk " + params.chunk + ")";
-  if (!params.frame_range.empty()) of_slice = " (--frame-range " + params.frame_range + ")";
+  if (params.chunk) of_slice = " (chunk " + to_string(*params.chunk) + ")";
+  if (params.frame_range) of_slice = " (--frame-range " + to_string(*params.frame_range) + ")";
   std::printf("frames: %s/%s%s%s\n", outputs.folder.c_str(),
               numbered_file("frame", slice.begin, ".png").c_str(), last.c_str(), of_slice.c_str());
   if (params.skip_existing)
@@ -271,12 +271,12 @@ void register_render_command(CLI::App& app) {
   options->params.backend = "auto";  // diff and bench name the backends they compare
   add_render_options(*command, *options);
   command
-      ->add_option("--chunk", options->params.chunk,
+      ->add_option("--chunk", options->chunk,
                    "Render farms: only the I-th of N consecutive slices of the frames (I/N, "
                    "1-based; slurm: this Slurm array task's)")
       ->group("Frames");
   command
-      ->add_option("--frame-range", options->params.frame_range,
+      ->add_option("--frame-range", options->frame_range,
                    "Render farms: only frames A..B of the schedule (A:B, 0-based, both included)")
       ->group("Frames");
   command

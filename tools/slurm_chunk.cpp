@@ -20,7 +20,7 @@ std::optional<long long> whole(const char* text) {
 
 }  // namespace
 
-std::string slurm_array_chunk(const EnvironmentLookup& lookup) {
+FrameChunk slurm_array_chunk(const EnvironmentLookup& lookup) {
   const auto read = [&](const char* name) -> std::optional<long long> {
     const char* text = lookup(name);
     const std::optional<long long> value = whole(text);
@@ -46,7 +46,7 @@ std::string slurm_array_chunk(const EnvironmentLookup& lookup) {
                                     " is not on one evenly spaced range of array indices (min " +
                                     std::to_string(*min) + ", step " + std::to_string(step) + ", " +
                                     std::to_string(*count) + " tasks); give --chunk I/N");
-  return std::to_string(offset / step + 1) + "/" + std::to_string(*count);
+  return FrameChunk{size_t(offset / step + 1), size_t(*count)};
 }
 
 }  // namespace kinray

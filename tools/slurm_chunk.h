@@ -4,15 +4,18 @@
 #include <functional>
 #include <string>
 
+#include "renderer/job/frame_slice.h"
+
 namespace kinray {
 
 /// Reads a variable of the environment (nullptr when unset): std::getenv, or a test's table.
 using EnvironmentLookup = std::function<const char*(const char* name)>;
 
-/// "I/N" for the task of a job array: N = SLURM_ARRAY_TASK_COUNT, and I the task's place among
-/// the array's indices, 1 + (SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN) / SLURM_ARRAY_TASK_STEP
-/// (step 1 when unset). Throws InputError naming --chunk outside a job array, and for an array
-/// whose indices are not one evenly spaced range (--array=1,4,9), whose places Slurm does not say.
-[[nodiscard]] std::string slurm_array_chunk(const EnvironmentLookup& lookup);
+/// The chunk I/N of the task of a job array: N = SLURM_ARRAY_TASK_COUNT, and I the task's place
+/// among the array's indices, 1 + (SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN) /
+/// SLURM_ARRAY_TASK_STEP (step 1 when unset). Throws InputError naming --chunk outside a job array,
+/// and for an array whose indices are not one evenly spaced range (--array=1,4,9), whose places
+/// Slurm does not say.
+[[nodiscard]] FrameChunk slurm_array_chunk(const EnvironmentLookup& lookup);
 
 }  // namespace kinray

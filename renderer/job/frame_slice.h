@@ -4,8 +4,8 @@
 // by their index in the whole schedule, so that the slices of N jobs together are the frames of
 // one whole render (docs/render_farm.md).
 #include <cstddef>
+#include <optional>
 #include <string>
-#include <utility>
 
 namespace kinray {
 
@@ -15,17 +15,29 @@ struct FrameSlice {
   [[nodiscard]] size_t size() const { return end - begin; }
 };
 
-/// Parses "I/N" with 1 <= I <= N. Throws InputError naming --chunk.
-[[nodiscard]] std::pair<size_t, size_t> parse_chunk(const std::string& text);
-/// Parses "A:B" with 0 <= A <= B (frame indices, both included). Throws InputError naming
-/// --frame-range.
-[[nodiscard]] std::pair<size_t, size_t> parse_frame_range(const std::string& text);
+/// `--chunk I/N`: the I-th (1-based) of N nearly equal consecutive slices of the schedule.
+struct FrameChunk {
+  size_t index = 1, count = 1;
+};
+/// `--frame-range A:B`: frames A..B of the schedule, both included.
+struct FrameRange {
+  size_t first = 0, last = 0;
+};
 
-/// The slice of a schedule of `frame_count` frames that `chunk` ("I/N") or `range` ("A:B") name
-/// (both empty: every frame). Chunk I of N is [floor((I-1) F / N), floor(I F / N)). Throws
-/// InputError naming the flag when both are given, a range reaches past the last frame or a
-/// chunk holds no frame (N > F).
-[[nodiscard]] FrameSlice frame_slice(const std::string& chunk, const std::string& range,
-                                     size_t frame_count);
+/// "I/N", as the flag is written.
+[[nodiscard]] std::string to_string(const FrameChunk& chunk);
+/// "A:B", as the flag is written.
+[[nodiscard]] std::string to_string(const FrameRange& range);
+
+/// Throws OptionError naming the field ("chunk", "frame_range") for a chunk outside 1..N or a
+/// range that runs backwards: what can be checked without the schedule.
+void validate(const std::optional<FrameChunk>& chunk, const std::optional<FrameRange>& range);
+
+/// The slice of a schedule of `frame_count` frames that `chunk` or `range` name (neither: every
+/// frame). Chunk I of N is [floor((I-1) F / N), floor(I F / N)). Throws OptionError naming the
+/// field ("chunk", "frame_range", or "frame_slice" when both are given) for a bad value, a range
+/// that reaches past the last frame or a chunk that holds no frame (N > F).
+[[nodiscard]] FrameSlice frame_slice(const std::optional<FrameChunk>& chunk,
+                                     const std::optional<FrameRange>& range, size_t frame_count);
 
 }  // namespace kinray

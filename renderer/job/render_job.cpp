@@ -79,8 +79,7 @@ void validate(const RenderParams& params) {
   if (params.lights.size() > kMaxLights)
     throw OptionError("lights", "at most " + std::to_string(kMaxLights) + " lights, got " +
                                     std::to_string(params.lights.size()));
-  if (!params.chunk.empty()) (void)parse_chunk(params.chunk);
-  if (!params.frame_range.empty()) (void)parse_frame_range(params.frame_range);
+  validate(params.chunk, params.frame_range);
   validate(params.shutter);
   if (params.contacts && params.shutter.enabled())
     throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
@@ -256,9 +255,9 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
       {"slice",
        {{"first", job.slice().begin},
         {"last", job.slice().size() > 0 ? job.slice().end - 1 : job.slice().begin},
-        {"chunk", params.chunk.empty() ? nlohmann::json() : nlohmann::json(params.chunk)},
+        {"chunk", params.chunk ? nlohmann::json(to_string(*params.chunk)) : nlohmann::json()},
         {"frame_range",
-         params.frame_range.empty() ? nlohmann::json() : nlohmann::json(params.frame_range)},
+         params.frame_range ? nlohmann::json(to_string(*params.frame_range)) : nlohmann::json()},
         {"skipped", job.slice().size() - job.frames_to_render().size()}}},
       {"shutter", job.params().shutter.shutter},
       {"time_s",

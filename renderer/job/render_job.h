@@ -49,8 +49,8 @@ struct RenderParams {
   double keyrate = 0;                             ///< --keyrate HZ (model files)
   bool quiet = false;                             ///< --quiet
   bool scene_size = false;  ///< no --size given: the scene's own image size when it has one
-  std::string chunk;        ///< --chunk I/N: render only the I-th of N slices of the schedule
-  std::string frame_range;  ///< --frame-range A:B: render only frames A..B of the schedule
+  std::optional<FrameChunk> chunk;        ///< --chunk I/N: only the I-th of N slices
+  std::optional<FrameRange> frame_range;  ///< --frame-range A:B: only frames A..B
   bool skip_existing = false;  ///< --skip-existing: render only the frames whose files are missing
   bool contacts = false;    ///< --contacts: tint the triangles in contact (set_contact_tint)
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)

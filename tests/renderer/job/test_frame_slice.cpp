@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "renderer/job/frame_slice.h"
 #include "renderer/job/render_job.h"
+#include "tools/cli/frame_slice_flags.h"
 #include "util/input_error.h"
 
 namespace kinray {
@@ -18,8 +21,7 @@ TEST(FrameSlice, ChunksCoverTheScheduleInNearlyEqualSlices) {
     for (size_t n = 1; n <= std::min<size_t>(frames, 13); ++n) {
       size_t next = 0;
       for (size_t i = 1; i <= n; ++i) {
-        const FrameSlice slice =
-            frame_slice(std::to_string(i) + "/" + std::to_string(n), "", frames);
+        const FrameSlice slice = frame_slice(FrameChunk{i, n}, std::nullopt, frames);
         EXPECT_EQ(slice.begin, next);
         EXPECT_GE(slice.size(), frames / n);
         EXPECT_LE(slice.size(), frames / n + 1);
@@ -27,10 +29,27 @@ TEST(FrameSlice, ChunksCoverTheScheduleInNearlyEqualSlices) {
       }
       EXPECT_EQ(next, frames);
     }
-  const FrameSlice range = frame_slice("", "3:5", 10);
+  const FrameSlice range = frame_slice(std::nullopt, FrameRange{3, 5}, 10);
   EXPECT_EQ(range.begin, 3u);
   EXPECT_EQ(range.end, 6u);
-  EXPECT_EQ(frame_slice("", "", 10).size(), 10u);
+  EXPECT_EQ(frame_slice(std::nullopt, std::nullopt, 10).size(), 10u);
+}
+
+/// The slice the flags' text names in a schedule of `frames` frames, as `render` finds it: the
+/// flags parsed (tools/cli), then sliced, an error of the library named by its flag.
+FrameSlice slice_of_flags(const std::string& chunk, const std::string& range, size_t frames) {
+  std::optional<FrameChunk> c;
+  std::optional<FrameRange> r;
+  if (!chunk.empty()) c = parse_chunk(chunk);
+  if (!range.empty()) r = parse_frame_range(range);
+  try {
+    return frame_slice(c, r, frames);
+  } catch (const OptionError& error) {
+    const std::string flag = error.where() == "chunk"         ? "--chunk"
+                             : error.where() == "frame_range" ? "--frame-range"
+                                                              : "--chunk/--frame-range";
+    throw InputError(flag, error.message());
+  }
 }
 
 TEST(FrameSlice, BadFlagsNameTheFlag) {
@@ -47,7 +66,7 @@ TEST(FrameSlice, BadFlagsNameTheFlag) {
   };
   for (const auto& [flags, message] : cases) {
     try {
-      (void)frame_slice(flags.first, flags.second, 4);
+      (void)slice_of_flags(flags.first, flags.second, 4);
       ADD_FAILURE() << message << ": no error";
     } catch (const InputError& error) {
       EXPECT_EQ(std::string(error.what()).rfind(message, 0), 0u) << error.what();
@@ -77,11 +96,11 @@ TEST(FrameSlice, ChunkedRendersAreBitIdenticalToTheWholeRender) {
     ASSERT_EQ(whole.size(), 10u);
     std::map<size_t, Frame> chunked;
     for (const char* chunk : {"1/3", "2/3", "3/3"}) {
-      params.chunk = chunk;
+      params.chunk = parse_chunk(chunk);
       for (auto& [index, frame] : render_all(params)) chunked[index] = std::move(frame);
     }
-    params.chunk.clear();
-    params.frame_range = "7:8";
+    params.chunk.reset();
+    params.frame_range = FrameRange{7, 8};
     const std::map<size_t, Frame> range = render_all(params);
     ASSERT_EQ(chunked.size(), 10u);
     ASSERT_EQ(range.size(), 2u);

@@ -266,8 +266,8 @@ TEST(Shadows, CameraSpaceLightsMoveExactlyAsStaticVertices) {
 }
 
 /// Renders `spec` with a point light and a directional light at 48x48, 2 frames, with Embree
-/// (occlusion rays) and the kinetic backend (brute-force shadows), and compares both the masks
-/// of the two and Embree's against brute force on Embree's own primary hits.
+/// (occlusion rays) and the kinetic backend (its default, the kinetic AABB tree), and compares
+/// both the masks of the two and Embree's against brute force on Embree's own primary hits.
 void expect_masks_agree(const std::string& spec) {
   SCOPED_TRACE(spec);
   RenderParams params;
@@ -275,7 +275,6 @@ void expect_masks_agree(const std::string& spec) {
   params.width = params.height = 48;
   params.frames = 2;
   params.threads = 2;
-  params.shadow_tree = ShadowTree::brute;
   params.lights = {parse_light_flag("point:2,5,-3"), parse_light_flag("dir:-1,-2,0.5:0.5,0.6,0.7")};
   RenderJob job(params);
   std::unique_ptr<Backend> embree = job.make_backend("embree");
