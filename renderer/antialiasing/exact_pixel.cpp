@@ -1,0 +1,143 @@
+#include "renderer/antialiasing/exact_pixel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kinray {
+
+std::span<const TriangleQuadratureNode, 7> degree5_triangle_rule() {
+  static const std::array<TriangleQuadratureNode, 7> rule = [] {
+    const double r = std::sqrt(15.0);
+    const double a1 = (9 - 2 * r) / 21, b1 = (6 + r) / 21, w1 = (155 + r) / 1200;
+    const double a2 = (9 + 2 * r) / 21, b2 = (6 - r) / 21, w2 = (155 - r) / 1200;
+    return std::array<TriangleQuadratureNode, 7>{{{1.0 / 3, 1.0 / 3, 1.0 / 3, 9.0 / 40},
+                                                  {a1, b1, b1, w1},
+                                                  {b1, a1, b1, w1},
+                                                  {b1, b1, a1, w1},
+                                                  {a2, b2, b2, w2},
+                                                  {b2, a2, b2, w2},
+                                                  {b2, b2, a2, w2}}};
+  }();
+  return rule;
+}
+
+ExactPixels::ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t)
+    : ExactPixels(scene, image, t, Config{}) {}
+
+ExactPixels::ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t,
+                         Config config)
+    : m_scene(scene), m_image(image), m_t(t), m_config(config) {
+  m_config.textured_subdivision = std::max(1, m_config.textured_subdivision);
+}
+
+namespace {
+
+/// The texture coordinates of the ray d's hit on the plane of a textured `triangle` (the
+/// barycentrics of shading.cpp's Moller-Trumbore, without its clamping).
+Eigen::Vector2d texture_uv(const TriangleAtInstant& triangle, const Vec2& p) {
+  const Vec3 d(p.x(), p.y(), 1.0);
+  const Vec3 pvec = d.cross(triangle.e2);
+  const double det = triangle.e1.dot(pvec);
+  if (!(std::abs(det) > 0)) return Eigen::Vector2d::Zero();
+  const double u = (-triangle.p0).dot(pvec) / det, v = d.dot(triangle.qvec) / det;
+  const std::vector<Vec2f>& uvs = triangle.source->uvs;
+  return ((1 - u - v) * uvs[triangle.vertices[0]].cast<double>() +
+          u * uvs[triangle.vertices[1]].cast<double>() +
+          v * uvs[triangle.vertices[2]].cast<double>());
+}
+
+/// The sub-triangles per side a textured fan triangle (a, b, c) needs: at least `least`, and
+/// enough that each spans about half a texel (so the rule sees the bilinear texels' kinks only
+/// within a node's reach), at most kMaxTexturedSubdivision.
+int textured_subdivision(const TriangleAtInstant& triangle, const Vec2& a, const Vec2& b,
+                         const Vec2& c, int least) {
+  constexpr int kMaxTexturedSubdivision = 64;
+  const Eigen::Vector2d size(triangle.texture->width, triangle.texture->height);
+  const Eigen::Vector2d ua = texture_uv(triangle, a), ub = texture_uv(triangle, b),
+                        uc = texture_uv(triangle, c);
+  const double texels = std::max({((ub - ua).cwiseProduct(size)).cwiseAbs().maxCoeff(),
+                                  ((uc - ua).cwiseProduct(size)).cwiseAbs().maxCoeff(),
+                                  ((uc - ub).cwiseProduct(size)).cwiseAbs().maxCoeff()});
+  if (!std::isfinite(texels)) return kMaxTexturedSubdivision;
+  return std::clamp(int(std::ceil(2 * texels)), least, kMaxTexturedSubdivision);
+}
+
+}  // namespace
+
+template <class Shade>
+Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
+                                       const TriangleAtInstant* textured, Shade&& shade) const {
+  const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  auto triangle = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
+    const Vec2 ab = b - a, ac = c - a;
+    const double area = 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
+    if (!(area > 0)) return;
+    for (const TriangleQuadratureNode& node : rule) {
+      const Vec2 p = node.l0 * a + node.l1 * b + node.l2 * c;
+      sum += (node.weight * area) * shade(Vec3(p.x(), p.y(), 1.0)).template cast<double>();
+    }
+  };
+  for (size_t k = 1; k + 1 < piece.size(); ++k) {
+    const Vec2 &a = piece[0], &b = piece[k], &c = piece[k + 1];
+    const int m =
+        textured ? textured_subdivision(*textured, a, b, c, m_config.textured_subdivision) : 1;
+    if (m == 1) {
+      triangle(a, b, c);
+      continue;
+    }
+    // m x m congruent sub-triangles on the barycentric grid of step 1 / m.
+    const Vec2 u = (b - a) / m, v = (c - a) / m;
+    auto grid = [&](int s, int t) { return Vec2(a + double(s) * u + double(t) * v); };
+    for (int s = 0; s < m; ++s)
+      for (int t = 0; s + t < m; ++t) {
+        triangle(grid(s, t), grid(s + 1, t), grid(s, t + 1));
+        if (s + t + 2 <= m) triangle(grid(s + 1, t), grid(s + 1, t + 1), grid(s, t + 1));
+      }
+  }
+  return sum;
+}
+
+Color ExactPixels::colour(int i, int j, std::span<const TriangleRef> overlapping) {
+  m_refs.clear();
+  for (const TriangleRef& ref : overlapping)
+    if (m_scene.objects[ref.object].visible(m_t)) m_refs.push_back(ref);
+  // A fixed order whatever the caller's: it breaks the ties of coplanar triangles.
+  std::sort(m_refs.begin(), m_refs.end());
+  m_refs.erase(std::unique(m_refs.begin(), m_refs.end()), m_refs.end());
+  m_at_instant.clear();
+  m_image_triangles.clear();
+  uint32_t object = kNoHit;
+  ShadingInstant instant;
+  for (const TriangleRef& ref : m_refs) {
+    if (ref.object != object) {
+      object = ref.object;
+      instant = shading_instant(m_scene, object, m_t);
+    }
+    const TriangleAtInstant& t =
+        m_at_instant.emplace_back(triangle_at_instant(m_scene, ref.object, ref.prim, instant));
+    m_image_triangles.push_back(image_triangle(t.p0, t.p1, t.p2));
+  }
+
+  const PixelSquare square = pixel_square(m_image, i, j);
+  m_visibility.resolve(square, m_image_triangles);
+  if (m_visibility.pieces().empty()) return kBackgroundColor;
+  Eigen::Vector3d sum = m_visibility.background_area() * kBackgroundColor.cast<double>();
+  for (const VisiblePiece& piece : m_visibility.pieces()) {
+    const TriangleAtInstant& triangle = m_at_instant[piece.owner];
+    // The headlight, as shade_frame shades a centre ray; a lit read-out passes another shade.
+    const TriangleAtInstant* textured = triangle.texture != nullptr ? &triangle : nullptr;
+    sum += integrate(m_visibility.vertices(piece), textured, [&](const Vec3& d) {
+      return headlight_color(triangle, d, view_direction(d, triangle.tan_half_fov));
+    });
+  }
+  return (sum / square.area()).cast<float>();
+}
+
+Color exact_pixel_colour(const CameraSpaceScene& scene, const PixelRays& image, int i, int j,
+                         double t, std::span<const TriangleRef> overlapping) {
+  ExactPixels pixels(scene, image, t);
+  return pixels.colour(i, j, overlapping);
+}
+
+}  // namespace kinray
