@@ -12,6 +12,7 @@
 #include "renderer/antialiasing/exact_pixel.h"
 #include "renderer/antialiasing/pixel_samples.h"
 #include "renderer/backends/backend.h"
+#include "renderer/job/render_job.h"
 #include "renderer/shading.h"
 #include "renderer/shadows/lighting.h"
 #include "scenes/procedural.h"
@@ -110,6 +111,62 @@ TEST(EmbreeSupersampling, ConvergesWithTheSampleCount) {
     if (previous > 0) EXPECT_GT(previous / rmse, 1.6) << n << " samples";
     previous = rmse;
   }
+}
+
+// With a light, every sample traces its shadow ray: the frame converges as the headlight's does
+// (4 to 64 samples against 1024), is not the headlight's, and keeps the centre rays' light mask.
+TEST(EmbreeSupersampling, LitSamplesConverge) {
+  Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 2000}});
+  scene.lights = {Light{Light::Kind::point, Vec3(3, 4, 5)}};
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const double t = 0.5;
+  const Frame reference = supersampled(cs, 1024, t);
+  const Frame centre = supersampled(cs, 1, t);
+  EXPECT_EQ(reference.lit, centre.lit);
+  double previous = 0;
+  for (int n : {4, 16, 64}) {
+    const double rmse = test::image_error(supersampled(cs, n, t).color, reference.color).rmse;
+    if (previous > 0) EXPECT_GT(previous / rmse, 1.6) << n << " samples";
+    previous = rmse;
+  }
+  Scene unlit = scene;
+  unlit.lights.clear();
+  const CameraSpaceScene unlit_cs = CameraSpaceScene::build(unlit);
+  EXPECT_GT(test::image_error(supersampled(unlit_cs, 1024, t).color, reference.color).rmse, 1e-2);
+}
+
+// The render job passes RenderParams::aa_samples to the backend and lets it shade; it refuses
+// counts that are not squares and antialiasing with motion blur, naming the field.
+TEST(EmbreeSupersampling, RenderJobSupersamples) {
+  RenderParams params;
+  params.scene = "wavy-sphere:triangles=400";
+  params.backend = "embree";
+  params.width = kWidth;
+  params.height = kHeight;
+  params.frames = 2;
+  params.threads = 2;
+  params.aa_samples = 16;
+  RenderJob job(params);
+  std::unique_ptr<Backend> backend = job.make_backend();
+  Frame frame;
+  job.render_frame(*backend, 1, frame);
+  const Frame direct = supersampled(job.camera_space(), 16, job.frame_times()[1]);
+  EXPECT_TRUE(same_bits(frame.color, direct.color));
+  EXPECT_EQ(frame.object, direct.object);
+  auto where = [](RenderParams p) {
+    try {
+      validate(p);
+    } catch (const InputError& e) {
+      return e.where();
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(where(params), "(accepted)");
+  params.aa_samples = 12;
+  EXPECT_EQ(where(params), "aa_samples");
+  params.aa_samples = 4;
+  params.shutter.shutter = 0.5;
+  EXPECT_EQ(where(params), "aa_samples");
 }
 
 // The key test: the exact read-out, every pixel's triangles found by brute force, against Embree

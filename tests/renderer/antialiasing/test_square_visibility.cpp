@@ -174,6 +174,67 @@ TEST(SquareVisibility, RandomSetsMatchDenseSampling) {
   EXPECT_LT(error_sum / error_count, 2e-4);
 }
 
+// Many triangles over one square (20 to 30): the pieces still tile it and match the sampling.
+TEST(SquareVisibility, CrowdedSquaresMatchDenseSampling) {
+  constexpr int kGrid = 256;
+  std::mt19937 rng(77);
+  const PixelSquare square{0.1, 0.2, -0.3, -0.2};
+  SquareVisibility visibility;
+  for (int trial = 0; trial < 4; ++trial) {
+    std::vector<std::array<Vec3, 3>> triangles;
+    const int n = 20 + int(rng() % 11);
+    for (int k = 0; k < n; ++k) triangles.push_back(random_triangle(square, rng, rng() % 5 == 0));
+    visibility.resolve(square, image_triangles(triangles));
+    double sum = visibility.background_area();
+    for (size_t k = 0; k < triangles.size(); ++k) sum += visibility.visible_area(uint32_t(k));
+    ASSERT_NEAR(sum, square.area(), 1e-12 * square.area()) << "trial " << trial;
+    std::vector<int> counts(triangles.size() + 1, 0);
+    const double step = (square.x1 - square.x0) / kGrid;
+    for (int b = 0; b < kGrid; ++b)
+      for (int a = 0; a < kGrid; ++a)
+        ++counts[size_t(
+            nearest_hit(triangles, square.x0 + (a + 0.5) * step, square.y0 + (b + 0.5) * step) +
+            1)];
+    const double cell = square.area() / (double(kGrid) * kGrid);
+    for (size_t k = 0; k < triangles.size(); ++k)
+      EXPECT_NEAR(visibility.visible_area(uint32_t(k)), counts[k + 1] * cell, 4e-3 * square.area())
+          << "trial " << trial << " triangle " << k;
+  }
+}
+
+// A mesh patch: a 4 x 4 grid of quads on a tilted plane, vertices jittered within the plane and
+// shared between neighbours, over the square. Nothing hides anything, so each triangle's visible
+// area is its covered area, shared edges neither lose nor count twice, and the background is empty.
+TEST(SquareVisibility, MeshPatchSharedEdgesTileTheSquare) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  const PixelSquare square{-0.05, 0.05, -0.05, 0.05};
+  auto on_plane = [](double x, double y) { return at(x, y, 1.0 / (0.5 + 0.3 * x - 0.2 * y)); };
+  std::vector<Vec2> grid;
+  for (int b = 0; b <= 4; ++b)
+    for (int a = 0; a <= 4; ++a) {
+      const bool border = a == 0 || a == 4 || b == 0 || b == 4;
+      grid.emplace_back(-0.08 + 0.04 * a + (border ? 0 : jitter(rng)),
+                        -0.08 + 0.04 * b + (border ? 0 : jitter(rng)));
+    }
+  std::vector<std::array<Vec3, 3>> triangles;
+  auto vertex = [&](int a, int b) {
+    return on_plane(grid[size_t(b * 5 + a)].x(), grid[size_t(b * 5 + a)].y());
+  };
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      triangles.push_back({vertex(a, b), vertex(a + 1, b), vertex(a + 1, b + 1)});
+      triangles.push_back({vertex(a, b), vertex(a + 1, b + 1), vertex(a, b + 1)});
+    }
+  const std::vector<ImageTriangle> image = image_triangles(triangles);
+  SquareVisibility visibility;
+  visibility.resolve(square, image);
+  EXPECT_NEAR(visibility.background_area(), 0, 1e-12 * square.area());
+  for (size_t k = 0; k < triangles.size(); ++k)
+    EXPECT_NEAR(visibility.visible_area(uint32_t(k)), covered_area(square, image[k]),
+                1e-12 * square.area());
+}
+
 // The 7-point rule integrates every monomial x^a y^b of degree <= 5 exactly on a triangle, and
 // not all of degree 6.
 TEST(ExactPixel, QuadratureRuleHasDegreeFive) {
