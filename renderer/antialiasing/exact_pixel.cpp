@@ -99,9 +99,13 @@ Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
 }
 
 Color ExactPixels::colour(int i, int j, std::span<const TriangleRef> overlapping) {
-  m_refs.clear();
-  for (const TriangleRef& ref : overlapping)
-    if (m_scene.objects[ref.object].visible(m_t)) m_refs.push_back(ref);
+  m_refs.assign(overlapping.begin(), overlapping.end());
+  return colour_of_refs(i, j);
+}
+
+Color ExactPixels::colour_of_refs(int i, int j) {
+  std::erase_if(m_refs,
+                [&](const TriangleRef& ref) { return !m_scene.objects[ref.object].visible(m_t); });
   // A fixed order whatever the caller's: it breaks the ties of coplanar triangles.
   std::sort(m_refs.begin(), m_refs.end());
   m_refs.erase(std::unique(m_refs.begin(), m_refs.end()), m_refs.end());

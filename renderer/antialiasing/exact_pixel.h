@@ -48,6 +48,14 @@ class ExactPixels {
   /// image region meets the square (more do no harm, repeats are ignored); objects invisible at
   /// t are skipped.
   [[nodiscard]] Color colour(int i, int j, std::span<const TriangleRef> overlapping);
+  /// colour() of a set held as another type, to_ref(element) its TriangleRef (the kinetic square
+  /// sets' {mesh, triangle}: the kinetic grid's meshes are the objects, in order).
+  template <class T, class ToRef>
+  [[nodiscard]] Color colour(int i, int j, std::span<const T> overlapping, ToRef&& to_ref) {
+    m_refs.clear();
+    for (const T& element : overlapping) m_refs.push_back(to_ref(element));
+    return colour_of_refs(i, j);
+  }
 
   /// The last colour()'s visible pieces; their owners index triangles().
   [[nodiscard]] const SquareVisibility& visibility() const { return m_visibility; }
@@ -55,6 +63,8 @@ class ExactPixels {
   [[nodiscard]] std::span<const TriangleRef> triangles() const { return m_refs; }
 
  private:
+  /// colour() of the triangles in m_refs (any order, repeats and invisible objects allowed).
+  [[nodiscard]] Color colour_of_refs(int i, int j);
   /// The integral over one convex piece of shade(d) for d = (x, y, 1), by fan triangles, cut
   /// finer when the piece shows `textured` (nullptr: untextured).
   template <class Shade>
@@ -75,19 +85,25 @@ class ExactPixels {
 [[nodiscard]] Color exact_pixel_colour(const CameraSpaceScene& scene, const PixelRays& image, int i,
                                        int j, double t, std::span<const TriangleRef> overlapping);
 
+/// The TriangleRef of a TriangleRef.
+struct SameTriangleRef {
+  [[nodiscard]] TriangleRef operator()(const TriangleRef& ref) const { return ref; }
+};
+
 /// Fills frame.color with every pixel's exact colour at frame.time; overlapping(i, j) returns the
-/// triangles overlapping pixel (i, j) as a std::span<const TriangleRef> (valid until the next
-/// call on the same thread; it is called concurrently for different rows). Rows in parallel,
-/// `threads` as parallel_for takes them. Object, prim and depth are left as they are.
-template <class Overlapping>
+/// triangles overlapping pixel (i, j) as a std::span<const T> (valid until the next call on the
+/// same thread; it is called concurrently for different rows), to_ref(element) the TriangleRef of
+/// each. Rows in parallel, `threads` as parallel_for takes them. Object, prim and depth are left
+/// as they are.
+template <class Overlapping, class ToRef = SameTriangleRef>
 void exact_frame_colours(const CameraSpaceScene& scene, Frame& frame, Overlapping&& overlapping,
-                         int threads = 0) {
+                         int threads = 0, ToRef to_ref = {}) {
   const PixelRays image{frame.width, frame.height};
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
     ExactPixels pixels(scene, image, frame.time);
     for (int i = 0; i < frame.width; ++i)
-      frame.color[frame.index(i, j)] = pixels.colour(i, j, overlapping(i, j));
+      frame.color[frame.index(i, j)] = pixels.colour(i, j, overlapping(i, j), to_ref);
   });
 }
 
