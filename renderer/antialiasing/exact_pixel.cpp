@@ -66,13 +66,14 @@ int textured_subdivision(const TriangleAtInstant& triangle, const Vec2& a, const
 
 template <class Shade>
 Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
-                                       const TriangleAtInstant* textured, Shade&& shade) const {
+                                       const TriangleAtInstant* textured, Shade&& shade) {
   const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   auto triangle = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
     const Vec2 ab = b - a, ac = c - a;
     const double area = 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
     if (!(area > 0)) return;
+    m_stats.nodes += rule.size();
     for (const TriangleQuadratureNode& node : rule) {
       const Vec2 p = node.l0 * a + node.l1 * b + node.l2 * c;
       sum += (node.weight * area) * shade(Vec3(p.x(), p.y(), 1.0)).template cast<double>();
@@ -125,6 +126,10 @@ Color ExactPixels::colour_of_refs(int i, int j) {
 
   const PixelSquare square = pixel_square(m_image, i, j);
   m_visibility.resolve(square, m_image_triangles);
+  ++m_stats.pixels;
+  m_stats.covered_by_one += m_visibility.covered_by_one();
+  m_stats.triangles += m_refs.size();
+  m_stats.pieces += m_visibility.pieces().size();
   if (m_visibility.pieces().empty()) return kBackgroundColor;
   Eigen::Vector3d sum = m_visibility.background_area() * kBackgroundColor.cast<double>();
   for (const VisiblePiece& piece : m_visibility.pieces()) {

@@ -7,6 +7,7 @@
 // functions of shading.h on the node's ray (x, y, 1)), so that the sampling peer and this
 // read-out differ by the peer's noise only.
 #include <array>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -40,6 +41,23 @@ class ExactPixels {
     int textured_subdivision = 4;
   };
 
+  /// Counters for --stats, added up over the pixels read out.
+  struct Stats {
+    size_t pixels = 0;
+    size_t covered_by_one = 0;  ///< pixels inside one triangle nearer than the others
+    size_t triangles = 0;       ///< overlapping triangles, visible objects, no repeats
+    size_t pieces = 0;          ///< visible convex pieces
+    size_t nodes = 0;           ///< quadrature nodes shaded
+    Stats& operator+=(const Stats& o) {
+      pixels += o.pixels;
+      covered_by_one += o.covered_by_one;
+      triangles += o.triangles;
+      pieces += o.pieces;
+      nodes += o.nodes;
+      return *this;
+    }
+  };
+
   ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t);
   ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t, Config config);
 
@@ -61,6 +79,7 @@ class ExactPixels {
   [[nodiscard]] const SquareVisibility& visibility() const { return m_visibility; }
   /// The last colour()'s triangles: the visible ones of `overlapping`, sorted, without repeats.
   [[nodiscard]] std::span<const TriangleRef> triangles() const { return m_refs; }
+  [[nodiscard]] const Stats& stats() const { return m_stats; }
 
  private:
   /// colour() of the triangles in m_refs (any order, repeats and invisible objects allowed).
@@ -69,7 +88,7 @@ class ExactPixels {
   /// finer when the piece shows `textured` (nullptr: untextured).
   template <class Shade>
   Eigen::Vector3d integrate(std::span<const Vec2> piece, const TriangleAtInstant* textured,
-                            Shade&& shade) const;
+                            Shade&& shade);
 
   const CameraSpaceScene& m_scene;
   PixelRays m_image;
@@ -79,6 +98,7 @@ class ExactPixels {
   std::vector<TriangleRef> m_refs;
   std::vector<TriangleAtInstant> m_at_instant;
   std::vector<ImageTriangle> m_image_triangles;
+  Stats m_stats;
 };
 
 /// The exact colour of one pixel (buffers made for the call: for tests and single pixels).
@@ -94,16 +114,21 @@ struct SameTriangleRef {
 /// triangles overlapping pixel (i, j) as a std::span<const T> (valid until the next call on the
 /// same thread; it is called concurrently for different rows), to_ref(element) the TriangleRef of
 /// each. Rows in parallel, `threads` as parallel_for takes them. Object, prim and depth are left
-/// as they are.
+/// as they are. With `stats`, the frame's counters are added to it.
 template <class Overlapping, class ToRef = SameTriangleRef>
 void exact_frame_colours(const CameraSpaceScene& scene, Frame& frame, Overlapping&& overlapping,
-                         int threads = 0, ToRef to_ref = {}) {
+                         int threads = 0, ToRef to_ref = {}, ExactPixels::Stats* stats = nullptr) {
   const PixelRays image{frame.width, frame.height};
+  std::mutex mutex;
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
     ExactPixels pixels(scene, image, frame.time);
     for (int i = 0; i < frame.width; ++i)
       frame.color[frame.index(i, j)] = pixels.colour(i, j, overlapping(i, j), to_ref);
+    if (stats) {
+      const std::lock_guard lock(mutex);
+      *stats += pixels.stats();
+    }
   });
 }
 

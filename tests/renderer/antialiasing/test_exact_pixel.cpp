@@ -30,9 +30,16 @@ std::vector<Color> exact_colours(const CameraSpaceScene& scene, int width, int h
     for (int i = 0; i < width; ++i)
       for (size_t k : test::overlapping(triangles, pixel_square(image, i, j)))
         sets[frame.index(i, j)].push_back(triangles.refs[k]);
+  ExactPixels::Stats stats;
   exact_frame_colours(
       scene, frame,
-      [&](int i, int j) { return std::span<const TriangleRef>(sets[frame.index(i, j)]); }, 2);
+      [&](int i, int j) { return std::span<const TriangleRef>(sets[frame.index(i, j)]); }, 2,
+      SameTriangleRef{}, &stats);
+  std::printf("%zu pixels: %zu inside one triangle, %.2f triangles, %.2f pieces, %.1f nodes each\n",
+              stats.pixels, stats.covered_by_one, double(stats.triangles) / stats.pixels,
+              double(stats.pieces) / stats.pixels, double(stats.nodes) / stats.pixels);
+  EXPECT_EQ(stats.pixels, frame.pixel_count());
+  EXPECT_GE(stats.nodes, 7 * stats.pieces);
   return frame.color;
 }
 
