@@ -1,6 +1,7 @@
 #include "renderer/antialiasing/embree_supersampling.h"
 
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -12,11 +13,84 @@
 #include "util/parallel.h"
 
 namespace kinray {
+namespace {
+
+/// Embree's ray packets of width P.
+template <int P>
+struct Packet;
+template <>
+struct Packet<4> {
+  using RayHit = RTCRayHit4;
+  static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+    rtcIntersect4(valid, s, c, r);
+  }
+};
+template <>
+struct Packet<8> {
+  using RayHit = RTCRayHit8;
+  static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+    rtcIntersect8(valid, s, c, r);
+  }
+};
+template <>
+struct Packet<16> {
+  using RayHit = RTCRayHit16;
+  static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+    rtcIntersect16(valid, s, c, r);
+  }
+};
+
+/// The geometry and primitive ids the rays (x, y, 1) of `samples` hit: one ray at a time (P = 1)
+/// or P at a time, the samples of one pixel being neighbours.
+template <int P>
+void trace(RTCScene scene, RTCIntersectContext& context, std::span<const Vec2> samples,
+           std::span<RTCHit> hits) {
+  if constexpr (P == 1) {
+    for (size_t k = 0; k < samples.size(); ++k) {
+      RTCRayHit rayhit{};
+      rayhit.ray.dir_x = float(samples[k].x());
+      rayhit.ray.dir_y = float(samples[k].y());
+      rayhit.ray.dir_z = 1.0f;
+      rayhit.ray.tfar = std::numeric_limits<float>::infinity();
+      rayhit.ray.mask = ~0u;
+      rayhit.hit.geomID = rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &context, &rayhit);
+      hits[k] = rayhit.hit;
+    }
+  } else {
+    for (size_t k0 = 0; k0 < samples.size(); k0 += P) {
+      alignas(64) typename Packet<P>::RayHit rayhit{};
+      alignas(64) int valid[P];
+      for (size_t k = 0; k < size_t(P); ++k) {
+        const bool used = k0 + k < samples.size();
+        valid[k] = used ? -1 : 0;
+        const Vec2& d = samples[used ? k0 + k : k0];
+        rayhit.ray.dir_x[k] = float(d.x());
+        rayhit.ray.dir_y[k] = float(d.y());
+        rayhit.ray.dir_z[k] = 1.0f;
+        rayhit.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        rayhit.ray.mask[k] = ~0u;
+        rayhit.ray.id[k] = unsigned(k);
+        rayhit.hit.geomID[k] = rayhit.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      Packet<P>::intersect(valid, scene, &context, &rayhit);
+      for (size_t k = 0; k < size_t(P) && k0 + k < samples.size(); ++k) {
+        hits[k0 + k].geomID = rayhit.hit.geomID[k];
+        hits[k0 + k].primID = rayhit.hit.primID[k];
+      }
+    }
+  }
+}
+
+}  // namespace
 
 void embree_supersample(RTCScene scene, const CameraSpaceScene& camera_space,
-                        const CameraSpaceLights* lights, int samples, int threads, Frame& frame) {
+                        const CameraSpaceLights* lights, int samples, int packet, int threads,
+                        Frame& frame) {
   const int m = sample_grid_side(samples);
   if (m == 0) throw std::invalid_argument("embree_supersample: the sample count must be a square");
+  if (packet != 1 && packet != 4 && packet != 8 && packet != 16)
+    throw std::invalid_argument("embree_supersample: packets of 1, 4, 8 or 16 rays");
   if (lights != nullptr && lights->empty()) lights = nullptr;
   const PixelRays image{frame.width, frame.height};
   const std::vector<CameraSpaceLight> at_t =
@@ -41,25 +115,35 @@ void embree_supersample(RTCScene scene, const CameraSpaceScene& camera_space,
       if (mask) *mask = lit;
       return lit_color(hit, at_t, lit);
     };
+    const size_t n = size_t(samples);
+    std::vector<Vec2> positions(n);
+    std::vector<RTCHit> hits(n);
     const int j = int(row);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
       const PixelSquare square = pixel_square(image, i, j);
+      for (int k = 0; k < samples; ++k) positions[size_t(k)] = pixel_sample(square, p, k, m);
+      switch (packet) {
+        case 4:
+          trace<4>(scene, context, positions, hits);
+          break;
+        case 8:
+          trace<8>(scene, context, positions, hits);
+          break;
+        case 16:
+          trace<16>(scene, context, positions, hits);
+          break;
+        default:
+          trace<1>(scene, context, positions, hits);
+          break;
+      }
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      for (int k = 0; k < samples; ++k) {
-        const Vec2 s = pixel_sample(square, p, k, m);
-        RTCRayHit rayhit{};
-        rayhit.ray.dir_x = float(s.x());
-        rayhit.ray.dir_y = float(s.y());
-        rayhit.ray.dir_z = 1.0f;
-        rayhit.ray.tfar = std::numeric_limits<float>::infinity();
-        rayhit.ray.mask = ~0u;
-        rayhit.hit.geomID = rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &context, &rayhit);
+      for (size_t k = 0; k < n; ++k) {
+        const Vec2& s = positions[k];
         const Color c =
-            rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID
+            hits[k].geomID == RTC_INVALID_GEOMETRY_ID
                 ? kBackgroundColor
-                : shade(rayhit.hit.geomID, rayhit.hit.primID, Vec3(s.x(), s.y(), 1.0), nullptr);
+                : shade(hits[k].geomID, hits[k].primID, Vec3(s.x(), s.y(), 1.0), nullptr);
         sum += c.cast<double>();
       }
       frame.color[p] = (sum / samples).cast<float>();

@@ -16,8 +16,10 @@ namespace kinray {
 /// `scene`: committed with the geometry at frame.time, geometry id = object index (and, with
 /// lights, EmbreeShadowTracer's filter on every geometry). With `lights` (not empty) samples are
 /// lit and shadowed, and frame.lit is the light mask of the centre hit that frame.object and
-/// frame.prim already hold; else the headlight. Rows in parallel on `threads`.
+/// frame.prim already hold; else the headlight. The primary rays go `packet` at a time (1, 4, 8
+/// or 16: the backend's packet width, within a pixel). Rows in parallel on `threads`.
 void embree_supersample(RTCScene scene, const CameraSpaceScene& camera_space,
-                        const CameraSpaceLights* lights, int samples, int threads, Frame& frame);
+                        const CameraSpaceLights* lights, int samples, int packet, int threads,
+                        Frame& frame);
 
 }  // namespace kinray

@@ -288,7 +288,7 @@ class EmbreeBackend final : public Backend {
     } else {
       const uint64_t mark = m_device.error_count();
       embree_supersample(m_rtc_scene, m_scene, m_shadows ? &m_lights : nullptr, m_config.aa_samples,
-                         m_threads, frame);
+                         m_config.embree_packet, m_threads, frame);
       m_device.check(mark, "antialiasing");
     }
     m_aa_s.push_back(seconds_since(start));
