@@ -85,10 +85,12 @@ class ExactPixels {
   /// colour() of the triangles in m_refs (any order, repeats and invisible objects allowed).
   [[nodiscard]] Color colour_of_refs(int i, int j);
   /// The integral over one convex piece of shade(d) for d = (x, y, 1), by fan triangles, cut
-  /// finer when the piece shows `textured` (nullptr: untextured).
-  template <class Shade>
+  /// finer when the piece shows `textured` (nullptr: untextured) and along the kinks of shade:
+  /// the lines where kink(d) changes sign (the headlight's |cos| at cos = 0; a lit shade would
+  /// add its lights' terminators).
+  template <class Shade, class Kink>
   Eigen::Vector3d integrate(std::span<const Vec2> piece, const TriangleAtInstant* textured,
-                            Shade&& shade);
+                            Shade&& shade, Kink&& kink);
 
   const CameraSpaceScene& m_scene;
   PixelRays m_image;

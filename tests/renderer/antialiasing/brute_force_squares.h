@@ -4,6 +4,7 @@
 // vertex at or behind the eye plane), and a stratified box-filter reference of the same shading,
 // with its nearest hits by Moller-Trumbore in 3D rather than by the half-planes under test.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -19,7 +20,7 @@ namespace kinray::test {
 struct SceneTriangles {
   std::vector<TriangleRef> refs;
   std::vector<TriangleAtInstant> at;
-  std::vector<Eigen::Vector4d> boxes;  ///< projected (x0, y0, x1, y1); infinite when straddling
+  std::vector<Eigen::Vector4d> boxes;  ///< projected (x0, y0, x1, y1) of the part in front
 };
 
 inline SceneTriangles scene_triangles(const CameraSpaceScene& scene, double t) {
@@ -31,14 +32,20 @@ inline SceneTriangles scene_triangles(const CameraSpaceScene& scene, double t) {
       const TriangleAtInstant& tri =
           out.at.emplace_back(triangle_at_instant(scene, o, prim, instant));
       out.refs.push_back({o, prim});
+      // The projected box of the part in front of the plane z = 1e-9 (clipped in 3D, the
+      // textbook way, not by the image-plane half-planes under test).
+      constexpr double kNear = 1e-9;
+      const std::array<Vec3, 3> p = {tri.p0, tri.p1, tri.p2};
       Eigen::Vector4d box(kInfinity, kInfinity, -kInfinity, -kInfinity);
-      for (const Vec3& p : {tri.p0, tri.p1, tri.p2}) {
-        if (!(p.z() > 0)) {
-          box = Eigen::Vector4d(-kInfinity, -kInfinity, kInfinity, kInfinity);
-          break;
-        }
-        box = Eigen::Vector4d(std::min(box[0], p.x() / p.z()), std::min(box[1], p.y() / p.z()),
-                              std::max(box[2], p.x() / p.z()), std::max(box[3], p.y() / p.z()));
+      auto add = [&](const Vec3& q) {
+        box = Eigen::Vector4d(std::min(box[0], q.x() / q.z()), std::min(box[1], q.y() / q.z()),
+                              std::max(box[2], q.x() / q.z()), std::max(box[3], q.y() / q.z()));
+      };
+      for (size_t k = 0; k < 3; ++k) {
+        const Vec3 &a = p[k], &b = p[(k + 1) % 3];
+        if (a.z() >= kNear) add(a);
+        if ((a.z() < kNear) != (b.z() < kNear))
+          add(a + (b - a) * ((kNear - a.z()) / (b.z() - a.z())));
       }
       out.boxes.push_back(box);
     }
