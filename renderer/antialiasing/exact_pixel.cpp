@@ -28,6 +28,7 @@ ExactPixels::ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, 
                          Config config)
     : m_scene(scene), m_image(image), m_t(t), m_config(config) {
   m_config.textured_subdivision = std::max(1, m_config.textured_subdivision);
+  m_config.kink_depth = std::clamp(m_config.kink_depth, 0, 12);
 }
 
 namespace {
@@ -75,9 +76,18 @@ double facing(const TriangleAtInstant& triangle, const Vec3& d) {
   return n.dot(unfold(d, triangle.tan_half_fov));
 }
 
-/// Halvings of a fan triangle that a kink of the integrand crosses: at 5, the kink's error
-/// (second order in the size of the triangles it crosses) is a thousandth of the whole rule's.
-constexpr int kMaxKinkDepth = 5;
+/// Appends to `out` the part of the triangle (p[0], p[1], p[2]) where the affine function with
+/// values f[k] at its corners has the sign `side` (a triangle or a quadrilateral, or nothing).
+void clip_by_values(const std::array<Vec2, 3>& p, const std::array<double, 3>& f, double side,
+                    std::vector<Vec2>& out) {
+  out.clear();
+  for (size_t k = 0; k < 3; ++k) {
+    const size_t n = (k + 1) % 3;
+    const double a = side * f[k], b = side * f[n];
+    if (a >= 0) out.push_back(p[k]);
+    if ((a > 0 && b < 0) || (a < 0 && b > 0)) out.push_back(p[k] + (p[n] - p[k]) * (a / (a - b)));
+  }
+}
 
 }  // namespace
 
@@ -87,40 +97,47 @@ Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
                                        Kink&& kink) {
   const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  // The rule on a triangle, unless kink(d) changes sign over its corners and nodes (the integrand
-  // is not smooth there, and a polynomial rule converges slowly): then on its four midpoint
-  // children, to kMaxKinkDepth halvings, so that only the triangles along the kink are cut.
-  auto triangle = [&](auto&& self, const Vec2& a, const Vec2& b, const Vec2& c, int depth) -> void {
+  auto smooth = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
     const Vec2 ab = b - a, ac = c - a;
     const double area = 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
     if (!(area > 0)) return;
-    std::array<Vec2, 7> nodes;
-    for (size_t k = 0; k < rule.size(); ++k)
-      nodes[k] = rule[k].l0 * a + rule[k].l1 * b + rule[k].l2 * c;
-    if (depth < kMaxKinkDepth) {
-      int positive = 0, negative = 0;
-      auto sign = [&](const Vec2& p) {
-        const double f = kink(Vec3(p.x(), p.y(), 1.0));
-        positive += f > 0;
-        negative += f < 0;
-      };
-      sign(a);
-      sign(b);
-      sign(c);
-      for (const Vec2& p : nodes) sign(p);
-      if (positive > 0 && negative > 0) {
-        const Vec2 mab = (a + b) / 2, mbc = (b + c) / 2, mca = (c + a) / 2;
-        self(self, a, mab, mca, depth + 1);
-        self(self, mab, b, mbc, depth + 1);
-        self(self, mca, mbc, c, depth + 1);
-        self(self, mbc, mca, mab, depth + 1);
-        return;
-      }
-    }
     m_stats.nodes += rule.size();
-    for (size_t k = 0; k < rule.size(); ++k)
-      sum += (rule[k].weight * area) *
-             shade(Vec3(nodes[k].x(), nodes[k].y(), 1.0)).template cast<double>();
+    for (const TriangleQuadratureNode& node : rule) {
+      const Vec2 p = node.l0 * a + node.l1 * b + node.l2 * c;
+      sum += (node.weight * area) * shade(Vec3(p.x(), p.y(), 1.0)).template cast<double>();
+    }
+  };
+  auto kink_at = [&](const Vec2& p) { return kink(Vec3(p.x(), p.y(), 1.0)); };
+  // The rule on a triangle, unless kink(d) changes sign over its corners and nodes (the integrand
+  // is not smooth there, and a polynomial rule converges slowly): then its four midpoint
+  // children, to kink_depth halvings, so that only the triangles along the kink are cut; a last
+  // one the kink still crosses is cut along the line where the linear interpolant of kink(d)
+  // between its corners vanishes (the kink is a conic: straight to second order at that size),
+  // and each side gets the rule.
+  auto triangle = [&](auto&& self, const Vec2& a, const Vec2& b, const Vec2& c, int depth) -> void {
+    const std::array<double, 3> f = {kink_at(a), kink_at(b), kink_at(c)};
+    bool positive = f[0] > 0 || f[1] > 0 || f[2] > 0;
+    bool negative = f[0] < 0 || f[1] < 0 || f[2] < 0;
+    if (depth < m_config.kink_depth)
+      for (const TriangleQuadratureNode& node : rule) {
+        const double g = kink_at(node.l0 * a + node.l1 * b + node.l2 * c);
+        positive = positive || g > 0;
+        negative = negative || g < 0;
+      }
+    if (!positive || !negative) return smooth(a, b, c);
+    if (depth < m_config.kink_depth) {
+      const Vec2 mab = (a + b) / 2, mbc = (b + c) / 2, mca = (c + a) / 2;
+      self(self, a, mab, mca, depth + 1);
+      self(self, mab, b, mbc, depth + 1);
+      self(self, mca, mbc, c, depth + 1);
+      self(self, mbc, mca, mab, depth + 1);
+      return;
+    }
+    for (const double side : {1.0, -1.0}) {
+      clip_by_values({a, b, c}, f, side, m_kink_side);
+      for (size_t k = 1; k + 1 < m_kink_side.size(); ++k)
+        smooth(m_kink_side[0], m_kink_side[k], m_kink_side[k + 1]);
+    }
   };
   for (size_t k = 1; k + 1 < piece.size(); ++k) {
     const Vec2 &a = piece[0], &b = piece[k], &c = piece[k + 1];

@@ -39,6 +39,11 @@ class ExactPixels {
     /// textured piece's fan triangles are cut into m x m sub-triangles, each with the rule, m at
     /// least this and enough for a sub-triangle to span half a texel (at most 64).
     int textured_subdivision = 4;
+    /// Halvings of a fan triangle that a kink of the shading crosses (the headlight's |cos|
+    /// where the interpolated normal turns from the eye), before the last ones are cut along the
+    /// kink's chord: the error falls about 20-fold per halving (flythrough at 32 x 24, worst
+    /// pixel against 9 halvings: 4e-4 at 0, 5e-7 at 2, the cost 79 -> 165 nodes per pixel).
+    int kink_depth = 2;
   };
 
   /// Counters for --stats, added up over the pixels read out.
@@ -100,6 +105,7 @@ class ExactPixels {
   std::vector<TriangleRef> m_refs;
   std::vector<TriangleAtInstant> m_at_instant;
   std::vector<ImageTriangle> m_image_triangles;
+  std::vector<Vec2> m_kink_side;  ///< one side of a kink's chord in a fan triangle
   Stats m_stats;
 };
 
