@@ -163,6 +163,19 @@ TEST(ExactPixel, BackgroundAndInteriorPixels) {
   const Color centre = shade_hit(cs, image, i, j, triangles.refs[size_t(k)].object,
                                  triangles.refs[size_t(k)].prim, 0.0);
   EXPECT_LT((exact - centre).norm(), 0.05);
+  // The same set held as the kinetic square sets hold it ({mesh, triangle}, in another order),
+  // read through to_ref: the same colour, bit for bit.
+  struct SquareMember {
+    uint32_t mesh = 0, triangle = 0;
+  };
+  std::vector<SquareMember> members;
+  for (auto it = all.rbegin(); it != all.rend(); ++it) members.push_back({it->object, it->prim});
+  ExactPixels pixels(cs, image, 0.0);
+  const Color read =
+      pixels.colour(i, j, std::span<const SquareMember>(members), [](const SquareMember& m) {
+        return TriangleRef{m.mesh, m.triangle};
+      });
+  EXPECT_EQ(read, exact);
 }
 
 }  // namespace
