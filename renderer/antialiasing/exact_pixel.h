@@ -5,7 +5,11 @@
 // square into convex pieces, each seen on one triangle; each piece's shading is integrated by a
 // symmetric triangle quadrature whose nodes are shaded exactly as a centre ray is (the same
 // functions of shading.h on the node's ray (x, y, 1)), so that the sampling peer and this
-// read-out differ by the peer's noise only.
+// read-out differ by the peer's noise only. No shading is constant over a piece (the headlight's
+// view direction turns across the pixel), so every piece takes the rule; pieces are cut finer
+// where the shading is not smooth: bilinear texels, and the headlight's |cos| kink.
+// Lights (shadow rays at the nodes, their terminators as kinks) are another step: the read-out
+// shades by the headlight only.
 #include <array>
 #include <mutex>
 #include <span>
