@@ -1,5 +1,6 @@
 #include "renderer/backends/backend.h"
 
+#include "renderer/antialiasing/pixel_samples.h"
 #include "renderer/backends/auto_backend.h"
 #include "renderer/backends/embree_backend.h"
 #include "renderer/backends/kinetic_backend.h"
@@ -34,8 +35,16 @@ void Backend::render_shutter(const ShutterWindow&, Frame&) {
   throw OptionError("shutter", "the " + name() + " backend has no motion blur");
 }
 
+void Backend::render_supersampled(double, Frame&) {
+  throw OptionError("aa_samples", "the " + name() + " backend does not supersample");
+}
+
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config) {
+  if (sample_grid_side(config.aa_samples) == 0 || config.aa_samples > kMaxAaSamples)
+    throw OptionError("aa_samples", "must be a square in 1.." + std::to_string(kMaxAaSamples) +
+                                        " (1, 4, 16, 64, ...), got " +
+                                        std::to_string(config.aa_samples));
   std::string names;
   for (const BackendEntry& entry : kBackends) {
     if (name != entry.name) {
@@ -45,6 +54,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpace
     std::unique_ptr<Backend> backend = entry.make(scene, config);
     if (config.shutter.enabled() && !backend->has_motion_blur())
       throw OptionError("shutter", "the " + name + " backend has no motion blur (kinetic and embree have)");
+    if (config.aa_samples > 1 && !backend->has_supersampling())
+      throw OptionError("aa_samples",
+                        "the " + name + " backend does not supersample (embree does)");
     return backend;
   }
   throw OptionError("backend", "unknown backend '" + name + "' (available: " + names + ")");

@@ -28,6 +28,9 @@ struct BackendConfig {
   bool audit = false;           ///< kinetic: audit every certificate between events
   ShadowTree shadow_tree = ShadowTree::aabb;  ///< kinetic: what traces shadow rays (--shadow-tree)
   ShutterParams shutter{};      ///< motion blur: samples (sampling backends), order (kinetic)
+  /// Antialiasing samples per pixel of the sampling backends (a square; 1: the centre ray alone,
+  /// render() then shade_frame, bit for bit as without antialiasing).
+  int aa_samples = 1;
 };
 
 class Backend {
@@ -48,6 +51,13 @@ class Backend {
   virtual void render_shutter(const ShutterWindow& window, Frame& frame);
   /// True if render_shutter is implemented (make_backend rejects --shutter otherwise).
   [[nodiscard]] virtual bool has_motion_blur() const { return false; }
+  /// Antialiasing by supersampling (BackendConfig::aa_samples > 1; renderer/antialiasing/):
+  /// frame.color is the mean of aa_samples shaded rays per pixel at stratified jittered positions
+  /// of its square (a box filter); object, prim and depth (and the light mask) are render(t)'s, the
+  /// centre ray's. Throws OptionError naming aa_samples when this backend does not supersample.
+  virtual void render_supersampled(double t, Frame& frame);
+  /// True if render_supersampled is implemented (make_backend rejects aa_samples > 1 otherwise).
+  [[nodiscard]] virtual bool has_supersampling() const { return false; }
   /// Adds this backend's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}
   /// What traces this backend's shadow rays at the frame it rendered last; nullptr when the
@@ -60,7 +70,8 @@ class Backend {
 
 /// Creates the backend called `name` ("kinetic", "embree", "osmesa") for `scene`, which must
 /// outlive it. Throws OptionError naming "backend" for an unknown or unavailable backend, "shutter"
-/// for one without motion blur, or the field of `config` a backend rejects.
+/// for one without motion blur, "aa_samples" for a bad count or one without supersampling, or the
+/// field of `config` a backend rejects.
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config);
 

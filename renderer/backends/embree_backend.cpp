@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -15,10 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "renderer/motion_blur/embree_motion_blur.h"
-#include "renderer/shadows/embree_shadow_tracer.h"
+#include "renderer/antialiasing/embree_supersampling.h"
 #include "renderer/flush_denormals.h"
+#include "renderer/motion_blur/embree_motion_blur.h"
 #include "renderer/plane_depth.h"
+#include "renderer/shading.h"
+#include "renderer/shadows/embree_shadow_tracer.h"
+#include "renderer/shadows/lighting.h"
 #include "util/input_error.h"
 #include "util/parallel.h"
 
@@ -270,6 +273,27 @@ class EmbreeBackend final : public Backend {
 
   [[nodiscard]] bool has_motion_blur() const override { return true; }
 
+  [[nodiscard]] bool has_supersampling() const override { return true; }
+
+  void render_supersampled(double t, Frame& frame) override {
+    render(t, frame);  // the centre rays: ids and depths, and the scene committed at t
+    const auto start = Clock::now();
+    if (m_config.aa_samples == 1) {
+      // One sample is the centre ray, shaded as the frame loop shades it: bit for bit the frame
+      // of render() and shade_frame (or shade_frame_lit through this backend's shadow rays).
+      if (m_shadows)
+        shade_frame_lit(m_scene, m_lights, *m_shadows, frame, m_threads);
+      else
+        shade_frame(m_scene, frame, m_threads);
+    } else {
+      const uint64_t mark = m_device.error_count();
+      embree_supersample(m_rtc_scene, m_scene, m_shadows ? &m_lights : nullptr, m_config.aa_samples,
+                         m_config.embree_packet, m_threads, frame);
+      m_device.check(mark, "antialiasing");
+    }
+    m_aa_s.push_back(seconds_since(start));
+  }
+
   void render_shutter(const ShutterWindow& window, Frame& frame) override {
     if (frame.width != m_config.width || frame.height != m_config.height ||
         frame.pixel_count() == 0)
@@ -305,6 +329,8 @@ class EmbreeBackend final : public Backend {
         {"build_s", total(m_build_s)},
         {"trace_s", total(m_trace_s)},
         {"depth_s", total(m_depth_s)},
+        {"aa_samples", m_config.aa_samples},
+        {"aa_s", total(m_aa_s)},
         {"per_frame", {{"build_s", m_build_s}, {"trace_s", m_trace_s}, {"depth_s", m_depth_s}}},
     };
   }
@@ -494,6 +520,7 @@ class EmbreeBackend final : public Backend {
   std::unique_ptr<EmbreeShadowTracer> m_shadows;  ///< when the scene has lights
   CameraSpaceLights m_lights;                     ///< the scene's, for motion blur's shading
   std::vector<double> m_build_s, m_trace_s, m_depth_s;
+  std::vector<double> m_aa_s;  ///< render_supersampled: the samples' tracing and shading
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <system_error>
 #include <tuple>
 
+#include "renderer/antialiasing/pixel_samples.h"
 #include "renderer/contact_tint.h"
 #include "renderer/job/memory_estimate.h"
 #include "renderer/output/progress.h"
@@ -81,6 +82,13 @@ void validate(const RenderParams& params) {
                                     std::to_string(params.lights.size()));
   validate(params.chunk, params.frame_range);
   validate(params.shutter);
+  if (sample_grid_side(params.aa_samples) == 0 || params.aa_samples > kMaxAaSamples)
+    throw OptionError("aa_samples", "must be a square in 1.." + std::to_string(kMaxAaSamples) +
+                                        " (1, 4, 16, 64, ...), got " +
+                                        std::to_string(params.aa_samples));
+  if (params.aa_samples > 1 && params.shutter.enabled())
+    throw OptionError("aa_samples",
+                      "antialiasing with motion blur (--shutter) is not supported yet");
   if (params.contacts && params.shutter.enabled())
     throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
 }
@@ -105,6 +113,7 @@ BackendConfig backend_config(const RenderParams& params) {
   config.audit = params.audit;
   config.shadow_tree = params.shadow_tree;
   config.shutter = params.shutter;
+  config.aa_samples = params.aa_samples;
   return config;
 }
 
@@ -181,6 +190,13 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
   if (!m_windows.empty()) {
     backend.render_shutter(m_windows.at(index), frame);
     m_timings.render += now_s() - start;
+    return;
+  }
+  if (m_params.aa_samples > 1) {
+    // The backend shades its samples itself (with shadow rays when the scene has lights).
+    backend.render_supersampled(m_frame_times.at(index), frame);
+    m_timings.render += now_s() - start;
+    if (!m_contact_tint.empty()) tint_contacts(m_contact_tint.at(index), frame);
     return;
   }
   backend.render(m_frame_times.at(index), frame);

@@ -54,6 +54,7 @@ struct RenderParams {
   bool skip_existing = false;  ///< --skip-existing: render only the frames whose files are missing
   bool contacts = false;    ///< --contacts: tint the triangles in contact (set_contact_tint)
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
+  int aa_samples = 1;     ///< --aa-samples N: supersampled antialiasing (a square; 1: centre rays)
   CameraChoice camera;    ///< --camera, --eye, --target, --fov
 };
 
