@@ -119,6 +119,12 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
                   "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 4)")
       ->capture_default_str()
       ->group(group);
+  command
+      .add_option("--aa-samples", options.params.aa_samples,
+                  "Antialiasing, sampling backends (embree): stratified jittered samples per "
+                  "pixel, box-filtered (a square: 1, 4, 16, 64, ...; 1: the pixel's centre)")
+      ->capture_default_str()
+      ->group(group);
   add_threads_option(command, options.params.threads, "Render threads (0: all cores)")
       ->group(group);
 }
