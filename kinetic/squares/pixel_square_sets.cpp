@@ -1,0 +1,175 @@
+// PixelSquareSets: start-up, the event loop and the event handlers. A vertex that changes row or
+// side of the eye plane, and a straddling triangle whose plane sweeps the eye, rebuild that
+// triangle's record (rare: a record follows only the lines around it); a vertex that crosses a
+// column line within its row, or an edge line that passes a corner, moves one cell or step and
+// recomputes the one or two strips it bounds.
+#include "kinetic/squares/pixel_square_sets.h"
+
+#include <string>
+
+#include "kinetic/core/audit_failure.h"
+#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/squares/square_event_kinds.h"
+#include "util/check.h"
+
+namespace kinray {
+
+PixelSquareSets::PixelSquareSets(GridInput input, double start_time, const Config& config)
+    : m_input(std::move(input)), m_lattice(m_input.rays), m_config(config), m_sim(start_time) {
+  KINRAY_CHECK(m_lattice.width() > 0 && m_lattice.height() > 0);
+  const size_t meshes = m_input.meshes.size();
+  m_triangle_begin.push_back(0);
+  for (uint32_t m = 0; m < meshes; ++m) {
+    const FlightplanMesh& mesh = m_input.meshes[m];
+    validate_mesh(mesh, "mesh " + std::to_string(m) + ": ");
+    m_triangle_begin.push_back(m_triangle_begin.back() + uint32_t(mesh.triangles.size()));
+    m_triangle_mesh.resize(m_triangle_begin.back(), m);
+    m_segments.push_back(mesh_segment_at(mesh, start_time));
+    m_present.push_back(mesh.present(start_time) ? 1 : 0);
+  }
+  m_key_events.assign(meshes, kNoEvent);
+  m_presence_events.assign(meshes, kNoEvent);
+  m_records.resize(m_triangle_begin.back());
+  m_pixels.resize(m_lattice.rays().pixel_count());
+  // Start-up: every present triangle's record from the signs at the start time (rebuild adds it
+  // to the squares its strips hold).
+  for (uint32_t tri = 0; tri < m_records.size(); ++tri)
+    if (m_present[m_triangle_mesh[tri]]) rebuild(tri);
+  for (uint32_t m = 0; m < meshes; ++m) {
+    schedule_key(m);
+    schedule_presence(m);
+  }
+}
+
+void PixelSquareSets::advance_to(double t) {
+  m_sim.advance_to(t, [this](const EventKey& key, uint64_t payload) { handle(key, payload); });
+  if (!m_config.audit) return;
+  const std::vector<std::string> problems = audit();
+  if (!problems.empty())
+    throw KineticAuditFailure("per-square sets: " + problems.front() + " (" +
+                              std::to_string(problems.size()) + " problems)");
+}
+
+void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
+  const uint32_t tri = uint32_t(payload >> 32);
+  const size_t sub = size_t(payload & 0xffffffffu);
+  switch (key.kind) {
+    case kSquareKey: {
+      const uint32_t m = key.a;
+      m_key_events[m] = kNoEvent;
+      ++m_stats.events.flightplan;
+      m_segments[m] = mesh_segment_at(m_input.meshes[m], m_sim.now());
+      if (m_present[m])
+        for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) rebuild(t);
+      schedule_key(m);
+      break;
+    }
+    case kSquarePresence: {
+      const uint32_t m = key.a;
+      m_presence_events[m] = kNoEvent;
+      const bool present = m_input.meshes[m].present(m_sim.now());
+      if (present != bool(m_present[m])) {
+        m_present[m] = present ? 1 : 0;
+        if (present) {
+          ++m_stats.events.insert;
+          m_segments[m] = mesh_segment_at(m_input.meshes[m], m_sim.now());
+          for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) rebuild(t);
+        } else {
+          ++m_stats.events.remove;
+          for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) clear(t);
+        }
+      }
+      schedule_presence(m);
+      break;
+    }
+    case kSquareOrientation:
+      m_records[tri].orientation_event = kNoEvent;
+      ++m_stats.events.rebuild;
+      rebuild(tri);
+      break;
+    case kSquareHorizon:
+      // An edge line turned horizontal: its crossings of the row lines went through infinity.
+      m_records[tri].nx_events[sub] = kNoEvent;
+      ++m_stats.events.rebuild;
+      rebuild(tri);
+      break;
+    case kSquareVertex:
+      vertex_event(tri, int(sub));
+      break;
+    case kSquareCorner:
+      corner_event(tri, sub);
+      break;
+    default:
+      KINRAY_CHECK_MSG(false, "unknown event kind");
+  }
+}
+
+void PixelSquareSets::vertex_event(uint32_t tri, int v) {
+  TriangleRecord& rec = m_records[tri];
+  VertexCells& vc = rec.vertices[size_t(v)];
+  vc.event = kNoEvent;
+  const PointMotion p = motion(tri).v[size_t(v)];
+  const double s = local_time(tri);
+  const int z_sign = sign_after(Polynomial{p.a.z(), p.b.z()}, s) > 0 ? 1 : -1;
+  bool rebuilt = z_sign != vc.z_sign;
+  if (!rebuilt && vc.row != kNoCell)
+    rebuilt = walk_cell(vc.row, p, 1, vc.z_sign, m_lattice.height() + 1, m_lattice.y_lines(), s) !=
+              vc.row;
+  if (rebuilt) {
+    // Another row or side of the eye changes which lines and edges the record follows.
+    ++m_stats.events.rebuild;
+    rebuild(tri);
+    return;
+  }
+  if (vc.column != kNoCell) {
+    const int column =
+        walk_cell(vc.column, p, 0, vc.z_sign, m_lattice.width() + 1, m_lattice.x_lines(), s);
+    if (column != vc.column) {
+      ++m_stats.events.side;
+      vc.column = int16_t(column);
+      refresh_strips(tri, vc.row, vc.row + 1);
+      schedule_vertex(tri, v);
+      return;
+    }
+  }
+  ++m_stats.spurious;
+  schedule_vertex(tri, v);
+}
+
+void PixelSquareSets::corner_event(uint32_t tri, size_t entry) {
+  TriangleRecord& rec = m_records[tri];
+  EdgeOnLine& line = rec.lines[entry];
+  line.event = kNoEvent;
+  const CornerStep step =
+      locate_corner_step(motion(tri).edge(line.edge), m_lattice.width() + 1, m_lattice.x_lines(),
+                         m_lattice.y_line(line.line), local_time(tri));
+  if (step.first != line.step.first || step.count != line.step.count) {
+    ++m_stats.events.corner;
+    line.step = step;
+    // Row line k bounds strips k - 1 (above) and k (below).
+    refresh_strips(tri, line.line - 1, line.line + 1);
+  } else {
+    ++m_stats.spurious;
+  }
+  schedule_line(tri, entry);
+}
+
+SquareStats PixelSquareSets::stats() const {
+  SquareStats s = m_stats;
+  for (const auto& set : m_pixels) s.pixel_entries += set.size();
+  for (const TriangleRecord& rec : m_records) {
+    s.triangles_front += rec.mode == TriangleRecord::Mode::kFront;
+    s.triangles_straddling += rec.mode == TriangleRecord::Mode::kStraddling;
+  }
+  return s;
+}
+
+std::array<Eigen::Vector3d, 3> PixelSquareSets::triangle_at(uint32_t m, uint32_t triangle,
+                                                            double t) const {
+  const FlightplanMesh& mesh = m_input.meshes[m];
+  const FlightplanMesh::KeyBlend blend = mesh.blend_at(t);
+  const auto& vs = mesh.triangles[triangle];
+  return {mesh.position(vs[0], blend), mesh.position(vs[1], blend), mesh.position(vs[2], blend)};
+}
+
+}  // namespace kinray

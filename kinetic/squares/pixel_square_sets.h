@@ -1,0 +1,122 @@
+#pragma once
+// The kinetic per-pixel-square triangle sets of exact antialiasing (docs/design.md, "Exact
+// antialiasing: the pixel's square as the frustum"): for every pixel, the triangles whose image
+// region overlaps the pixel's closed square, kept up to date by events only. A triangle's squares
+// change only when an edge line passes a square corner (E_pq at the corner, quadratic), a vertex
+// crosses a pixel line (X - x Z or Y - y Z, linear), its plane sweeps the eye (O, cubic), a vertex
+// crosses the eye plane, or at a key, an appearance or a disappearance; each triangle's record
+// (triangle_footprint.h) watches the few of those that bracket it.
+//
+//   PixelSquareSets sets(input, t0);
+//   for (double t : frame_times) { sets.advance_to(t); for each pixel: sets.triangles(i, j); }
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "kinetic/core/simulator.h"
+#include "kinetic/grid/grid_input.h"
+#include "kinetic/grid/grid_scene.h"
+#include "kinetic/squares/square_lattice.h"
+#include "kinetic/squares/square_stats.h"
+#include "kinetic/squares/triangle_footprint.h"
+
+namespace kinray {
+
+/// One member of a pixel's set.
+struct SquareTriangle {
+  uint32_t mesh = 0;      ///< index into GridInput::meshes
+  uint32_t triangle = 0;  ///< index into that mesh's triangles
+  friend bool operator==(const SquareTriangle&, const SquareTriangle&) = default;
+};
+
+class PixelSquareSets {
+ public:
+  struct Config {
+    /// Audit after each advance (audit()); a problem throws KineticAuditFailure.
+    bool audit = false;
+  };
+
+  /// Builds every present triangle's record at start_time. The meshes' spans must outlive this.
+  PixelSquareSets(GridInput input, double start_time, const Config& config);
+  PixelSquareSets(GridInput input, double start_time)
+      : PixelSquareSets(std::move(input), start_time, Config{}) {}
+
+  /// Processes every event with time <= t, in time order (t must not decrease).
+  void advance_to(double t);
+  [[nodiscard]] double now() const { return m_sim.now(); }
+
+  /// The triangles whose region overlaps the closed square of pixel (i, j) (row 0 at the top),
+  /// in no particular order; valid until the next advance_to.
+  [[nodiscard]] std::span<const SquareTriangle> triangles(int i, int j) const {
+    return m_pixels[size_t(j) * size_t(m_lattice.width()) + size_t(i)];
+  }
+
+  /// At now(), which must lie strictly between events: every live certificate has the sign its
+  /// record claims, and every pixel's set is the brute force's (square_overlap.h), ties excepted.
+  /// The problems found (empty: none); `ties` counts the (triangle, square) ties met.
+  [[nodiscard]] std::vector<std::string> audit(size_t* ties = nullptr) const;
+
+  [[nodiscard]] SquareStats stats() const;
+  [[nodiscard]] const SquareLattice& lattice() const { return m_lattice; }
+  [[nodiscard]] const GridInput& input() const { return m_input; }
+  /// Positions of mesh m's triangle `triangle` at t, as FlightplanMesh::position blends them.
+  [[nodiscard]] std::array<Eigen::Vector3d, 3> triangle_at(uint32_t m, uint32_t triangle,
+                                                           double t) const;
+
+ private:
+  class Audit;
+  // Records (pixel_square_sets_records.cpp).
+  [[nodiscard]] TriangleMotion motion(uint32_t tri) const;
+  void build(uint32_t tri, TriangleRecord& rec) const;
+  void follow_vertices(TriangleRecord& rec, const TriangleMotion& tm, double s,
+                       bool columns_of_front) const;
+  void follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s) const;
+  void compute_strips(TriangleRecord& rec) const;
+  /// Replaces tri's record by a fresh one at now(), its pixels and events updated.
+  void rebuild(uint32_t tri);
+  /// Drops tri's record: out of its pixels, its events cancelled.
+  void clear(uint32_t tri);
+  /// Moves tri in or out of the pixels of strips [j0, j1) where `before` and its record differ.
+  void update_pixels(uint32_t tri, const TriangleRecord& before, int j0, int j1);
+  /// Recomputes tri's strips [j0, j1) from its record (after a cell or a step moved), moving it
+  /// in or out of the pixels that changed.
+  void refresh_strips(uint32_t tri, int j0, int j1);
+  void add(uint32_t tri, int i, int j);
+  void remove(uint32_t tri, int i, int j);
+  // Certificates (pixel_square_sets_schedule.cpp).
+  [[nodiscard]] double failure_time(int sign, const Polynomial& f, uint32_t mesh) const;
+  void schedule_all(uint32_t tri);
+  void schedule_vertex(uint32_t tri, int v);
+  void schedule_line(uint32_t tri, size_t entry);
+  void schedule_orientation(uint32_t tri);
+  void schedule_horizon(uint32_t tri, int edge);
+  void schedule_key(uint32_t m);
+  void schedule_presence(uint32_t m);
+  void cancel_all(TriangleRecord& rec);
+  // Events (pixel_square_sets.cpp).
+  void handle(const EventKey& key, uint64_t payload);
+  void vertex_event(uint32_t tri, int v);
+  void corner_event(uint32_t tri, size_t entry);
+  [[nodiscard]] bool moving(uint32_t tri) const {
+    return !m_input.meshes[m_triangle_mesh[tri]].is_static;
+  }
+  [[nodiscard]] double local_time(uint32_t tri) const {
+    return m_sim.now() - m_segments[m_triangle_mesh[tri]].origin;
+  }
+
+  GridInput m_input;
+  SquareLattice m_lattice;
+  Config m_config;
+  Simulator m_sim;
+  std::vector<uint32_t> m_triangle_begin;  ///< per mesh, prefix sums (global triangle ids)
+  std::vector<uint32_t> m_triangle_mesh;   ///< per global triangle
+  std::vector<MeshSegment> m_segments;     ///< per mesh: the key segment of now()
+  std::vector<uint8_t> m_present;          ///< per mesh
+  std::vector<EventHandle> m_key_events, m_presence_events;  ///< per mesh
+  std::vector<TriangleRecord> m_records;                     ///< per global triangle
+  std::vector<std::vector<SquareTriangle>> m_pixels;         ///< row-major
+  SquareStats m_stats;
+};
+
+}  // namespace kinray

@@ -1,0 +1,181 @@
+// Records: a triangle's record built from the signs at now() (start-up, rebuilds), its strips'
+// columns, and the pixels it is added to or removed from when they change.
+#include <algorithm>
+
+#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/squares/pixel_square_sets.h"
+#include "util/check.h"
+
+namespace kinray {
+
+namespace {
+
+using Mode = TriangleRecord::Mode;
+
+/// z(s) of a vertex: its side of the eye plane.
+Polynomial depth_of(const PointMotion& p) {
+  return Polynomial{p.a.z(), p.b.z()};
+}
+
+}  // namespace
+
+TriangleMotion PixelSquareSets::motion(uint32_t tri) const {
+  const uint32_t m = m_triangle_mesh[tri];
+  const FlightplanMesh& mesh = m_input.meshes[m];
+  const auto& local = mesh.triangles[tri - m_triangle_begin[m]];
+  TriangleMotion tm;
+  for (int k = 0; k < 3; ++k)
+    tm.v[size_t(k)] = mesh_vertex_motion(mesh, local[size_t(k)], m_segments[m]);
+  return tm;
+}
+
+void PixelSquareSets::follow_vertices(TriangleRecord& rec, const TriangleMotion& tm, double s,
+                                      bool columns_of_front) const {
+  const int w = m_lattice.width(), h = m_lattice.height();
+  for (int v = 0; v < 3; ++v) {
+    VertexCells& vc = rec.vertices[size_t(v)];
+    const PointMotion& p = tm.v[size_t(v)];
+    vc.row = int16_t(locate_cell(p, 1, vc.z_sign, h + 1, m_lattice.y_lines(), s));
+    if (columns_of_front && vc.z_sign > 0)
+      vc.column = int16_t(locate_cell(p, 0, vc.z_sign, w + 1, m_lattice.x_lines(), s));
+  }
+}
+
+void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s) const {
+  const int w = m_lattice.width(), h = m_lattice.height();
+  std::array<EdgeNormal, 3> normals;
+  for (int e = 0; e < 3; ++e) normals[size_t(e)] = tm.edge(e);
+  int line_end = 0;
+  if (rec.mode == Mode::kFront) {
+    // Only the row lines strictly between the vertices' rows meet R, each crossed by two edges.
+    int rmin = h, rmax = -1;
+    for (const VertexCells& vc : rec.vertices) {
+      rmin = std::min<int>(rmin, vc.row);
+      rmax = std::max<int>(rmax, vc.row);
+    }
+    rec.edges_per_line = 2;
+    rec.line_begin = std::max(rmin + 1, 0);
+    line_end = std::max(std::min(rmax, h) + 1, rec.line_begin);
+    rec.strip_begin = std::max(rmin, 0);
+    rec.strips.resize(size_t(std::max(std::min(rmax, h - 1) + 1 - rec.strip_begin, 0)));
+  } else {
+    rec.edges_per_line = 3;
+    rec.line_begin = 0;
+    line_end = h + 1;
+    rec.strip_begin = 0;
+    rec.strips.resize(size_t(h));
+  }
+  for (int k = rec.line_begin; k < line_end; ++k)
+    for (int e = 0; e < 3; ++e) {
+      if (rec.mode == Mode::kFront) {
+        const bool start_below = rec.vertices[size_t(kEdgeStart[e])].row >= k;
+        const bool end_below = rec.vertices[size_t(kEdgeEnd[e])].row >= k;
+        if (start_below == end_below) continue;
+      }
+      EdgeOnLine line;
+      line.line = int16_t(k);
+      line.edge = int8_t(e);
+      line.step = locate_corner_step(normals[size_t(e)], w + 1, m_lattice.x_lines(),
+                                     m_lattice.y_line(k), s);
+      rec.lines.push_back(line);
+    }
+  KINRAY_CHECK_EQ(rec.lines.size(), size_t((line_end - rec.line_begin) * rec.edges_per_line));
+}
+
+void PixelSquareSets::compute_strips(TriangleRecord& rec) const {
+  for (size_t k = 0; k < rec.strips.size(); ++k)
+    rec.strips[k] = strip_columns(rec, rec.strip_begin + int(k), m_lattice.width());
+}
+
+void PixelSquareSets::build(uint32_t tri, TriangleRecord& rec) const {
+  rec = TriangleRecord{};
+  if (!m_present[m_triangle_mesh[tri]]) return;
+  const TriangleMotion tm = motion(tri);
+  const double s = local_time(tri);
+  const Polynomial o = tm.orientation();
+  rec.mode = Mode::kEmpty;
+  if (o.is_zero()) return;  // degenerate all segment long: R is empty until the next key
+  int front = 0;
+  for (int v = 0; v < 3; ++v) {
+    rec.vertices[size_t(v)].z_sign = int8_t(sign_after(depth_of(tm.v[size_t(v)]), s) > 0 ? 1 : -1);
+    front += rec.vertices[size_t(v)].z_sign > 0;
+  }
+  if (front == 0) {
+    rec.mode = Mode::kBehind;  // no forward ray meets it
+    return;
+  }
+  rec.mode = front == 3 ? Mode::kFront : Mode::kStraddling;
+  rec.orientation = int8_t(sign_after(o, s));
+  if (rec.mode == Mode::kStraddling)
+    for (int e = 0; e < 3; ++e)
+      rec.nx_sign[size_t(e)] = int8_t(sign_plus(tm.edge(e).component(0), s));
+  follow_vertices(rec, tm, s, true);
+  follow_lines(rec, tm, s);
+  compute_strips(rec);
+}
+
+void PixelSquareSets::rebuild(uint32_t tri) {
+  TriangleRecord before = std::move(m_records[tri]);
+  cancel_all(before);
+  build(tri, m_records[tri]);
+  ++m_stats.records_built;
+  const TriangleRecord& rec = m_records[tri];
+  const int j0 = std::min(before.strip_begin, rec.strip_begin);
+  const int j1 = std::max(before.strip_begin + int(before.strips.size()),
+                          rec.strip_begin + int(rec.strips.size()));
+  update_pixels(tri, before, j0, j1);
+  if (moving(tri)) schedule_all(tri);
+}
+
+void PixelSquareSets::clear(uint32_t tri) {
+  TriangleRecord before = std::move(m_records[tri]);
+  cancel_all(before);
+  m_records[tri] = TriangleRecord{};
+  update_pixels(tri, before, before.strip_begin, before.strip_begin + int(before.strips.size()));
+}
+
+void PixelSquareSets::update_pixels(uint32_t tri, const TriangleRecord& before, int j0, int j1) {
+  const TriangleRecord& rec = m_records[tri];
+  for (int j = j0; j < j1; ++j) {
+    const ColumnRange was = before.strip(j), is = rec.strip(j);
+    for (int i = was.lo; i <= was.hi; ++i)
+      if (!is.contains(i)) remove(tri, i, j);
+    for (int i = is.lo; i <= is.hi; ++i)
+      if (!was.contains(i)) add(tri, i, j);
+  }
+}
+
+void PixelSquareSets::refresh_strips(uint32_t tri, int j0, int j1) {
+  TriangleRecord& rec = m_records[tri];
+  j0 = std::max(j0, rec.strip_begin);
+  j1 = std::min(j1, rec.strip_begin + int(rec.strips.size()));
+  for (int j = j0; j < j1; ++j) {
+    ColumnRange& held = rec.strips[size_t(j - rec.strip_begin)];
+    const ColumnRange was = held, is = strip_columns(rec, j, m_lattice.width());
+    held = is;
+    for (int i = was.lo; i <= was.hi; ++i)
+      if (!is.contains(i)) remove(tri, i, j);
+    for (int i = is.lo; i <= is.hi; ++i)
+      if (!was.contains(i)) add(tri, i, j);
+  }
+}
+
+void PixelSquareSets::add(uint32_t tri, int i, int j) {
+  const uint32_t m = m_triangle_mesh[tri];
+  m_pixels[size_t(j) * size_t(m_lattice.width()) + size_t(i)].push_back(
+      {m, tri - m_triangle_begin[m]});
+  ++m_stats.square_changes;
+}
+
+void PixelSquareSets::remove(uint32_t tri, int i, int j) {
+  const uint32_t m = m_triangle_mesh[tri];
+  const SquareTriangle entry{m, tri - m_triangle_begin[m]};
+  std::vector<SquareTriangle>& set = m_pixels[size_t(j) * size_t(m_lattice.width()) + size_t(i)];
+  const auto it = std::find(set.begin(), set.end(), entry);
+  KINRAY_CHECK_MSG(it != set.end(), "a triangle left a square it was not in");
+  *it = set.back();
+  set.pop_back();
+  ++m_stats.square_changes;
+}
+
+}  // namespace kinray

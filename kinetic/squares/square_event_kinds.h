@@ -1,0 +1,16 @@
+#pragma once
+// The kinds of the per-square sets' events, in the order equal times are processed: a mesh's key
+// and presence first (they rebuild whole meshes, and a certificate of the old key segment may
+// fail at the key itself), then a triangle's own rebuilds, then the local moves.
+#include <cstdint>
+
+namespace kinray {
+
+inline constexpr uint32_t kSquareKey = 0;          ///< a = mesh
+inline constexpr uint32_t kSquarePresence = 1;     ///< a = mesh
+inline constexpr uint32_t kSquareOrientation = 2;  ///< a = triangle
+inline constexpr uint32_t kSquareHorizon = 3;      ///< a = triangle, b = its edge (n_x = 0)
+inline constexpr uint32_t kSquareVertex = 4;       ///< a = triangle, b = its vertex
+inline constexpr uint32_t kSquareCorner = 5;       ///< a = triangle, b = its edge-on-line entry
+
+}  // namespace kinray

@@ -1,0 +1,39 @@
+#pragma once
+// Counters of the per-square sets (pbrt STAT_COUNTER style). Every event count is set by the
+// geometry and the motion alone: an edge line passing a square corner, a vertex crossing a pixel
+// line, a triangle rebuilt (a vertex changed row or side of the eye plane, its plane swept the
+// eye), a key, a mesh appearing or disappearing.
+#include <cstdint>
+
+#include "kinetic/core/counters.h"
+
+namespace kinray {
+
+// X(member, "stats key"), one line per kind of event.
+#define KINRAY_SQUARE_EVENT_KINDS(X)                                                    \
+  X(corner, "corner")         /* an edge line passed a square corner */                 \
+  X(side, "side")             /* a vertex crossed a column line within its row */       \
+  X(rebuild, "rebuild")       /* a vertex changed row or eye side, or O changed sign */ \
+  X(flightplan, "flightplan") /* a mesh reached a key (its triangles are rebuilt) */    \
+  X(insert, "insert")         /* a mesh appeared after the start */                     \
+  X(remove, "delete")         /* a mesh disappeared */
+
+struct SquareEventCounts {
+  KINRAY_EVENT_COUNTERS(SquareEventCounts, KINRAY_SQUARE_EVENT_KINDS)
+};
+
+// X(member, "stats key").
+#define KINRAY_SQUARE_COUNTERS(X)                                                                  \
+  X(certificates_scheduled, "certificates_scheduled") /* every failure time computed */            \
+  X(spurious, "spurious")                             /* events after which nothing had changed */ \
+  X(square_changes, "square_changes")   /* a triangle into or out of a pixel's set */              \
+  X(records_built, "records_built")     /* triangle records built or rebuilt */                    \
+  X(pixel_entries, "pixel_entries")     /* now: triangles held over all pixels */                  \
+  X(triangles_front, "triangles_front") /* now: records of triangles wholly before the eye */      \
+  X(triangles_straddling, "triangles_straddling") /* now: records across the eye plane */
+
+struct SquareStats {
+  KINRAY_COUNTERS_WITH_EVENTS(SquareStats, SquareEventCounts, KINRAY_SQUARE_COUNTERS)
+};
+
+}  // namespace kinray

@@ -1,0 +1,245 @@
+// The per-square sets against brute force: each pixel's set must be exactly the triangles whose
+// region overlaps its closed square (square_overlap, ties aside) at any time between events, on
+// a small synthetic scene built to reach every case (straddling the eye plane, behind the
+// camera, crossing the eye plane, slivers through a square that cover no corner and hold no
+// vertex), on built-in scenes, with no event at all for a static scene; and the centre sample's
+// triangles (brute force and the kinetic grid) are always among the square's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "kinetic/grid/frustum_grid.h"
+#include "kinetic/squares/pixel_square_sets.h"
+#include "renderer/backends/kinetic_backend.h"
+#include "scenes/camera_space.h"
+#include "scenes/scene_loader.h"
+#include "tests/kinetic/grid/grid_test_scenes.h"
+
+namespace kinray {
+namespace {
+
+using test::at_depth;
+using test::moving_triangle;
+using test::TestScene;
+using Vec = Eigen::Vector3d;
+
+/// A triangle given by its image coordinates and depths at each key.
+test::OwnedMesh image_triangle(std::vector<double> times,
+                               const std::vector<std::array<std::array<double, 3>, 3>>& keys) {
+  std::vector<std::array<Vec, 3>> camera;
+  for (const auto& key : keys) {
+    std::array<Vec, 3> k;
+    for (size_t v = 0; v < 3; ++v) k[v] = at_depth(key[v][0], key[v][1], key[v][2]);
+    camera.push_back(k);
+  }
+  return moving_triangle(std::move(times), camera);
+}
+
+/// 16x12 (x in [-4/3, 4/3], y in [-1, 1]), three keys over [0, 2].
+TestScene synthetic_scene() {
+  TestScene scene;
+  scene.width = 16;
+  scene.height = 12;
+  const std::vector<double> times = {0.0, 1.0, 2.0};
+  // Translating across the image, leaving it on the right.
+  scene.meshes.push_back(
+      image_triangle(times, {{{{-1.8, 0.2, 3}, {-1.2, 0.8, 3.5}, {-1.5, -0.3, 2.5}}},
+                             {{{-0.3, 0.1, 3}, {0.3, 0.7, 3.5}, {0.0, -0.4, 2.5}}},
+                             {{{1.2, -0.2, 3}, {1.8, 0.4, 3.5}, {1.5, -0.7, 2.5}}}}));
+  // Rotating about (0.2, -0.1) while it moves in depth.
+  std::vector<std::array<std::array<double, 3>, 3>> rotating;
+  for (int k = 0; k < 3; ++k) {
+    std::array<std::array<double, 3>, 3> key;
+    for (int v = 0; v < 3; ++v) {
+      const double a = 1.3 * k + 2.0944 * v;
+      key[size_t(v)] = {0.2 + 0.7 * std::cos(a), -0.1 + 0.6 * std::sin(a), 2.0 + 0.8 * k};
+    }
+    rotating.push_back(key);
+  }
+  scene.meshes.push_back(image_triangle(times, rotating));
+  // Straddling the eye plane all along (one vertex behind it).
+  scene.meshes.push_back(
+      moving_triangle(times, {{Vec(-0.5, -0.3, 1.5), Vec(0.6, -0.2, 2.0), Vec(0.1, 0.4, -1.0)},
+                              {Vec(-0.2, -0.5, 1.2), Vec(0.7, 0.1, 2.2), Vec(0.4, -0.5, -0.5)},
+                              {Vec(0.3, -0.1, 1.8), Vec(-0.6, 0.3, 1.0), Vec(-0.3, 0.2, -2.0)}}));
+  // Behind the camera all along.
+  scene.meshes.push_back(
+      moving_triangle(times, {{Vec(0, 0, -2), Vec(1, 0, -2), Vec(0, 1, -2)},
+                              {Vec(-1, 0.5, -1), Vec(0.5, -0.5, -3), Vec(0, 1, -0.5)},
+                              {Vec(0.2, 0.2, -0.3), Vec(1, 1, -2), Vec(-1, 0.3, -1)}}));
+  // A vertex crossing the eye plane: straddling, then wholly before the eye, then straddling
+  // with two vertices behind.
+  scene.meshes.push_back(
+      moving_triangle(times, {{Vec(0.3, 0.3, 2.0), Vec(-0.4, 0.5, 2.5), Vec(0.0, -0.3, -0.5)},
+                              {Vec(0.2, 0.2, 1.5), Vec(-0.5, 0.4, 2.0), Vec(0.1, -0.2, 1.0)},
+                              {Vec(0.4, 0.1, -0.8), Vec(-0.3, 0.6, 1.2), Vec(0.5, 0.1, -1.0)}}));
+  // Slivers: long and thin across the image diagonally (vertices off-screen, so inside a square
+  // there is neither a vertex nor, mostly, a covered corner), and thin along a row.
+  scene.meshes.push_back(
+      image_triangle(times, {{{{-2.0, -1.3, 2}, {2.0, 1.1, 2}, {2.0, 1.115, 2}}},
+                             {{{-2.0, -1.0, 2}, {2.0, 1.3, 2.2}, {2.0, 1.312, 2.2}}},
+                             {{{-2.0, -1.5, 2}, {2.0, 0.8, 1.8}, {2.0, 0.81, 1.8}}}}));
+  scene.meshes.push_back(
+      image_triangle(times, {{{{-2.0, 0.02, 2}, {2.0, 0.05, 2}, {2.0, 0.06, 2}}},
+                             {{{-2.0, -0.13, 2}, {2.0, -0.08, 2}, {2.0, -0.07, 2}}},
+                             {{{-2.0, 0.35, 2}, {2.0, 0.31, 2}, {2.0, 0.315, 2}}}}));
+  // A tiny triangle wandering inside squares, and a short sliver crossing them between corners.
+  scene.meshes.push_back(
+      image_triangle(times, {{{{-0.61, 0.52, 1}, {-0.60, 0.53, 1}, {-0.605, 0.51, 1}}},
+                             {{{0.41, -0.27, 1}, {0.42, -0.26, 1}, {0.415, -0.28, 1}}},
+                             {{{0.91, 0.73, 1}, {0.92, 0.74, 1}, {0.915, 0.72, 1}}}}));
+  scene.meshes.push_back(
+      image_triangle(times, {{{{-0.95, -0.62, 3}, {-0.71, -0.48, 3}, {-0.70, -0.475, 3}}},
+                             {{{0.05, -0.62, 3}, {0.29, -0.45, 3}, {0.30, -0.447, 3}}},
+                             {{{0.55, 0.12, 3}, {0.81, 0.29, 3}, {0.82, 0.293, 3}}}}));
+  return scene;
+}
+
+std::vector<double> random_times(double t0, double t1, int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(t0, t1);
+  std::vector<double> times(static_cast<size_t>(n));
+  for (double& t : times) t = u(rng);
+  std::sort(times.begin(), times.end());
+  return times;
+}
+
+/// Advances through the times, auditing at each; returns the ties met.
+size_t expect_matches_brute_force(PixelSquareSets& sets, const std::vector<double>& times) {
+  size_t ties = 0;
+  for (double t : times) {
+    sets.advance_to(t);
+    const std::vector<std::string> problems = sets.audit(&ties);
+    EXPECT_TRUE(problems.empty()) << problems.size() << " problems, first: " << problems.front();
+    if (!problems.empty()) break;
+  }
+  return ties;
+}
+
+/// Every triangle whose sign rule clearly holds at a pixel's centre ray is in its square's set.
+void expect_centre_hits_held(const PixelSquareSets& sets) {
+  const GridInput& in = sets.input();
+  const PixelRays& rays = in.rays;
+  for (uint32_t m = 0; m < in.meshes.size(); ++m) {
+    if (!in.meshes[m].present(sets.now())) continue;
+    for (uint32_t tri = 0; tri < in.meshes[m].triangles.size(); ++tri) {
+      const auto p = sets.triangle_at(m, tri, sets.now());
+      for (int j = 0; j < rays.height; ++j)
+        for (int i = 0; i < rays.width; ++i) {
+          if (ray_pierces(p[0], p[1], p[2], rays.x(i), rays.y(j)) != Overlap::kYes) continue;
+          const auto set = sets.triangles(i, j);
+          EXPECT_NE(std::find(set.begin(), set.end(), SquareTriangle{m, tri}), set.end())
+              << "mesh " << m << " triangle " << tri << " pierces the centre of (" << i << ", " << j
+              << ") at t = " << sets.now();
+        }
+    }
+  }
+}
+
+TEST(PixelSquareSets, SyntheticSceneMatchesBruteForceAtRandomTimes) {
+  const TestScene scene = synthetic_scene();
+  PixelSquareSets sets(scene.input(), -0.25);
+  size_t ties = 0;
+  EXPECT_TRUE(sets.audit(&ties).empty());
+  ties += expect_matches_brute_force(sets, random_times(-0.25, 2.3, 400, 7));
+  const SquareStats stats = sets.stats();
+  // The scene reaches every kind of event, and both kinds of record.
+  EXPECT_GT(stats.events.corner, 0u);
+  EXPECT_GT(stats.events.side, 0u);
+  EXPECT_GT(stats.events.rebuild, 0u);
+  EXPECT_EQ(stats.events.flightplan, 3u * scene.meshes.size());  // keys 0, 1 and 2
+  EXPECT_GT(stats.triangles_straddling, 0u);
+  EXPECT_GT(stats.triangles_front, 0u);
+  // Ties (an edge or a vertex within 1e-9 of a square's side) are rare: under 0.1% of the
+  // (triangle, square) pairs tested.
+  EXPECT_LT(ties, 400u * scene.meshes.size() * 16 * 12 / 1000);
+}
+
+TEST(PixelSquareSets, SyntheticSceneAtItsEventsAndKeys) {
+  // The times just after keys and at them, where segments switch and records are rebuilt.
+  const TestScene scene = synthetic_scene();
+  PixelSquareSets sets(scene.input(), 0.0, {.audit = true});
+  for (double t : {1e-9, 0.5, 1.0, 1.0 + 1e-9, 1.7, 2.0, 2.0 + 1e-6, 3.0}) {
+    EXPECT_NO_THROW(sets.advance_to(t)) << "t = " << t;
+  }
+}
+
+TEST(PixelSquareSets, AppearingAndDisappearingMeshes) {
+  TestScene scene = synthetic_scene();
+  scene.meshes[0].appear = 0.3;
+  scene.meshes[1].disappear = 1.4;
+  scene.meshes[2].appear = 0.8;
+  scene.meshes[2].disappear = 1.9;
+  PixelSquareSets sets(scene.input(), 0.0);
+  expect_matches_brute_force(sets, random_times(0.0, 2.2, 120, 11));
+  EXPECT_EQ(sets.stats().events.insert, 2u);
+  EXPECT_EQ(sets.stats().events.remove, 2u);
+}
+
+class PixelSquareSetsBuiltIn : public ::testing::TestWithParam<const char*> {};
+
+INSTANTIATE_TEST_SUITE_P(PixelSquareSets, PixelSquareSetsBuiltIn,
+                         ::testing::Values("wavy-sphere:triangles=300", "orbit:triangles=400",
+                                           "crossing:triangles=300", "flythrough:triangles=300"),
+                         [](const auto& param) {
+                           std::string name = param.param;
+                           name = name.substr(0, name.find(':'));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+TEST_P(PixelSquareSetsBuiltIn, MatchesBruteForceWithTheAuditOn) {
+  const Scene scene = load_scene(GetParam());
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const double t0 = scene.time_begin, t1 = scene.time_end;
+  PixelSquareSets sets(kinetic_grid_input(cs, 48, 36), t0, {.audit = true});
+  FrustumGrid grid(kinetic_grid_input(cs, 48, 36), t0);
+  for (double t : random_times(t0, t1, 8, 3)) {
+    ASSERT_NO_THROW(sets.advance_to(t));
+    grid.advance_to(t);
+    expect_centre_hits_held(sets);
+    // The kinetic grid's front triangle of each pixel is in that pixel's square set.
+    for (int j = 0; j < 36; ++j)
+      for (int i = 0; i < 48; ++i) {
+        const std::optional<GridHit> front = grid.front(i, j);
+        if (!front) continue;
+        const auto set = sets.triangles(i, j);
+        EXPECT_NE(std::find(set.begin(), set.end(), SquareTriangle{front->mesh, front->triangle}),
+                  set.end())
+            << "front of (" << i << ", " << j << ") at t = " << t;
+      }
+  }
+  EXPECT_GT(sets.stats().events.total(), 0u);
+}
+
+TEST(PixelSquareSets, StaticSceneEmitsNoEvents) {
+  TestScene scene = synthetic_scene();
+  for (test::OwnedMesh& m : scene.meshes) {
+    // Every key at the first key's positions.
+    for (size_t k = 1; k < m.times.size(); ++k)
+      for (size_t v = 0; v < m.vertex_count; ++v)
+        m.positions[k * m.vertex_count + v] = m.positions[v];
+    m.is_static = true;
+  }
+  PixelSquareSets sets(scene.input(), 0.0);
+  expect_matches_brute_force(sets, random_times(0.0, 5.0, 10, 5));
+  const SquareStats stats = sets.stats();
+  EXPECT_EQ(stats.events.total(), 0u);
+  EXPECT_EQ(stats.certificates_scheduled, 0u);
+  EXPECT_GT(stats.pixel_entries, 0u);
+}
+
+TEST(PixelSquareSets, CentreSampleTrianglesAreInTheSquareSets) {
+  const TestScene scene = synthetic_scene();
+  PixelSquareSets sets(scene.input(), -0.25);
+  for (double t : random_times(-0.25, 2.3, 40, 13)) {
+    sets.advance_to(t);
+    expect_centre_hits_held(sets);
+  }
+}
+
+}  // namespace
+}  // namespace kinray
