@@ -59,8 +59,18 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
       m_key_events[m] = kNoEvent;
       ++m_stats.events.flightplan;
       m_segments[m] = mesh_segment_at(m_input.meshes[m], m_sim.now());
+      // The vertices are continuous across a key, and so is every record: only its certificates
+      // are recomputed on the new segment. One that the key's rounding leaves failing fires now
+      // and is handled like any other event. A triangle degenerate on either segment (O the zero
+      // polynomial, whose record is empty) is rebuilt.
       if (m_present[m])
-        for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) rebuild(t);
+        for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) {
+          if (m_records[t].mode == TriangleRecord::Mode::kEmpty ||
+              motion(t).orientation().is_zero())
+            rebuild(t);
+          else
+            schedule_all(t);
+        }
       schedule_key(m);
       break;
     }
@@ -110,7 +120,7 @@ void PixelSquareSets::vertex_event(uint32_t tri, int v) {
   vc.event = kNoEvent;
   const PointMotion p = motion(tri).v[size_t(v)];
   const double s = local_time(tri);
-  const int z_sign = sign_after(Polynomial{p.a.z(), p.b.z()}, s) > 0 ? 1 : -1;
+  const int z_sign = sign_plus(Polynomial{p.a.z(), p.b.z()}, s);
   bool rebuilt = z_sign != vc.z_sign;
   if (!rebuilt && vc.row != kNoCell)
     rebuilt = walk_cell(vc.row, p, 1, vc.z_sign, m_lattice.height() + 1, m_lattice.y_lines(), s) !=

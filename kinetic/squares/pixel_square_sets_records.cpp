@@ -12,7 +12,9 @@ namespace {
 
 using Mode = TriangleRecord::Mode;
 
-/// z(s) of a vertex: its side of the eye plane.
+/// z(s) of a vertex: its side of the eye plane, read by sign_plus like every other certificate (a
+/// vertex held in the eye plane all segment long counts as before it, with its projection at
+/// infinity), so that its claim and its failure time agree and it cannot fire at once for ever.
 Polynomial depth_of(const PointMotion& p) {
   return Polynomial{p.a.z(), p.b.z()};
 }
@@ -97,7 +99,7 @@ void PixelSquareSets::build(uint32_t tri, TriangleRecord& rec) const {
   if (o.is_zero()) return;  // degenerate all segment long: R is empty until the next key
   int front = 0;
   for (int v = 0; v < 3; ++v) {
-    rec.vertices[size_t(v)].z_sign = int8_t(sign_after(depth_of(tm.v[size_t(v)]), s) > 0 ? 1 : -1);
+    rec.vertices[size_t(v)].z_sign = int8_t(sign_plus(depth_of(tm.v[size_t(v)]), s));
     front += rec.vertices[size_t(v)].z_sign > 0;
   }
   if (front == 0) {
