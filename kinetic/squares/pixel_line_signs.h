@@ -86,4 +86,20 @@ struct CornerStep {
   return step;
 }
 
+/// The step after a small move, walked from `step` (one corner, at a corner event): the same
+/// contract as locate_corner_step, in two or three signs instead of a bisection.
+[[nodiscard]] inline CornerStep walk_corner_step(const CornerStep& step, const EdgeNormal& n,
+                                                 int corners, const double* xs, double y,
+                                                 double s) {
+  CornerStep walked;
+  walked.first = corner_sign(n, xs[0], y, s);
+  // When corner 0 changed sign the step can only have entered at the left end.
+  int c = walked.first == step.first ? step.count : 1;
+  auto same = [&](int m) { return corner_sign(n, xs[m], y, s) == walked.first; };
+  while (c > 1 && !same(c - 1)) --c;
+  while (c < corners && same(c)) ++c;
+  walked.count = c;
+  return walked;
+}
+
 }  // namespace kinray

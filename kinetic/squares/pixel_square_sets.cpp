@@ -151,8 +151,8 @@ void PixelSquareSets::corner_event(uint32_t tri, size_t entry) {
   EdgeOnLine& line = rec.lines[entry];
   line.event = kNoEvent;
   const CornerStep step =
-      locate_corner_step(motion(tri).edge(line.edge), m_lattice.width() + 1, m_lattice.x_lines(),
-                         m_lattice.y_line(line.line), local_time(tri));
+      walk_corner_step(line.step, motion(tri).edge(line.edge), m_lattice.width() + 1,
+                       m_lattice.x_lines(), m_lattice.y_line(line.line), local_time(tri));
   if (step.first != line.step.first || step.count != line.step.count) {
     ++m_stats.events.corner;
     line.step = step;

@@ -256,7 +256,8 @@ class PixelSquareSetsBuiltIn : public ::testing::TestWithParam<const char*> {};
 
 INSTANTIATE_TEST_SUITE_P(PixelSquareSets, PixelSquareSetsBuiltIn,
                          ::testing::Values("wavy-sphere:triangles=300", "orbit:triangles=400",
-                                           "crossing:triangles=300", "flythrough:triangles=300"),
+                                           "crossing:triangles=300", "flythrough:triangles=300",
+                                           "cloth:triangles=300", "static-moving:triangles=300"),
                          [](const auto& param) {
                            std::string name = param.param;
                            name = name.substr(0, name.find(':'));
