@@ -118,7 +118,8 @@ void PixelSquareSets::vertex_event(uint32_t tri, int v) {
   TriangleRecord& rec = m_records[tri];
   VertexCells& vc = rec.vertices[size_t(v)];
   vc.event = kNoEvent;
-  const PointMotion p = motion(tri).v[size_t(v)];
+  const TriangleMotion tm = motion(tri);
+  const PointMotion& p = tm.v[size_t(v)];
   const double s = local_time(tri);
   const int z_sign = sign_plus(Polynomial{p.a.z(), p.b.z()}, s);
   bool rebuilt = z_sign != vc.z_sign;
@@ -138,21 +139,22 @@ void PixelSquareSets::vertex_event(uint32_t tri, int v) {
       ++m_stats.events.side;
       vc.column = int16_t(column);
       refresh_strips(tri, vc.row, vc.row + 1);
-      schedule_vertex(tri, v);
+      schedule_vertex(tri, v, tm);
       return;
     }
   }
   ++m_stats.spurious;
-  schedule_vertex(tri, v);
+  schedule_vertex(tri, v, tm);
 }
 
 void PixelSquareSets::corner_event(uint32_t tri, size_t entry) {
   TriangleRecord& rec = m_records[tri];
   EdgeOnLine& line = rec.lines[entry];
   line.event = kNoEvent;
+  const TriangleMotion tm = motion(tri);
   const CornerStep step =
-      walk_corner_step(line.step, motion(tri).edge(line.edge), m_lattice.width() + 1,
-                       m_lattice.x_lines(), m_lattice.y_line(line.line), local_time(tri));
+      walk_corner_step(line.step, tm.edge(line.edge), m_lattice.width() + 1, m_lattice.x_lines(),
+                       m_lattice.y_line(line.line), local_time(tri));
   if (step.first != line.step.first || step.count != line.step.count) {
     ++m_stats.events.corner;
     line.step = step;
@@ -161,7 +163,7 @@ void PixelSquareSets::corner_event(uint32_t tri, size_t entry) {
   } else {
     ++m_stats.spurious;
   }
-  schedule_line(tri, entry);
+  schedule_line(tri, entry, tm);
 }
 
 SquareStats PixelSquareSets::stats() const {

@@ -87,10 +87,11 @@ class PixelSquareSets {
   // Certificates (pixel_square_sets_schedule.cpp).
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, uint32_t mesh) const;
   void schedule_all(uint32_t tri);
-  void schedule_vertex(uint32_t tri, int v);
-  void schedule_line(uint32_t tri, size_t entry);
-  void schedule_orientation(uint32_t tri);
-  void schedule_horizon(uint32_t tri, int edge);
+  // Each takes the triangle's motion on its segment (motion(tri)), computed once per event.
+  void schedule_vertex(uint32_t tri, int v, const TriangleMotion& tm);
+  void schedule_line(uint32_t tri, size_t entry, const TriangleMotion& tm);
+  void schedule_orientation(uint32_t tri, const TriangleMotion& tm);
+  void schedule_horizon(uint32_t tri, int edge, const TriangleMotion& tm);
   void schedule_key(uint32_t m);
   void schedule_presence(uint32_t m);
   void cancel_all(TriangleRecord& rec);

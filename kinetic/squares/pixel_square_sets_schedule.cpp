@@ -34,18 +34,19 @@ double PixelSquareSets::failure_time(int sign, const Polynomial& f, uint32_t mes
 void PixelSquareSets::schedule_all(uint32_t tri) {
   const TriangleRecord& rec = m_records[tri];
   if (rec.mode == TriangleRecord::Mode::kAbsent || rec.mode == TriangleRecord::Mode::kEmpty) return;
-  for (int v = 0; v < 3; ++v) schedule_vertex(tri, v);
-  for (size_t e = 0; e < rec.lines.size(); ++e) schedule_line(tri, e);
+  const TriangleMotion tm = motion(tri);
+  for (int v = 0; v < 3; ++v) schedule_vertex(tri, v, tm);
+  for (size_t e = 0; e < rec.lines.size(); ++e) schedule_line(tri, e, tm);
   if (rec.mode == TriangleRecord::Mode::kStraddling) {
-    schedule_orientation(tri);
-    for (int e = 0; e < 3; ++e) schedule_horizon(tri, e);
+    schedule_orientation(tri, tm);
+    for (int e = 0; e < 3; ++e) schedule_horizon(tri, e, tm);
   }
 }
 
-void PixelSquareSets::schedule_vertex(uint32_t tri, int v) {
+void PixelSquareSets::schedule_vertex(uint32_t tri, int v, const TriangleMotion& tm) {
   VertexCells& vc = m_records[tri].vertices[size_t(v)];
   const uint32_t m = m_triangle_mesh[tri];
-  const PointMotion p = motion(tri).v[size_t(v)];
+  const PointMotion& p = tm.v[size_t(v)];
   double t = failure_time(vc.z_sign, Polynomial{p.a.z(), p.b.z()}, m);
   int count = 1;
   // The cell c claims "after line c" and "before line c + 1" (where those lines exist).
@@ -63,10 +64,10 @@ void PixelSquareSets::schedule_vertex(uint32_t tri, int v) {
                          payload_of(tri, size_t(v)));
 }
 
-void PixelSquareSets::schedule_line(uint32_t tri, size_t entry) {
+void PixelSquareSets::schedule_line(uint32_t tri, size_t entry, const TriangleMotion& tm) {
   EdgeOnLine& line = m_records[tri].lines[entry];
   const uint32_t m = m_triangle_mesh[tri];
-  const EdgeNormal n = motion(tri).edge(line.edge);
+  const EdgeNormal n = tm.edge(line.edge);
   const int w = m_lattice.width();
   const double y = m_lattice.y_line(line.line);
   const CornerStep& st = line.step;
@@ -83,18 +84,18 @@ void PixelSquareSets::schedule_line(uint32_t tri, size_t entry) {
                          payload_of(tri, entry));
 }
 
-void PixelSquareSets::schedule_orientation(uint32_t tri) {
+void PixelSquareSets::schedule_orientation(uint32_t tri, const TriangleMotion& tm) {
   TriangleRecord& rec = m_records[tri];
-  const double t = failure_time(rec.orientation, motion(tri).orientation(), m_triangle_mesh[tri]);
+  const double t = failure_time(rec.orientation, tm.orientation(), m_triangle_mesh[tri]);
   ++m_stats.certificates_scheduled;
   m_sim.queue().schedule(rec.orientation_event, EventKey{t, kSquareOrientation, tri, 0},
                          payload_of(tri, 0));
 }
 
-void PixelSquareSets::schedule_horizon(uint32_t tri, int edge) {
+void PixelSquareSets::schedule_horizon(uint32_t tri, int edge, const TriangleMotion& tm) {
   TriangleRecord& rec = m_records[tri];
-  const double t = failure_time(rec.nx_sign[size_t(edge)], motion(tri).edge(edge).component(0),
-                                m_triangle_mesh[tri]);
+  const double t =
+      failure_time(rec.nx_sign[size_t(edge)], tm.edge(edge).component(0), m_triangle_mesh[tri]);
   ++m_stats.certificates_scheduled;
   m_sim.queue().schedule(rec.nx_events[size_t(edge)],
                          EventKey{t, kSquareHorizon, tri, uint64_t(edge)},
