@@ -185,6 +185,30 @@ TEST(PixelSquareSets, AppearingAndDisappearingMeshes) {
   EXPECT_EQ(sets.stats().events.remove, 2u);
 }
 
+TEST(PixelSquareSets, RandomTrianglesAcrossTheEyePlaneMatchBruteForce) {
+  // Random triangles on random flightplans, about a third of their vertices behind the eye at
+  // any time: every mode (before, across, behind the eye) and every change between them.
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> xy(-2.5, 2.5), z(-1.5, 4.0);
+    TestScene scene;
+    scene.width = 20;
+    scene.height = 14;
+    const std::vector<double> times = {0.0, 0.7, 1.5, 2.0};
+    for (int t = 0; t < 24; ++t) {
+      std::vector<std::array<Vec, 3>> keys;
+      for (size_t k = 0; k < times.size(); ++k)
+        keys.push_back({Vec(xy(rng), xy(rng), z(rng)), Vec(xy(rng), xy(rng), z(rng)),
+                        Vec(xy(rng), xy(rng), z(rng))});
+      scene.meshes.push_back(moving_triangle(times, keys));
+    }
+    PixelSquareSets sets(scene.input(), 0.0);
+    const size_t ties = expect_matches_brute_force(sets, random_times(0.0, 2.1, 150, seed));
+    EXPECT_LT(ties, 10u) << "seed " << seed;
+    EXPECT_GT(sets.stats().events.rebuild, 0u);
+  }
+}
+
 TEST(PixelSquareSets, EventsDoNotDependOnTheFramesReadOut) {
   const TestScene scene = synthetic_scene();
   PixelSquareSets once(scene.input(), -0.25), often(scene.input(), -0.25);
