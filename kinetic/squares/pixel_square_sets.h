@@ -17,18 +17,12 @@
 #include "kinetic/core/simulator.h"
 #include "kinetic/grid/grid_input.h"
 #include "kinetic/grid/grid_scene.h"
+#include "kinetic/squares/square_change_log.h"
 #include "kinetic/squares/square_lattice.h"
 #include "kinetic/squares/square_stats.h"
 #include "kinetic/squares/triangle_footprint.h"
 
 namespace kinray {
-
-/// One member of a pixel's set.
-struct SquareTriangle {
-  uint32_t mesh = 0;      ///< index into GridInput::meshes
-  uint32_t triangle = 0;  ///< index into that mesh's triangles
-  friend bool operator==(const SquareTriangle&, const SquareTriangle&) = default;
-};
 
 class PixelSquareSets {
  public:
@@ -56,6 +50,13 @@ class PixelSquareSets {
   /// record claims, and every pixel's set is the brute force's (square_overlap.h), ties excepted.
   /// The problems found (empty: none); `ties` counts the (triangle, square) ties met.
   [[nodiscard]] std::vector<std::string> audit(size_t* ties = nullptr) const;
+
+  /// While on, every entry into or exit from a pixel's set made by advance_to is appended to
+  /// changes() with its event's time (square_change_log.h); the caller reads and clears it. Off
+  /// (the default) costs one test per change.
+  void log_changes(bool on) { m_logging = on; }
+  [[nodiscard]] const SquareChangeLog& changes() const { return m_changes; }
+  void clear_changes() { m_changes.clear(); }
 
   [[nodiscard]] SquareStats stats() const;
   [[nodiscard]] const SquareLattice& lattice() const { return m_lattice; }
@@ -118,6 +119,8 @@ class PixelSquareSets {
   std::vector<TriangleRecord> m_records;                     ///< per global triangle
   std::vector<std::vector<SquareTriangle>> m_pixels;         ///< row-major
   SquareStats m_stats;
+  bool m_logging = false;
+  SquareChangeLog m_changes;
 };
 
 }  // namespace kinray

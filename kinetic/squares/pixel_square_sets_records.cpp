@@ -164,20 +164,24 @@ void PixelSquareSets::refresh_strips(uint32_t tri, int j0, int j1) {
 
 void PixelSquareSets::add(uint32_t tri, int i, int j) {
   const uint32_t m = m_triangle_mesh[tri];
-  m_pixels[size_t(j) * size_t(m_lattice.width()) + size_t(i)].push_back(
-      {m, tri - m_triangle_begin[m]});
+  const size_t pixel = size_t(j) * size_t(m_lattice.width()) + size_t(i);
+  const SquareTriangle entry{m, tri - m_triangle_begin[m]};
+  m_pixels[pixel].push_back(entry);
   ++m_stats.square_changes;
+  if (m_logging) m_changes.push_back({m_sim.now(), uint32_t(pixel), entry, true});
 }
 
 void PixelSquareSets::remove(uint32_t tri, int i, int j) {
   const uint32_t m = m_triangle_mesh[tri];
+  const size_t pixel = size_t(j) * size_t(m_lattice.width()) + size_t(i);
   const SquareTriangle entry{m, tri - m_triangle_begin[m]};
-  std::vector<SquareTriangle>& set = m_pixels[size_t(j) * size_t(m_lattice.width()) + size_t(i)];
+  std::vector<SquareTriangle>& set = m_pixels[pixel];
   const auto it = std::find(set.begin(), set.end(), entry);
   KINRAY_CHECK_MSG(it != set.end(), "a triangle left a square it was not in");
   *it = set.back();
   set.pop_back();
   ++m_stats.square_changes;
+  if (m_logging) m_changes.push_back({m_sim.now(), uint32_t(pixel), entry, false});
 }
 
 }  // namespace kinray

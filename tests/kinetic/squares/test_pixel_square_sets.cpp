@@ -232,6 +232,52 @@ TEST(PixelSquareSets, EventsDoNotDependOnTheFramesReadOut) {
     }
 }
 
+TEST(PixelSquareSets, ChangeLogReplaysTheSets) {
+  // The sets at the start plus the logged changes, in order, are the sets at the end; every
+  // change lies in the interval of the advance that made it.
+  const TestScene scene = synthetic_scene();
+  PixelSquareSets sets(scene.input(), -0.25);
+  std::vector<std::vector<SquareTriangle>> replay(16 * 12);
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const auto set = sets.triangles(i, j);
+      replay[size_t(j * 16 + i)].assign(set.begin(), set.end());
+    }
+  sets.log_changes(true);
+  double before = sets.now();
+  for (double t : random_times(-0.25, 2.3, 30, 17)) {
+    sets.advance_to(t);
+    for (const SquareChange& c : sets.changes()) {
+      EXPECT_GT(c.time, before);
+      EXPECT_LE(c.time, t);
+      std::vector<SquareTriangle>& set = replay[c.pixel];
+      const auto it = std::find(set.begin(), set.end(), c.triangle);
+      if (c.entered) {
+        EXPECT_EQ(it, set.end());
+        set.push_back(c.triangle);
+      } else {
+        ASSERT_NE(it, set.end());
+        set.erase(it);
+      }
+    }
+    sets.clear_changes();
+    before = t;
+  }
+  auto less = [](const SquareTriangle& p, const SquareTriangle& q) {
+    return p.mesh != q.mesh ? p.mesh < q.mesh : p.triangle < q.triangle;
+  };
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const auto set = sets.triangles(i, j);
+      std::vector<SquareTriangle> now(set.begin(), set.end()),
+          replayed = replay[size_t(j * 16 + i)];
+      std::sort(now.begin(), now.end(), less);
+      std::sort(replayed.begin(), replayed.end(), less);
+      EXPECT_EQ(now, replayed) << "pixel (" << i << ", " << j << ")";
+    }
+  EXPECT_GT(sets.stats().square_changes, 0u);
+}
+
 /// The columns of row j holding mesh m's triangle 0.
 std::vector<int> columns_holding(const PixelSquareSets& sets, uint32_t m, int j) {
   std::vector<int> columns;
