@@ -1,8 +1,7 @@
-// PixelSquareSets: start-up, the event loop and the event handlers. A vertex that changes row or
-// side of the eye plane, and a straddling triangle whose plane sweeps the eye, rebuild that
-// triangle's record (rare: a record follows only the lines around it); a vertex that crosses a
-// column line within its row, or an edge line that passes a corner, moves one cell or step and
-// recomputes the one or two strips it bounds.
+// PixelSquareSets: start-up, the event loop, and the events of meshes (keys, presence) and of
+// triangles (a straddling triangle's plane sweeping the eye or one of its edges turning
+// horizontal rebuilds its record; an edge line passing a corner moves one step and recomputes the
+// two strips its row line bounds). The vertices' events are in pixel_square_sets_vertices.cpp.
 #include "kinetic/squares/pixel_square_sets.h"
 
 #include <string>
@@ -19,11 +18,14 @@ PixelSquareSets::PixelSquareSets(GridInput input, double start_time, const Confi
   KINRAY_CHECK(m_lattice.width() > 0 && m_lattice.height() > 0);
   const size_t meshes = m_input.meshes.size();
   m_triangle_begin.push_back(0);
+  m_vertex_begin.push_back(0);
   for (uint32_t m = 0; m < meshes; ++m) {
     const FlightplanMesh& mesh = m_input.meshes[m];
     validate_mesh(mesh, "mesh " + std::to_string(m) + ": ");
     m_triangle_begin.push_back(m_triangle_begin.back() + uint32_t(mesh.triangles.size()));
     m_triangle_mesh.resize(m_triangle_begin.back(), m);
+    m_vertex_begin.push_back(m_vertex_begin.back() + uint32_t(mesh.vertex_count));
+    m_vertex_mesh.resize(m_vertex_begin.back(), m);
     m_segments.push_back(mesh_segment_at(mesh, start_time));
     m_present.push_back(mesh.present(start_time) ? 1 : 0);
   }
@@ -31,10 +33,25 @@ PixelSquareSets::PixelSquareSets(GridInput input, double start_time, const Confi
   m_presence_events.assign(meshes, kNoEvent);
   m_records.resize(m_triangle_begin.back());
   m_pixels.resize(m_lattice.rays().pixel_count());
-  // Start-up: every present triangle's record from the signs at the start time (rebuild adds it
-  // to the squares its strips hold).
+  // Each vertex's triangles (a vertex repeated in a degenerate triangle is listed twice).
+  const uint32_t vertex_count = m_vertex_begin.back();
+  m_vertices.resize(vertex_count);
+  m_adjacency_begin.assign(size_t(vertex_count) + 1, 0);
+  for (uint32_t tri = 0; tri < m_records.size(); ++tri)
+    for (uint32_t v : vertex_ids(tri)) ++m_adjacency_begin[v + 1];
+  for (uint32_t v = 0; v < vertex_count; ++v) m_adjacency_begin[v + 1] += m_adjacency_begin[v];
+  m_adjacency.resize(m_adjacency_begin.back());
+  std::vector<uint32_t> fill(m_adjacency_begin.begin(), m_adjacency_begin.end() - 1);
+  for (uint32_t tri = 0; tri < m_records.size(); ++tri)
+    for (uint32_t v : vertex_ids(tri)) m_adjacency[fill[v]++] = tri;
+  // Start-up: every present vertex's side of the eye, then every present triangle's record from
+  // the signs at the start time (rebuild follows its vertices' cells and adds it to the squares
+  // its strips hold).
+  for (uint32_t v = 0; v < vertex_count; ++v)
+    if (m_present[m_vertex_mesh[v]]) locate_vertex(v);
   for (uint32_t tri = 0; tri < m_records.size(); ++tri)
     if (m_present[m_triangle_mesh[tri]]) rebuild(tri);
+  for (uint32_t v = 0; v < vertex_count; ++v) schedule_vertex(v);
   for (uint32_t m = 0; m < meshes; ++m) {
     schedule_key(m);
     schedule_presence(m);
@@ -63,6 +80,7 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
       // are recomputed on the new segment. One that the key's rounding leaves failing fires now
       // and is handled like any other event. A triangle degenerate on either segment (O the zero
       // polynomial, whose record is empty) is rebuilt.
+      for (uint32_t v = m_vertex_begin[m]; v < m_vertex_begin[m + 1]; ++v) schedule_vertex(v);
       if (m_present[m])
         for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) {
           if (m_records[t].mode == TriangleRecord::Mode::kEmpty ||
@@ -83,11 +101,13 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
         if (present) {
           ++m_stats.events.insert;
           m_segments[m] = mesh_segment_at(m_input.meshes[m], m_sim.now());
+          for (uint32_t v = m_vertex_begin[m]; v < m_vertex_begin[m + 1]; ++v) locate_vertex(v);
           for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) rebuild(t);
         } else {
           ++m_stats.events.remove;
           for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) clear(t);
         }
+        for (uint32_t v = m_vertex_begin[m]; v < m_vertex_begin[m + 1]; ++v) schedule_vertex(v);
       }
       schedule_presence(m);
       break;
@@ -104,7 +124,7 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
       rebuild(tri);
       break;
     case kSquareVertex:
-      vertex_event(tri, int(sub));
+      vertex_event(key.a);
       break;
     case kSquareCorner:
       corner_event(tri, sub);
@@ -112,39 +132,6 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
     default:
       KINRAY_CHECK_MSG(false, "unknown event kind");
   }
-}
-
-void PixelSquareSets::vertex_event(uint32_t tri, int v) {
-  TriangleRecord& rec = m_records[tri];
-  VertexCells& vc = rec.vertices[size_t(v)];
-  vc.event = kNoEvent;
-  const TriangleMotion tm = motion(tri);
-  const PointMotion& p = tm.v[size_t(v)];
-  const double s = local_time(tri);
-  const int z_sign = sign_plus(Polynomial{p.a.z(), p.b.z()}, s);
-  bool rebuilt = z_sign != vc.z_sign;
-  if (!rebuilt && vc.row != kNoCell)
-    rebuilt = walk_cell(vc.row, p, 1, vc.z_sign, m_lattice.height() + 1, m_lattice.y_lines(), s) !=
-              vc.row;
-  if (rebuilt) {
-    // Another row or side of the eye changes which lines and edges the record follows.
-    ++m_stats.events.rebuild;
-    rebuild(tri);
-    return;
-  }
-  if (vc.column != kNoCell) {
-    const int column =
-        walk_cell(vc.column, p, 0, vc.z_sign, m_lattice.width() + 1, m_lattice.x_lines(), s);
-    if (column != vc.column) {
-      ++m_stats.events.side;
-      vc.column = int16_t(column);
-      refresh_strips(tri, vc.row, vc.row + 1);
-      schedule_vertex(tri, v, tm);
-      return;
-    }
-  }
-  ++m_stats.spurious;
-  schedule_vertex(tri, v, tm);
 }
 
 void PixelSquareSets::corner_event(uint32_t tri, size_t entry) {

@@ -69,9 +69,12 @@ class PixelSquareSets {
   class Audit;
   // Records (pixel_square_sets_records.cpp).
   [[nodiscard]] TriangleMotion motion(uint32_t tri) const;
+  /// Global ids of tri's vertices.
+  [[nodiscard]] std::array<uint32_t, 3> vertex_ids(uint32_t tri) const;
+  /// The mode tri's record takes now, from its vertices' sides of the eye plane and O.
+  [[nodiscard]] TriangleRecord::Mode mode_of(uint32_t tri, const TriangleMotion& tm) const;
+  /// tri's record at now(), its vertices' cells copied from their trackers (followed already).
   void build(uint32_t tri, TriangleRecord& rec) const;
-  void follow_vertices(TriangleRecord& rec, const TriangleMotion& tm, double s,
-                       bool columns_of_front) const;
   void follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s) const;
   void compute_strips(TriangleRecord& rec) const;
   /// Replaces tri's record by a fresh one at now(), its pixels and events updated.
@@ -83,13 +86,24 @@ class PixelSquareSets {
   /// Recomputes tri's strips [j0, j1) from its record (after a cell or a step moved), moving it
   /// in or out of the pixels that changed.
   void refresh_strips(uint32_t tri, int j0, int j1);
+  // Vertices (pixel_square_sets_vertices.cpp).
+  [[nodiscard]] PointMotion vertex_motion(uint32_t v) const;
+  [[nodiscard]] double vertex_local_time(uint32_t v) const {
+    return m_sim.now() - m_segments[m_vertex_mesh[v]].origin;
+  }
+  /// Locates v's side of the eye plane, and its cells when it has users.
+  void locate_vertex(uint32_t v);
+  /// A record starts (follow) or stops (unfollow) reading v's cells: the first user locates
+  /// them, the last one drops them; v's certificates follow.
+  void follow(uint32_t v);
+  void unfollow(uint32_t v);
   void add(uint32_t tri, int i, int j);
   void remove(uint32_t tri, int i, int j);
   // Certificates (pixel_square_sets_schedule.cpp).
   [[nodiscard]] double failure_time(int sign, const Polynomial& f, uint32_t mesh) const;
   void schedule_all(uint32_t tri);
+  void schedule_vertex(uint32_t v);
   // Each takes the triangle's motion on its segment (motion(tri)), computed once per event.
-  void schedule_vertex(uint32_t tri, int v, const TriangleMotion& tm);
   void schedule_line(uint32_t tri, size_t entry, const TriangleMotion& tm);
   void schedule_orientation(uint32_t tri, const TriangleMotion& tm);
   void schedule_horizon(uint32_t tri, int edge, const TriangleMotion& tm);
@@ -98,7 +112,7 @@ class PixelSquareSets {
   void cancel_all(TriangleRecord& rec);
   // Events (pixel_square_sets.cpp).
   void handle(const EventKey& key, uint64_t payload);
-  void vertex_event(uint32_t tri, int v);
+  void vertex_event(uint32_t v);
   void corner_event(uint32_t tri, size_t entry);
   [[nodiscard]] bool moving(uint32_t tri) const {
     return !m_input.meshes[m_triangle_mesh[tri]].is_static;
@@ -117,6 +131,10 @@ class PixelSquareSets {
   std::vector<uint8_t> m_present;          ///< per mesh
   std::vector<EventHandle> m_key_events, m_presence_events;  ///< per mesh
   std::vector<TriangleRecord> m_records;                     ///< per global triangle
+  std::vector<uint32_t> m_vertex_begin;   ///< per mesh, prefix sums (global vertex ids)
+  std::vector<uint32_t> m_vertex_mesh;    ///< per global vertex
+  std::vector<VertexTracker> m_vertices;  ///< per global vertex
+  std::vector<uint32_t> m_adjacency_begin, m_adjacency;      ///< global vertex -> its triangles
   std::vector<std::vector<SquareTriangle>> m_pixels;         ///< row-major
   SquareStats m_stats;
   bool m_logging = false;

@@ -15,7 +15,8 @@ namespace kinray {
 
 class PixelSquareSets::Audit {
  public:
-  Audit(const PixelSquareSets& sets, size_t* ties) : m_sets(sets), m_t(sets.now()), m_ties(ties) {}
+  Audit(const PixelSquareSets& sets, size_t* ties)
+      : m_sets(sets), m_t(sets.now()), m_ties(ties), m_users(sets.m_vertices.size(), 0) {}
 
   std::vector<std::string> run() && {
     const EventQueue& q = m_sets.m_sim.queue();
@@ -42,6 +43,35 @@ class PixelSquareSets::Audit {
       report("mesh segment", where + " on the wrong key segment");
     for (uint32_t tri = m_sets.m_triangle_begin[m]; tri < m_sets.m_triangle_begin[m + 1]; ++tri)
       record(tri, m_sets.m_present[m] != 0);
+    if (m_sets.m_present[m])
+      for (uint32_t v = m_sets.m_vertex_begin[m]; v < m_sets.m_vertex_begin[m + 1]; ++v) vertex(v);
+  }
+
+  /// A vertex's claimed side of the eye plane and cells (followed exactly while records read
+  /// them, as many as its count of users says) hold.
+  void vertex(uint32_t v) {
+    const VertexTracker& vt = m_sets.m_vertices[v];
+    const std::string where = "vertex " + std::to_string(v);
+    if (vt.users != m_users[v]) report("vertex users", where + " has a wrong count of users");
+    if ((vt.users > 0) != (vt.cells.row != kNoCell) ||
+        (vt.cells.column != kNoCell) != (vt.users > 0 && vt.cells.z_sign > 0))
+      report("vertex cells", where + " followed while unused or the other way round");
+    const PointMotion p = m_sets.vertex_motion(v);
+    const double s = m_t - m_sets.m_segments[m_sets.m_vertex_mesh[v]].origin;
+    auto claim_sign = [&](const Polynomial& f, int sign, const char* what) {
+      if (sign_plus(f, s) != sign)
+        report("certificate", where + " " + what + " has the wrong sign");
+    };
+    const VertexCells& c = vt.cells;
+    claim_sign(Polynomial{p.a.z(), p.b.z()}, c.z_sign, "eye side");
+    const SquareLattice& lattice = m_sets.m_lattice;
+    auto cell = [&](int axis, int at, int lines, const double* xs, const char* what) {
+      if (at == kNoCell) return;
+      if (at >= 0) claim_sign(after_line(p, axis, xs[at], c.z_sign), 1, what);
+      if (at + 1 < lines) claim_sign(after_line(p, axis, xs[at + 1], c.z_sign), -1, what);
+    };
+    cell(1, c.row, lattice.height() + 1, lattice.y_lines(), "row cell");
+    cell(0, c.column, lattice.width() + 1, lattice.x_lines(), "column cell");
   }
 
   /// A claimed sign of a certificate: sign_plus of f just after now.
@@ -58,22 +88,15 @@ class PixelSquareSets::Audit {
     if (rec.mode == Mode::kAbsent || rec.mode == Mode::kEmpty) return;
     const TriangleMotion tm = m_sets.motion(tri);
     const SquareLattice& lattice = m_sets.m_lattice;
+    const std::array<uint32_t, 3> ids = m_sets.vertex_ids(tri);
     int front = 0;
-    for (int v = 0; v < 3; ++v) {
-      const VertexCells& vc = rec.vertices[size_t(v)];
-      const PointMotion& p = tm.v[size_t(v)];
-      const std::string name = "vertex " + std::to_string(v);
-      claim(Polynomial{p.a.z(), p.b.z()}, vc.z_sign, tri, name + " eye side");
-      front += vc.z_sign > 0;
-      auto cell = [&](int axis, int c, int lines, const double* at, const char* what) {
-        if (c == kNoCell) return;
-        if (c >= 0)
-          claim(after_line(p, axis, at[c], vc.z_sign), 1, tri, name + " " + what + " before");
-        if (c + 1 < lines)
-          claim(after_line(p, axis, at[c + 1], vc.z_sign), -1, tri, name + " " + what + " after");
-      };
-      cell(1, vc.row, lattice.height() + 1, lattice.y_lines(), "row line");
-      cell(0, vc.column, lattice.width() + 1, lattice.x_lines(), "column line");
+    for (int k = 0; k < 3; ++k) {
+      const VertexCells& own = m_sets.m_vertices[ids[size_t(k)]].cells;
+      front += own.z_sign > 0;
+      if (rec.mode == Mode::kBehind) continue;
+      ++m_users[ids[size_t(k)]];
+      if (!(rec.vertices[size_t(k)] == own))
+        report("record vertices", where + " vertex " + std::to_string(k) + " is not its vertex's");
     }
     const Mode mode = front == 0 ? Mode::kBehind : (front == 3 ? Mode::kFront : Mode::kStraddling);
     if (rec.mode != mode) report("record mode", where + " in the wrong mode for its eye sides");
@@ -145,6 +168,7 @@ class PixelSquareSets::Audit {
   double m_t;
   size_t* m_ties;
   std::vector<std::string> m_problems;
+  std::vector<uint32_t> m_users;  ///< per vertex: the records seen reading its cells
 };
 
 std::vector<std::string> PixelSquareSets::audit(size_t* ties) const {

@@ -12,14 +12,13 @@ namespace {
 
 using Mode = TriangleRecord::Mode;
 
-/// z(s) of a vertex: its side of the eye plane, read by sign_plus like every other certificate (a
-/// vertex held in the eye plane all segment long counts as before it, with its projection at
-/// infinity), so that its claim and its failure time agree and it cannot fire at once for ever.
-Polynomial depth_of(const PointMotion& p) {
-  return Polynomial{p.a.z(), p.b.z()};
-}
-
 }  // namespace
+
+std::array<uint32_t, 3> PixelSquareSets::vertex_ids(uint32_t tri) const {
+  const uint32_t m = m_triangle_mesh[tri];
+  const auto& local = m_input.meshes[m].triangles[tri - m_triangle_begin[m]];
+  return {m_vertex_begin[m] + local[0], m_vertex_begin[m] + local[1], m_vertex_begin[m] + local[2]};
+}
 
 TriangleMotion PixelSquareSets::motion(uint32_t tri) const {
   const uint32_t m = m_triangle_mesh[tri];
@@ -29,18 +28,6 @@ TriangleMotion PixelSquareSets::motion(uint32_t tri) const {
   for (int k = 0; k < 3; ++k)
     tm.v[size_t(k)] = mesh_vertex_motion(mesh, local[size_t(k)], m_segments[m]);
   return tm;
-}
-
-void PixelSquareSets::follow_vertices(TriangleRecord& rec, const TriangleMotion& tm, double s,
-                                      bool columns_of_front) const {
-  const int w = m_lattice.width(), h = m_lattice.height();
-  for (int v = 0; v < 3; ++v) {
-    VertexCells& vc = rec.vertices[size_t(v)];
-    const PointMotion& p = tm.v[size_t(v)];
-    vc.row = int16_t(locate_cell(p, 1, vc.z_sign, h + 1, m_lattice.y_lines(), s));
-    if (columns_of_front && vc.z_sign > 0)
-      vc.column = int16_t(locate_cell(p, 0, vc.z_sign, w + 1, m_lattice.x_lines(), s));
-  }
 }
 
 void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s) const {
@@ -89,37 +76,50 @@ void PixelSquareSets::compute_strips(TriangleRecord& rec) const {
     rec.strips[k] = strip_columns(rec, rec.strip_begin + int(k), m_lattice.width());
 }
 
+TriangleRecord::Mode PixelSquareSets::mode_of(uint32_t tri, const TriangleMotion& tm) const {
+  if (!m_present[m_triangle_mesh[tri]]) return Mode::kAbsent;
+  // Degenerate all segment long: R is empty until the next key.
+  if (tm.orientation().is_zero()) return Mode::kEmpty;
+  int front = 0;
+  for (uint32_t v : vertex_ids(tri)) front += m_vertices[v].cells.z_sign > 0;
+  // No forward ray meets a triangle wholly behind the eye.
+  return front == 0 ? Mode::kBehind : (front == 3 ? Mode::kFront : Mode::kStraddling);
+}
+
 void PixelSquareSets::build(uint32_t tri, TriangleRecord& rec) const {
   rec = TriangleRecord{};
-  if (!m_present[m_triangle_mesh[tri]]) return;
   const TriangleMotion tm = motion(tri);
+  rec.mode = mode_of(tri, tm);
+  if (rec.mode != Mode::kFront && rec.mode != Mode::kStraddling) return;
   const double s = local_time(tri);
-  const Polynomial o = tm.orientation();
-  rec.mode = Mode::kEmpty;
-  if (o.is_zero()) return;  // degenerate all segment long: R is empty until the next key
-  int front = 0;
-  for (int v = 0; v < 3; ++v) {
-    rec.vertices[size_t(v)].z_sign = int8_t(sign_plus(depth_of(tm.v[size_t(v)]), s));
-    front += rec.vertices[size_t(v)].z_sign > 0;
-  }
-  if (front == 0) {
-    rec.mode = Mode::kBehind;  // no forward ray meets it
-    return;
-  }
-  rec.mode = front == 3 ? Mode::kFront : Mode::kStraddling;
-  rec.orientation = int8_t(sign_after(o, s));
+  rec.orientation = int8_t(sign_after(tm.orientation(), s));
   if (rec.mode == Mode::kStraddling)
     for (int e = 0; e < 3; ++e)
       rec.nx_sign[size_t(e)] = int8_t(sign_plus(tm.edge(e).component(0), s));
-  follow_vertices(rec, tm, s, true);
+  const std::array<uint32_t, 3> ids = vertex_ids(tri);
+  for (int k = 0; k < 3; ++k) rec.vertices[size_t(k)] = m_vertices[ids[size_t(k)]].cells;
   follow_lines(rec, tm, s);
   compute_strips(rec);
 }
 
+namespace {
+/// Whether a record of this mode reads its vertices' cells.
+bool reads_cells(TriangleRecord::Mode mode) {
+  return mode == TriangleRecord::Mode::kFront || mode == TriangleRecord::Mode::kStraddling;
+}
+}  // namespace
+
 void PixelSquareSets::rebuild(uint32_t tri) {
   TriangleRecord before = std::move(m_records[tri]);
   cancel_all(before);
+  const std::array<uint32_t, 3> ids = vertex_ids(tri);
+  // The new record's vertices are followed before the old record lets them go, so that a vertex
+  // both read is not dropped and located again.
+  if (reads_cells(mode_of(tri, motion(tri))))
+    for (uint32_t v : ids) follow(v);
   build(tri, m_records[tri]);
+  if (reads_cells(before.mode))
+    for (uint32_t v : ids) unfollow(v);
   ++m_stats.records_built;
   const TriangleRecord& rec = m_records[tri];
   const int j0 = std::min(before.strip_begin, rec.strip_begin);
@@ -133,6 +133,8 @@ void PixelSquareSets::clear(uint32_t tri) {
   TriangleRecord before = std::move(m_records[tri]);
   cancel_all(before);
   m_records[tri] = TriangleRecord{};
+  if (reads_cells(before.mode))
+    for (uint32_t v : vertex_ids(tri)) unfollow(v);
   update_pixels(tri, before, before.strip_begin, before.strip_begin + int(before.strips.size()));
 }
 

@@ -33,9 +33,9 @@ double PixelSquareSets::failure_time(int sign, const Polynomial& f, uint32_t mes
 
 void PixelSquareSets::schedule_all(uint32_t tri) {
   const TriangleRecord& rec = m_records[tri];
-  if (rec.mode == TriangleRecord::Mode::kAbsent || rec.mode == TriangleRecord::Mode::kEmpty) return;
+  if (rec.mode != TriangleRecord::Mode::kFront && rec.mode != TriangleRecord::Mode::kStraddling)
+    return;
   const TriangleMotion tm = motion(tri);
-  for (int v = 0; v < 3; ++v) schedule_vertex(tri, v, tm);
   for (size_t e = 0; e < rec.lines.size(); ++e) schedule_line(tri, e, tm);
   if (rec.mode == TriangleRecord::Mode::kStraddling) {
     schedule_orientation(tri, tm);
@@ -43,25 +43,30 @@ void PixelSquareSets::schedule_all(uint32_t tri) {
   }
 }
 
-void PixelSquareSets::schedule_vertex(uint32_t tri, int v, const TriangleMotion& tm) {
-  VertexCells& vc = m_records[tri].vertices[size_t(v)];
-  const uint32_t m = m_triangle_mesh[tri];
-  const PointMotion& p = tm.v[size_t(v)];
-  double t = failure_time(vc.z_sign, Polynomial{p.a.z(), p.b.z()}, m);
+void PixelSquareSets::schedule_vertex(uint32_t v) {
+  VertexTracker& vt = m_vertices[v];
+  const uint32_t m = m_vertex_mesh[v];
+  if (m_input.meshes[m].is_static || !m_present[m] ||
+      m_adjacency_begin[v] == m_adjacency_begin[v + 1]) {
+    m_sim.queue().cancel(vt.event);
+    return;
+  }
+  const PointMotion p = vertex_motion(v);
+  const VertexCells& c = vt.cells;
+  double t = failure_time(c.z_sign, Polynomial{p.a.z(), p.b.z()}, m);
   int count = 1;
   // The cell c claims "after line c" and "before line c + 1" (where those lines exist).
   auto watch = [&](int axis, int cell, int lines, const double* at) {
     if (cell == kNoCell) return;
-    if (cell >= 0) t = std::min(t, failure_time(1, after_line(p, axis, at[cell], vc.z_sign), m));
+    if (cell >= 0) t = std::min(t, failure_time(1, after_line(p, axis, at[cell], c.z_sign), m));
     if (cell + 1 < lines)
-      t = std::min(t, failure_time(-1, after_line(p, axis, at[cell + 1], vc.z_sign), m));
+      t = std::min(t, failure_time(-1, after_line(p, axis, at[cell + 1], c.z_sign), m));
     count += 2;
   };
-  watch(1, vc.row, m_lattice.height() + 1, m_lattice.y_lines());
-  watch(0, vc.column, m_lattice.width() + 1, m_lattice.x_lines());
+  watch(1, c.row, m_lattice.height() + 1, m_lattice.y_lines());
+  watch(0, c.column, m_lattice.width() + 1, m_lattice.x_lines());
   m_stats.certificates_scheduled += uint64_t(count);
-  m_sim.queue().schedule(vc.event, EventKey{t, kSquareVertex, tri, uint64_t(v)},
-                         payload_of(tri, size_t(v)));
+  m_sim.queue().schedule(vt.event, EventKey{t, kSquareVertex, v, 0}, v);
 }
 
 void PixelSquareSets::schedule_line(uint32_t tri, size_t entry, const TriangleMotion& tm) {
@@ -120,7 +125,6 @@ void PixelSquareSets::schedule_presence(uint32_t m) {
 
 void PixelSquareSets::cancel_all(TriangleRecord& rec) {
   EventQueue& q = m_sim.queue();
-  for (VertexCells& vc : rec.vertices) q.cancel(vc.event);
   for (EdgeOnLine& line : rec.lines) q.cancel(line.event);
   q.cancel(rec.orientation_event);
   for (EventHandle& h : rec.nx_events) q.cancel(h);

@@ -1,8 +1,9 @@
 #pragma once
 // Counters of the per-square sets (pbrt STAT_COUNTER style). Every event count is set by the
-// geometry and the motion alone: an edge line passing a square corner, a vertex crossing a pixel
-// line, a triangle rebuilt (a vertex changed row or side of the eye plane, its plane swept the
-// eye), a key, a mesh appearing or disappearing.
+// geometry and the motion alone, never by the frames read out: an edge line passing a square
+// corner (per triangle), a vertex crossing a column line (per vertex), a vertex changing row or
+// side of the eye plane, a plane sweeping the eye or an edge turning horizontal (each rebuilds
+// records), a key, a mesh appearing or disappearing.
 #include <cstdint>
 
 #include "kinetic/core/counters.h"
@@ -10,12 +11,12 @@
 namespace kinray {
 
 // X(member, "stats key"), one line per kind of event.
-#define KINRAY_SQUARE_EVENT_KINDS(X)                                                    \
-  X(corner, "corner")         /* an edge line passed a square corner */                 \
-  X(side, "side")             /* a vertex crossed a column line within its row */       \
-  X(rebuild, "rebuild")       /* a vertex changed row or eye side, or O changed sign */ \
-  X(flightplan, "flightplan") /* a mesh reached a key (its triangles are rebuilt) */    \
-  X(insert, "insert")         /* a mesh appeared after the start */                     \
+#define KINRAY_SQUARE_EVENT_KINDS(X)                                                        \
+  X(corner, "corner")         /* an edge line passed a square corner (one record) */        \
+  X(side, "side")             /* a vertex crossed a column line within its row */           \
+  X(rebuild, "rebuild")       /* a vertex changed row or eye side, O or n_x changed sign */ \
+  X(flightplan, "flightplan") /* a mesh reached a key (certificates recomputed) */          \
+  X(insert, "insert")         /* a mesh appeared after the start */                         \
   X(remove, "delete")         /* a mesh disappeared */
 
 struct SquareEventCounts {

@@ -27,19 +27,9 @@
 #include "kinetic/core/event_queue.h"
 #include "kinetic/squares/pixel_line_signs.h"
 #include "kinetic/squares/square_lattice.h"
+#include "kinetic/squares/vertex_cells.h"
 
 namespace kinray {
-
-inline constexpr int16_t kNoCell = INT16_MIN;  ///< a cell the record does not follow
-
-/// One vertex: its side of the eye plane, and the cells of its projection (row and column lines)
-/// when the record follows them; one event for all its certificates.
-struct VertexCells {
-  int8_t z_sign = 1;
-  int16_t row = kNoCell;     ///< -1..height
-  int16_t column = kNoCell;  ///< -1..width
-  EventHandle event = kNoEvent;
-};
 
 /// One edge function along one row line: the step of its signs over the line's corners.
 struct EdgeOnLine {
@@ -73,7 +63,7 @@ struct TriangleRecord {
   /// kStraddling: per edge, the sign of n_x = (p x q).x, watched.
   std::array<int8_t, 3> nx_sign{};
   std::array<EventHandle, 3> nx_events{kNoEvent, kNoEvent, kNoEvent};
-  std::array<VertexCells, 3> vertices;
+  std::array<VertexCells, 3> vertices;  ///< copies of the vertices' own (vertex_cells.h)
   int line_begin = 0;               ///< first row line followed
   int edges_per_line = 0;           ///< 2 (kFront) or 3 (kStraddling)
   std::vector<EdgeOnLine> lines;    ///< edges_per_line per row line from line_begin on
