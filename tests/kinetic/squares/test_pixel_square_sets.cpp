@@ -185,27 +185,56 @@ TEST(PixelSquareSets, AppearingAndDisappearingMeshes) {
   EXPECT_EQ(sets.stats().events.remove, 2u);
 }
 
-TEST(PixelSquareSets, RandomTrianglesAcrossTheEyePlaneMatchBruteForce) {
-  // Random triangles on random flightplans, about a third of their vertices behind the eye at
-  // any time: every mode (before, across, behind the eye) and every change between them.
-  for (unsigned seed : {1u, 2u, 3u}) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> xy(-2.5, 2.5), z(-1.5, 4.0);
-    TestScene scene;
-    scene.width = 20;
-    scene.height = 14;
-    const std::vector<double> times = {0.0, 0.7, 1.5, 2.0};
+/// 24 random triangles on random flightplans over keys 0, 0.7, 1.5, 2, about a third of their
+/// vertices behind the eye at any time; `welded`: instead, one mesh of 4 x 5 random vertices
+/// joined as a grid of 24 triangles, each vertex shared by up to six of them.
+TestScene random_scene(unsigned seed, int width, int height, bool welded) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> xy(-2.5, 2.5), z(-1.5, 4.0);
+  TestScene scene;
+  scene.width = width;
+  scene.height = height;
+  const std::vector<double> times = {0.0, 0.7, 1.5, 2.0};
+  auto random_point = [&] { return Vec(xy(rng), xy(rng), z(rng)); };
+  if (!welded) {
     for (int t = 0; t < 24; ++t) {
       std::vector<std::array<Vec, 3>> keys;
       for (size_t k = 0; k < times.size(); ++k)
-        keys.push_back({Vec(xy(rng), xy(rng), z(rng)), Vec(xy(rng), xy(rng), z(rng)),
-                        Vec(xy(rng), xy(rng), z(rng))});
+        keys.push_back({random_point(), random_point(), random_point()});
       scene.meshes.push_back(moving_triangle(times, keys));
     }
+    return scene;
+  }
+  test::OwnedMesh grid;
+  grid.times = times;
+  grid.vertex_count = 20;
+  for (size_t k = 0; k < times.size(); ++k)
+    for (int v = 0; v < 20; ++v) grid.positions.push_back(random_point());
+  for (uint32_t r = 0; r < 3; ++r)
+    for (uint32_t c = 0; c < 4; ++c) {
+      const uint32_t v = r * 5 + c;
+      grid.triangles.push_back({v, v + 1, v + 5});
+      grid.triangles.push_back({v + 1, v + 6, v + 5});
+    }
+  scene.meshes.push_back(grid);
+  return scene;
+}
+
+TEST(PixelSquareSets, RandomTrianglesAcrossTheEyePlaneMatchBruteForce) {
+  // Every mode (before, across, behind the eye) and every change between them, on separate
+  // triangles and on a mesh whose vertices are shared, and on images down to one pixel.
+  struct Case {
+    unsigned seed;
+    int width, height;
+    bool welded;
+  };
+  for (const Case& c : {Case{1, 20, 14, false}, Case{2, 20, 14, false}, Case{3, 20, 14, true},
+                        Case{4, 20, 14, true}, Case{5, 1, 1, false}, Case{6, 3, 2, true}}) {
+    const TestScene scene = random_scene(c.seed, c.width, c.height, c.welded);  // outlives sets
     PixelSquareSets sets(scene.input(), 0.0);
-    const size_t ties = expect_matches_brute_force(sets, random_times(0.0, 2.1, 150, seed));
-    EXPECT_LT(ties, 10u) << "seed " << seed;
-    EXPECT_GT(sets.stats().events.rebuild, 0u);
+    const size_t ties = expect_matches_brute_force(sets, random_times(0.0, 2.1, 150, c.seed));
+    EXPECT_LT(ties, 10u) << "seed " << c.seed;
+    EXPECT_GT(sets.stats().events.rebuild, 0u) << "seed " << c.seed;
   }
 }
 
