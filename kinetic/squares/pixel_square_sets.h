@@ -75,10 +75,17 @@ class PixelSquareSets {
   [[nodiscard]] TriangleRecord::Mode mode_of(uint32_t tri, const TriangleMotion& tm) const;
   /// tri's record at now(), its vertices' cells copied from their trackers (followed already).
   void build(uint32_t tri, TriangleRecord& rec) const;
-  void follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s) const;
+  /// Lays out rec's row lines and strips from its vertices' rows and locates each edge's step on
+  /// each line; an entry of `old` (the same triangle's record in the same mode before a vertex
+  /// changed row) with the same line and edge is taken over instead, with its pending event.
+  void follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s,
+                    TriangleRecord* old = nullptr) const;
   void compute_strips(TriangleRecord& rec) const;
   /// Replaces tri's record by a fresh one at now(), its pixels and events updated.
   void rebuild(uint32_t tri);
+  /// tri's record after one of its vertices changed row (its mode unchanged): the lines and
+  /// strips laid out again, the steps and events of the lines it keeps taken over.
+  void reshape(uint32_t tri);
   /// Drops tri's record: out of its pixels, its events cancelled.
   void clear(uint32_t tri);
   /// Moves tri in or out of the pixels of strips [j0, j1) where `before` and its record differ.

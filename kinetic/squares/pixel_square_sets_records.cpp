@@ -4,6 +4,7 @@
 
 #include "kinetic/squares/mesh_segments.h"
 #include "kinetic/squares/pixel_square_sets.h"
+#include "kinetic/squares/square_event_kinds.h"
 #include "util/check.h"
 
 namespace kinray {
@@ -30,7 +31,8 @@ TriangleMotion PixelSquareSets::motion(uint32_t tri) const {
   return tm;
 }
 
-void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s) const {
+void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s,
+                                   TriangleRecord* old) const {
   const int w = m_lattice.width(), h = m_lattice.height();
   std::array<EdgeNormal, 3> normals;
   for (int e = 0; e < 3; ++e) normals[size_t(e)] = tm.edge(e);
@@ -64,8 +66,21 @@ void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm
       EdgeOnLine line;
       line.line = int16_t(k);
       line.edge = int8_t(e);
-      line.step = locate_corner_step(normals[size_t(e)], w + 1, m_lattice.x_lines(),
-                                     m_lattice.y_line(k), s);
+      EdgeOnLine* kept = nullptr;
+      if (old != nullptr && k >= old->line_begin && k < old->line_end())
+        for (int a = 0; a < old->edges_per_line; ++a) {
+          EdgeOnLine& candidate =
+              old->lines[size_t((k - old->line_begin) * old->edges_per_line + a)];
+          if (candidate.edge == e) kept = &candidate;
+        }
+      if (kept != nullptr) {  // the same edge on the same line: its step and its event go on
+        line.step = kept->step;
+        line.event = kept->event;
+        kept->event = kNoEvent;
+      } else {
+        line.step = locate_corner_step(normals[size_t(e)], w + 1, m_lattice.x_lines(),
+                                       m_lattice.y_line(k), s);
+      }
       rec.lines.push_back(line);
     }
   KINRAY_CHECK_EQ(rec.lines.size(), size_t((line_end - rec.line_begin) * rec.edges_per_line));
@@ -127,6 +142,38 @@ void PixelSquareSets::rebuild(uint32_t tri) {
                           rec.strip_begin + int(rec.strips.size()));
   update_pixels(tri, before, j0, j1);
   if (moving(tri)) schedule_all(tri);
+}
+
+void PixelSquareSets::reshape(uint32_t tri) {
+  TriangleRecord& rec = m_records[tri];
+  // The old layout: its strips tell which pixels change, its lines are taken over where the new
+  // layout has the same edge on the same line (all of them for a straddling triangle, all but
+  // those of the line the vertex crossed for one before the eye).
+  TriangleRecord before;
+  before.strip_begin = rec.strip_begin;
+  before.strips = std::move(rec.strips);
+  before.line_begin = rec.line_begin;
+  before.edges_per_line = rec.edges_per_line;
+  before.lines = std::move(rec.lines);
+  rec.strips.clear();
+  rec.lines.clear();
+  const std::array<uint32_t, 3> ids = vertex_ids(tri);
+  for (int k = 0; k < 3; ++k) rec.vertices[size_t(k)] = m_vertices[ids[size_t(k)]].cells;
+  const TriangleMotion tm = motion(tri);
+  follow_lines(rec, tm, local_time(tri), &before);
+  compute_strips(rec);
+  for (EdgeOnLine& line : before.lines) m_sim.queue().cancel(line.event);
+  ++m_stats.records_reshaped;
+  const int j0 = std::min(before.strip_begin, rec.strip_begin);
+  const int j1 = std::max(before.strip_begin + int(before.strips.size()),
+                          rec.strip_begin + int(rec.strips.size()));
+  update_pixels(tri, before, j0, j1);
+  for (size_t e = 0; e < rec.lines.size(); ++e) {
+    if (rec.lines[e].event != kNoEvent)  // a kept event, now at this index
+      m_sim.queue().set_payload(rec.lines[e].event, square_event_payload(tri, e));
+    else
+      schedule_line(tri, e, tm);
+  }
 }
 
 void PixelSquareSets::clear(uint32_t tri) {

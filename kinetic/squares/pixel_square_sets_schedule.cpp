@@ -15,9 +15,6 @@ namespace kinray {
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-uint64_t payload_of(uint32_t tri, size_t sub) {
-  return (uint64_t(tri) << 32) | uint64_t(sub);
-}
 }  // namespace
 
 double PixelSquareSets::failure_time(int sign, const Polynomial& f, uint32_t mesh) const {
@@ -86,7 +83,7 @@ void PixelSquareSets::schedule_line(uint32_t tri, size_t entry, const TriangleMo
   }
   m_stats.certificates_scheduled += 2;
   m_sim.queue().schedule(line.event, EventKey{t, kSquareCorner, tri, uint64_t(entry)},
-                         payload_of(tri, entry));
+                         square_event_payload(tri, entry));
 }
 
 void PixelSquareSets::schedule_orientation(uint32_t tri, const TriangleMotion& tm) {
@@ -94,7 +91,7 @@ void PixelSquareSets::schedule_orientation(uint32_t tri, const TriangleMotion& t
   const double t = failure_time(rec.orientation, tm.orientation(), m_triangle_mesh[tri]);
   ++m_stats.certificates_scheduled;
   m_sim.queue().schedule(rec.orientation_event, EventKey{t, kSquareOrientation, tri, 0},
-                         payload_of(tri, 0));
+                         square_event_payload(tri, 0));
 }
 
 void PixelSquareSets::schedule_horizon(uint32_t tri, int edge, const TriangleMotion& tm) {
@@ -104,7 +101,7 @@ void PixelSquareSets::schedule_horizon(uint32_t tri, int edge, const TriangleMot
   ++m_stats.certificates_scheduled;
   m_sim.queue().schedule(rec.nx_events[size_t(edge)],
                          EventKey{t, kSquareHorizon, tri, uint64_t(edge)},
-                         payload_of(tri, size_t(edge)));
+                         square_event_payload(tri, size_t(edge)));
 }
 
 void PixelSquareSets::schedule_key(uint32_t m) {

@@ -1,8 +1,8 @@
 // Vertices: each is followed once, whatever the number of triangles around it. A vertex that
 // changes side of the eye plane rebuilds every triangle around it (their modes may change), one
-// that changes row rebuilds those whose records read its cells (which lines and edges they follow
-// changes), and one that crosses a column line within its row moves that cell in their records
-// and recomputes the strip it lies in.
+// that changes row reshapes the records that read its cells (which lines and edges they follow
+// changes near the line it crossed), and one that crosses a column line within its row moves that
+// cell in their records and recomputes the strip it lies in.
 #include "kinetic/squares/mesh_segments.h"
 #include "kinetic/squares/pixel_square_sets.h"
 #include "util/check.h"
@@ -74,10 +74,13 @@ void PixelSquareSets::vertex_event(uint32_t v) {
   const auto around =
       std::span(m_adjacency)
           .subspan(m_adjacency_begin[v], m_adjacency_begin[v + 1] - m_adjacency_begin[v]);
-  if (is.z_sign != was.z_sign || is.row != was.row) {
+  if (is.z_sign != was.z_sign) {
+    ++m_stats.events.rebuild;
+    for (uint32_t tri : around) rebuild(tri);
+  } else if (is.row != was.row) {
     ++m_stats.events.rebuild;
     for (uint32_t tri : around)
-      if (is.z_sign != was.z_sign || reads_cells(m_records[tri].mode)) rebuild(tri);
+      if (reads_cells(m_records[tri].mode)) reshape(tri);
   } else if (is.column != was.column) {
     ++m_stats.events.side;
     for (uint32_t tri : around) {

@@ -2,6 +2,7 @@
 // The kinds of the per-square sets' events, in the order equal times are processed: a mesh's key
 // and presence first (they rebuild whole meshes, and a certificate of the old key segment may
 // fail at the key itself), then a triangle's own rebuilds, then the local moves.
+#include <cstddef>
 #include <cstdint>
 
 namespace kinray {
@@ -12,5 +13,11 @@ inline constexpr uint32_t kSquareOrientation = 2;  ///< a = triangle
 inline constexpr uint32_t kSquareHorizon = 3;      ///< a = triangle, b = its edge (n_x = 0)
 inline constexpr uint32_t kSquareVertex = 4;       ///< a = triangle, b = its vertex
 inline constexpr uint32_t kSquareCorner = 5;       ///< a = triangle, b = its edge-on-line entry
+
+/// The payload of a triangle's event: the triangle and which of its certificates (its edge for
+/// kSquareHorizon, its edge-on-line entry for kSquareCorner).
+[[nodiscard]] inline uint64_t square_event_payload(uint32_t tri, size_t sub) {
+  return (uint64_t(tri) << 32) | uint64_t(sub);
+}
 
 }  // namespace kinray

@@ -27,10 +27,11 @@ struct SquareEventCounts {
 #define KINRAY_SQUARE_COUNTERS(X)                                                                  \
   X(certificates_scheduled, "certificates_scheduled") /* every failure time computed */            \
   X(spurious, "spurious")                             /* events after which nothing had changed */ \
-  X(square_changes, "square_changes")   /* a triangle into or out of a pixel's set */              \
-  X(records_built, "records_built")     /* triangle records built or rebuilt */                    \
-  X(pixel_entries, "pixel_entries")     /* now: triangles held over all pixels */                  \
-  X(triangles_front, "triangles_front") /* now: records of triangles wholly before the eye */      \
+  X(square_changes, "square_changes")     /* a triangle into or out of a pixel's set */            \
+  X(records_built, "records_built")       /* triangle records built or rebuilt */                  \
+  X(records_reshaped, "records_reshaped") /* records laid out again after a vertex's row */        \
+  X(pixel_entries, "pixel_entries")       /* now: triangles held over all pixels */                \
+  X(triangles_front, "triangles_front")   /* now: records of triangles wholly before the eye */    \
   X(triangles_straddling, "triangles_straddling") /* now: records across the eye plane */
 
 struct SquareStats {
