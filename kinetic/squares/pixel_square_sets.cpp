@@ -44,6 +44,7 @@ PixelSquareSets::PixelSquareSets(GridInput input, double start_time, const Confi
   std::vector<uint32_t> fill(m_adjacency_begin.begin(), m_adjacency_begin.end() - 1);
   for (uint32_t tri = 0; tri < m_records.size(); ++tri)
     for (uint32_t v : vertex_ids(tri)) m_adjacency[fill[v]++] = tri;
+  index_edges();
   // Start-up: every present vertex's side of the eye, then every present triangle's record from
   // the signs at the start time (rebuild follows its vertices' cells and adds it to the squares
   // its strips hold).
@@ -81,6 +82,9 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
       // and is handled like any other event. A triangle degenerate on either segment (O the zero
       // polynomial, whose record is empty) is rebuilt.
       for (uint32_t v = m_vertex_begin[m]; v < m_vertex_begin[m + 1]; ++v) schedule_vertex(v);
+      for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t)
+        for (uint32_t edge : m_triangle_edges[t])
+          if (m_edge_triangles[m_edge_triangles_begin[edge]] == t) schedule_edge(edge);  // once
       if (m_present[m])
         for (uint32_t t = m_triangle_begin[m]; t < m_triangle_begin[m + 1]; ++t) {
           if (m_records[t].mode == TriangleRecord::Mode::kEmpty ||
@@ -128,6 +132,9 @@ void PixelSquareSets::handle(const EventKey& key, uint64_t payload) {
       break;
     case kSquareCorner:
       corner_event(tri, sub);
+      break;
+    case kSquareEdgeCorner:
+      edge_corner_event(key.a, sub);
       break;
     default:
       KINRAY_CHECK_MSG(false, "unknown event kind");

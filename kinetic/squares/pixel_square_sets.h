@@ -17,6 +17,7 @@
 #include "kinetic/core/simulator.h"
 #include "kinetic/grid/grid_input.h"
 #include "kinetic/grid/grid_scene.h"
+#include "kinetic/squares/edge_steps.h"
 #include "kinetic/squares/square_change_log.h"
 #include "kinetic/squares/square_lattice.h"
 #include "kinetic/squares/square_stats.h"
@@ -78,7 +79,7 @@ class PixelSquareSets {
   /// Lays out rec's row lines and strips from its vertices' rows and locates each edge's step on
   /// each line; an entry of `old` (the same triangle's record in the same mode before a vertex
   /// changed row) with the same line and edge is taken over instead, with its pending event.
-  void follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s,
+  void follow_lines(uint32_t tri, TriangleRecord& rec, const TriangleMotion& tm, double s,
                     TriangleRecord* old = nullptr) const;
   void compute_strips(TriangleRecord& rec) const;
   /// Replaces tri's record by a fresh one at now(), its pixels and events updated.
@@ -104,6 +105,21 @@ class PixelSquareSets {
   /// them, the last one drops them; v's certificates follow.
   void follow(uint32_t v);
   void unfollow(uint32_t v);
+  // Edges (pixel_square_sets_edges.cpp).
+  /// The global edge ids of every triangle, and each edge's triangles.
+  void index_edges();
+  /// +1 when tri's edge e runs in its edge's own direction, -1 the other way.
+  [[nodiscard]] int edge_direction(uint32_t tri, int e) const;
+  [[nodiscard]] EdgeNormal edge_normal_of(uint32_t edge) const;
+  /// Lays edge's lines out from its end points' rows, the steps of lines it keeps taken over.
+  void layout_edge(uint32_t edge);
+  void follow_edge(uint32_t edge);
+  void unfollow_edge(uint32_t edge);
+  void schedule_edge_line(uint32_t edge, size_t index, const EdgeNormal& n);
+  void schedule_edge(uint32_t edge);
+  void edge_corner_event(uint32_t edge, size_t index);
+  /// The followed edges that have v as an end point.
+  [[nodiscard]] std::vector<uint32_t> followed_edges_at(uint32_t v) const;
   void add(uint32_t tri, int i, int j);
   void remove(uint32_t tri, int i, int j);
   // Certificates (pixel_square_sets_schedule.cpp).
@@ -142,6 +158,10 @@ class PixelSquareSets {
   std::vector<uint32_t> m_vertex_mesh;    ///< per global vertex
   std::vector<VertexTracker> m_vertices;  ///< per global vertex
   std::vector<uint32_t> m_adjacency_begin, m_adjacency;      ///< global vertex -> its triangles
+  std::vector<std::array<uint32_t, 3>> m_triangle_edges;     ///< per triangle: its edges' ids
+  std::vector<std::array<uint32_t, 2>> m_edge_vertices;      ///< per edge: lower id first
+  std::vector<EdgeTracker> m_edges;                          ///< per edge
+  std::vector<uint32_t> m_edge_triangles_begin, m_edge_triangles;  ///< edge -> its triangles
   std::vector<std::vector<SquareTriangle>> m_pixels;         ///< row-major
   SquareStats m_stats;
   bool m_logging = false;

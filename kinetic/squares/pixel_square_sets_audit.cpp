@@ -23,6 +23,7 @@ class PixelSquareSets::Audit {
     if (!q.empty() && q.top_key().time <= m_t)
       report("queue", "an event at or before now is pending");
     for (uint32_t m = 0; m < m_sets.m_input.meshes.size(); ++m) mesh(m);
+    edges();
     pixels();
     return std::move(m_problems);
   }
@@ -45,6 +46,47 @@ class PixelSquareSets::Audit {
       record(tri, m_sets.m_present[m] != 0);
     if (m_sets.m_present[m])
       for (uint32_t v = m_sets.m_vertex_begin[m]; v < m_sets.m_vertex_begin[m + 1]; ++v) vertex(v);
+  }
+
+  /// Every edge is followed by as many records before the eye as its count says, over the row
+  /// lines between its end points' rows, and those records' copies are its steps.
+  void edges() {
+    const PixelSquareSets& s = m_sets;
+    std::vector<uint32_t> users(s.m_edges.size(), 0);
+    for (uint32_t tri = 0; tri < s.m_records.size(); ++tri) {
+      const TriangleRecord& rec = s.m_records[tri];
+      if (rec.mode != TriangleRecord::Mode::kFront) continue;
+      for (int e = 0; e < 3; ++e) ++users[s.m_triangle_edges[tri][size_t(e)]];
+      for (const EdgeOnLine& line : rec.lines) {
+        const EdgeTracker& et = s.m_edges[s.m_triangle_edges[tri][size_t(line.edge)]];
+        const int k = line.line - et.line_begin;
+        if (k < 0 || k >= int(et.lines.size())) {
+          report("edge lines",
+                 "triangle " + std::to_string(tri) + " reads a line its edge does not follow");
+          continue;
+        }
+        const CornerStep& own = et.lines[size_t(k)].step;
+        if (line.step.count != own.count ||
+            line.step.first != s.edge_direction(tri, line.edge) * own.first)
+          report("edge copies",
+                 "triangle " + std::to_string(tri) + " holds a stale copy of an edge's step");
+      }
+    }
+    for (uint32_t edge = 0; edge < s.m_edges.size(); ++edge) {
+      const EdgeTracker& et = s.m_edges[edge];
+      const std::string where = "edge " + std::to_string(edge);
+      if (et.users != users[edge]) report("edge users", where + " has a wrong count of users");
+      if (et.users == 0) {
+        if (!et.lines.empty()) report("edge lines", where + " follows lines for nobody");
+        continue;
+      }
+      const int r0 = s.m_vertices[s.m_edge_vertices[edge][0]].cells.row;
+      const int r1 = s.m_vertices[s.m_edge_vertices[edge][1]].cells.row;
+      const int begin = std::max(std::min(r0, r1) + 1, 0);
+      const int end = std::max(std::min(std::max(r0, r1), s.m_lattice.height()) + 1, begin);
+      if (et.line_begin != begin || int(et.lines.size()) != end - begin)
+        report("edge lines", where + " follows the wrong row lines");
+    }
   }
 
   /// A vertex's claimed side of the eye plane and cells (followed exactly while records read

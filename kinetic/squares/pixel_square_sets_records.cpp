@@ -31,8 +31,8 @@ TriangleMotion PixelSquareSets::motion(uint32_t tri) const {
   return tm;
 }
 
-void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm, double s,
-                                   TriangleRecord* old) const {
+void PixelSquareSets::follow_lines(uint32_t tri, TriangleRecord& rec, const TriangleMotion& tm,
+                                   double s, TriangleRecord* old) const {
   const int w = m_lattice.width(), h = m_lattice.height();
   std::array<EdgeNormal, 3> normals;
   for (int e = 0; e < 3; ++e) normals[size_t(e)] = tm.edge(e);
@@ -66,6 +66,13 @@ void PixelSquareSets::follow_lines(TriangleRecord& rec, const TriangleMotion& tm
       EdgeOnLine line;
       line.line = int16_t(k);
       line.edge = int8_t(e);
+      if (rec.mode == Mode::kFront) {  // a copy of the edge's own step (followed already)
+        const EdgeTracker& et = m_edges[m_triangle_edges[tri][size_t(e)]];
+        const CornerStep& own = et.lines[size_t(k - et.line_begin)].step;
+        line.step = CornerStep{edge_direction(tri, e) * own.first, own.count};
+        rec.lines.push_back(line);
+        continue;
+      }
       EdgeOnLine* kept = nullptr;
       if (old != nullptr && k >= old->line_begin && k < old->line_end())
         for (int a = 0; a < old->edges_per_line; ++a) {
@@ -113,7 +120,7 @@ void PixelSquareSets::build(uint32_t tri, TriangleRecord& rec) const {
       rec.nx_sign[size_t(e)] = int8_t(sign_plus(tm.edge(e).component(0), s));
   const std::array<uint32_t, 3> ids = vertex_ids(tri);
   for (int k = 0; k < 3; ++k) rec.vertices[size_t(k)] = m_vertices[ids[size_t(k)]].cells;
-  follow_lines(rec, tm, s);
+  follow_lines(tri, rec, tm, s);
   compute_strips(rec);
 }
 
@@ -130,9 +137,14 @@ void PixelSquareSets::rebuild(uint32_t tri) {
   const std::array<uint32_t, 3> ids = vertex_ids(tri);
   // The new record's vertices are followed before the old record lets them go, so that a vertex
   // both read is not dropped and located again.
-  if (reads_cells(mode_of(tri, motion(tri))))
+  const Mode mode = mode_of(tri, motion(tri));
+  if (reads_cells(mode))
     for (uint32_t v : ids) follow(v);
+  if (mode == Mode::kFront)
+    for (uint32_t edge : m_triangle_edges[tri]) follow_edge(edge);
   build(tri, m_records[tri]);
+  if (before.mode == Mode::kFront)
+    for (uint32_t edge : m_triangle_edges[tri]) unfollow_edge(edge);
   if (reads_cells(before.mode))
     for (uint32_t v : ids) unfollow(v);
   ++m_stats.records_built;
@@ -160,7 +172,7 @@ void PixelSquareSets::reshape(uint32_t tri) {
   const std::array<uint32_t, 3> ids = vertex_ids(tri);
   for (int k = 0; k < 3; ++k) rec.vertices[size_t(k)] = m_vertices[ids[size_t(k)]].cells;
   const TriangleMotion tm = motion(tri);
-  follow_lines(rec, tm, local_time(tri), &before);
+  follow_lines(tri, rec, tm, local_time(tri), &before);
   compute_strips(rec);
   for (EdgeOnLine& line : before.lines) m_sim.queue().cancel(line.event);
   ++m_stats.records_reshaped;
@@ -168,6 +180,7 @@ void PixelSquareSets::reshape(uint32_t tri) {
   const int j1 = std::max(before.strip_begin + int(before.strips.size()),
                           rec.strip_begin + int(rec.strips.size()));
   update_pixels(tri, before, j0, j1);
+  if (rec.mode != Mode::kStraddling) return;  // a front record's lines are copies, eventless
   for (size_t e = 0; e < rec.lines.size(); ++e) {
     if (rec.lines[e].event != kNoEvent)  // a kept event, now at this index
       m_sim.queue().set_payload(rec.lines[e].event, square_event_payload(tri, e));
@@ -180,6 +193,8 @@ void PixelSquareSets::clear(uint32_t tri) {
   TriangleRecord before = std::move(m_records[tri]);
   cancel_all(before);
   m_records[tri] = TriangleRecord{};
+  if (before.mode == Mode::kFront)
+    for (uint32_t edge : m_triangle_edges[tri]) unfollow_edge(edge);
   if (reads_cells(before.mode))
     for (uint32_t v : vertex_ids(tri)) unfollow(v);
   update_pixels(tri, before, before.strip_begin, before.strip_begin + int(before.strips.size()));

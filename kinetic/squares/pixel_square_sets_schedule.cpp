@@ -32,12 +32,12 @@ void PixelSquareSets::schedule_all(uint32_t tri) {
   const TriangleRecord& rec = m_records[tri];
   if (rec.mode != TriangleRecord::Mode::kFront && rec.mode != TriangleRecord::Mode::kStraddling)
     return;
+  // A record before the eye holds copies of its edges' steps, whose events are the edges'.
+  if (rec.mode != TriangleRecord::Mode::kStraddling) return;
   const TriangleMotion tm = motion(tri);
   for (size_t e = 0; e < rec.lines.size(); ++e) schedule_line(tri, e, tm);
-  if (rec.mode == TriangleRecord::Mode::kStraddling) {
-    schedule_orientation(tri, tm);
-    for (int e = 0; e < 3; ++e) schedule_horizon(tri, e, tm);
-  }
+  schedule_orientation(tri, tm);
+  for (int e = 0; e < 3; ++e) schedule_horizon(tri, e, tm);
 }
 
 void PixelSquareSets::schedule_vertex(uint32_t v) {
@@ -84,6 +84,25 @@ void PixelSquareSets::schedule_line(uint32_t tri, size_t entry, const TriangleMo
   m_stats.certificates_scheduled += 2;
   m_sim.queue().schedule(line.event, EventKey{t, kSquareCorner, tri, uint64_t(entry)},
                          square_event_payload(tri, entry));
+}
+
+void PixelSquareSets::schedule_edge_line(uint32_t edge, size_t index, const EdgeNormal& n) {
+  EdgeStep& line = m_edges[edge].lines[index];
+  const uint32_t m = m_vertex_mesh[m_edge_vertices[edge][0]];
+  const int w = m_lattice.width();
+  const double y = m_lattice.y_line(m_edges[edge].line_begin + int(index));
+  const CornerStep& st = line.step;
+  double t;
+  if (st.count > w) {
+    t = std::min(failure_time(st.first, n.along(m_lattice.x_line(0), y), m),
+                 failure_time(st.first, n.along(m_lattice.x_line(w), y), m));
+  } else {
+    t = std::min(failure_time(st.first, n.along(m_lattice.x_line(st.count - 1), y), m),
+                 failure_time(-st.first, n.along(m_lattice.x_line(st.count), y), m));
+  }
+  m_stats.certificates_scheduled += 2;
+  m_sim.queue().schedule(line.event, EventKey{t, kSquareEdgeCorner, edge, uint64_t(index)},
+                         square_event_payload(edge, index));
 }
 
 void PixelSquareSets::schedule_orientation(uint32_t tri, const TriangleMotion& tm) {

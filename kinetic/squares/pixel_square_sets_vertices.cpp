@@ -79,6 +79,8 @@ void PixelSquareSets::vertex_event(uint32_t v) {
     for (uint32_t tri : around) rebuild(tri);
   } else if (is.row != was.row) {
     ++m_stats.events.rebuild;
+    // The edges first: the records copy their steps.
+    for (uint32_t edge : followed_edges_at(v)) layout_edge(edge);
     for (uint32_t tri : around)
       if (reads_cells(m_records[tri].mode)) reshape(tri);
   } else if (is.column != was.column) {

@@ -13,6 +13,7 @@ inline constexpr uint32_t kSquareOrientation = 2;  ///< a = triangle
 inline constexpr uint32_t kSquareHorizon = 3;      ///< a = triangle, b = its edge (n_x = 0)
 inline constexpr uint32_t kSquareVertex = 4;       ///< a = triangle, b = its vertex
 inline constexpr uint32_t kSquareCorner = 5;       ///< a = triangle, b = its edge-on-line entry
+inline constexpr uint32_t kSquareEdgeCorner = 6;   ///< a = edge, b = its line's index
 
 /// The payload of a triangle's event: the triangle and which of its certificates (its edge for
 /// kSquareHorizon, its edge-on-line entry for kSquareCorner).
