@@ -3,9 +3,12 @@
 // antialiasing: the pixel's square as the frustum"): for every pixel, the triangles whose image
 // region overlaps the pixel's closed square, kept up to date by events only. A triangle's squares
 // change only when an edge line passes a square corner (E_pq at the corner, quadratic), a vertex
-// crosses a pixel line (X - x Z or Y - y Z, linear), its plane sweeps the eye (O, cubic), a vertex
-// crosses the eye plane, or at a key, an appearance or a disappearance; each triangle's record
-// (triangle_footprint.h) watches the few of those that bracket it.
+// crosses a pixel line (X - x Z or Y - y Z, linear), a vertex crosses the eye plane, or, for a
+// triangle across the eye plane, its plane sweeps the eye (O, cubic) or an edge line turns
+// horizontal (n_x, quadratic); and at a key, an appearance or a disappearance. Each triangle's
+// record (triangle_footprint.h) reads the few of those that bracket it; a vertex's cells
+// (vertex_cells.h) and an edge's corner steps (edge_steps.h) are followed once for all the
+// triangles around them.
 //
 //   PixelSquareSets sets(input, t0);
 //   for (double t : frame_times) { sets.advance_to(t); for each pixel: sets.triangles(i, j); }

@@ -158,9 +158,10 @@ void PixelSquareSets::rebuild(uint32_t tri) {
 
 void PixelSquareSets::reshape(uint32_t tri) {
   TriangleRecord& rec = m_records[tri];
-  // The old layout: its strips tell which pixels change, its lines are taken over where the new
-  // layout has the same edge on the same line (all of them for a straddling triangle, all but
-  // those of the line the vertex crossed for one before the eye).
+  // The old layout: its strips tell which pixels change. A straddling triangle follows every row
+  // line with all three edges whatever its vertices' rows, so its lines are all taken over with
+  // their steps and events; one before the eye copies its lines from its edges, laid out again
+  // already (layout_edge).
   TriangleRecord before;
   before.strip_begin = rec.strip_begin;
   before.strips = std::move(rec.strips);

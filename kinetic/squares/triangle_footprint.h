@@ -8,7 +8,7 @@
 // the edge functions change sign along the line's corners (E at a corner). Nothing is measured.
 //   - A triangle wholly before the eye (kFront) has R its projection: each row line strictly
 //     between its vertices' rows is crossed by exactly two edges, at the two ends of R's segment
-//     on it, and only those two are followed.
+//     on it, and only those two are read (copies of the edges' own steps, edge_steps.h).
 //   - A triangle across the eye plane (kStraddling) has R unbounded (R's vertices are the
 //     projections of its vertices before the eye): on every row line of the image R is the
 //     intersection of the three edges' half-lines, each read off its corner signs with sign(O)
@@ -31,12 +31,13 @@
 
 namespace kinray {
 
-/// One edge function along one row line: the step of its signs over the line's corners.
+/// One edge function along one row line: the step of its signs over the line's corners, in the
+/// triangle's own direction of the edge.
 struct EdgeOnLine {
   int16_t line = 0;
   int8_t edge = 0;  ///< from vertex edge to vertex (edge + 1) % 3 (kEdgeStart / kEdgeEnd)
   CornerStep step;
-  EventHandle event = kNoEvent;
+  EventHandle event = kNoEvent;  ///< kStraddling only (kFront holds a copy of its edge's step)
 };
 
 /// Columns lo..hi (empty when lo > hi); -1 and width stand for "off the image" before clamping.
