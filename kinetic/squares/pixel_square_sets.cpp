@@ -1,7 +1,8 @@
 // PixelSquareSets: start-up, the event loop, and the events of meshes (keys, presence) and of
 // triangles (a straddling triangle's plane sweeping the eye or one of its edges turning
 // horizontal rebuilds its record; an edge line passing a corner moves one step and recomputes the
-// two strips its row line bounds). The vertices' events are in pixel_square_sets_vertices.cpp.
+// two strips its row line bounds). The vertices' and the edges' events are in
+// pixel_square_sets_vertices.cpp and pixel_square_sets_edges.cpp.
 #include "kinetic/squares/pixel_square_sets.h"
 
 #include <string>
@@ -163,6 +164,9 @@ void PixelSquareSets::corner_event(uint32_t tri, size_t entry) {
 SquareStats PixelSquareSets::stats() const {
   SquareStats s = m_stats;
   for (const auto& set : m_pixels) s.pixel_entries += set.size();
+  s.events_pending = m_sim.queue().size();
+  for (const VertexTracker& v : m_vertices) s.vertices_followed += v.users > 0;
+  for (const EdgeTracker& e : m_edges) s.edges_followed += e.users > 0;
   for (const TriangleRecord& rec : m_records) {
     s.triangles_front += rec.mode == TriangleRecord::Mode::kFront;
     s.triangles_straddling += rec.mode == TriangleRecord::Mode::kStraddling;

@@ -32,7 +32,10 @@ struct SquareEventCounts {
   X(records_reshaped, "records_reshaped") /* records laid out again after a vertex's row */        \
   X(pixel_entries, "pixel_entries")       /* now: triangles held over all pixels */                \
   X(triangles_front, "triangles_front")   /* now: records of triangles wholly before the eye */    \
-  X(triangles_straddling, "triangles_straddling") /* now: records across the eye plane */
+  X(triangles_straddling, "triangles_straddling") /* now: records across the eye plane */          \
+  X(vertices_followed, "vertices_followed")       /* now: vertices whose cells records read */     \
+  X(edges_followed, "edges_followed")             /* now: edges whose steps records read */        \
+  X(events_pending, "events_pending")             /* now: events in the queue (compactness) */
 
 struct SquareStats {
   KINRAY_COUNTERS_WITH_EVENTS(SquareStats, SquareEventCounts, KINRAY_SQUARE_COUNTERS)

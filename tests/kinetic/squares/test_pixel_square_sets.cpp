@@ -238,6 +238,44 @@ TEST(PixelSquareSets, RandomTrianglesAcrossTheEyePlaneMatchBruteForce) {
   }
 }
 
+TEST(PixelSquareSets, AnEdgeSharedByTwoTrianglesCrossesACornerOnce) {
+  // A quad of two triangles sliding across the image, once welded (the diagonal one edge, its
+  // vertices followed once) and once as two separate triangles: the same sets, and the welded
+  // quad counts each corner its diagonal crosses once instead of twice.
+  const std::vector<double> times = {0.0, 1.0};
+  const std::array<std::array<double, 2>, 4> corners = {
+      {{-0.9, -0.5}, {0.1, -0.45}, {0.15, 0.55}, {-0.85, 0.5}}};
+  auto at = [&](size_t c, int key) {
+    return at_depth(corners[c][0] + 0.8 * key, corners[c][1] + 0.1 * key, 2.0);
+  };
+  TestScene welded, separate;
+  welded.width = separate.width = 16;
+  welded.height = separate.height = 12;
+  test::OwnedMesh quad;
+  quad.times = times;
+  quad.vertex_count = 4;
+  for (int key = 0; key < 2; ++key)
+    for (size_t c = 0; c < 4; ++c) quad.positions.push_back(at(c, key));
+  quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+  welded.meshes.push_back(quad);
+  for (const auto& tri : quad.triangles) {
+    std::vector<std::array<Vec, 3>> keys;
+    for (int key = 0; key < 2; ++key)
+      keys.push_back({at(tri[0], key), at(tri[1], key), at(tri[2], key)});
+    separate.meshes.push_back(moving_triangle(times, keys));
+  }
+  PixelSquareSets a(welded.input(), 0.0), b(separate.input(), 0.0);
+  expect_matches_brute_force(a, random_times(0.0, 1.0, 20, 23));
+  expect_matches_brute_force(b, random_times(0.0, 1.0, 20, 23));
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(a.triangles(i, j).size(), b.triangles(i, j).size());
+  EXPECT_EQ(a.stats().edges_followed, 5u);
+  EXPECT_EQ(b.stats().edges_followed, 6u);
+  EXPECT_GT(a.stats().events.corner, 0u);
+  EXPECT_LT(a.stats().events.corner, b.stats().events.corner);
+  EXPECT_LT(a.stats().events.side, b.stats().events.side);
+}
+
 TEST(PixelSquareSets, EventsDoNotDependOnTheFramesReadOut) {
   const TestScene scene = synthetic_scene();
   PixelSquareSets once(scene.input(), -0.25), often(scene.input(), -0.25);
