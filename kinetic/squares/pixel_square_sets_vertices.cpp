@@ -78,7 +78,7 @@ void PixelSquareSets::vertex_event(uint32_t v) {
     ++m_stats.events.rebuild;
     for (uint32_t tri : around) rebuild(tri);
   } else if (is.row != was.row) {
-    ++m_stats.events.rebuild;
+    ++m_stats.events.row;
     // The edges first: the records copy their steps.
     for (uint32_t edge : followed_edges_at(v)) layout_edge(edge);
     for (uint32_t tri : around)

@@ -1,8 +1,8 @@
 #pragma once
 // Counters of the per-square sets (pbrt STAT_COUNTER style). Every event count is set by the
 // geometry and the motion alone, never by the frames read out: an edge line passing a square
-// corner (once per edge, or per triangle across the eye plane), a vertex crossing a column line, a
-// vertex changing row or side of the eye plane, a plane sweeping the eye or an edge turning
+// corner (once per edge, or per triangle across the eye plane), a vertex crossing a column line or
+// a row line, a vertex crossing the eye plane, a plane sweeping the eye or an edge turning
 // horizontal, a key, a mesh appearing or disappearing.
 #include <cstdint>
 
@@ -11,12 +11,13 @@
 namespace kinray {
 
 // X(member, "stats key"), one line per kind of event.
-#define KINRAY_SQUARE_EVENT_KINDS(X)                                                        \
-  X(corner, "corner")         /* an edge line passed a square corner */                     \
-  X(side, "side")             /* a vertex crossed a column line within its row */           \
-  X(rebuild, "rebuild")       /* a vertex changed row or eye side, O or n_x changed sign */ \
-  X(flightplan, "flightplan") /* a mesh reached a key (certificates recomputed) */          \
-  X(insert, "insert")         /* a mesh appeared after the start */                         \
+#define KINRAY_SQUARE_EVENT_KINDS(X)                                                  \
+  X(corner, "corner")         /* an edge line passed a square corner */               \
+  X(side, "side")             /* a vertex crossed a column line within its row */     \
+  X(row, "row")               /* a vertex changed row (its records laid out again) */ \
+  X(rebuild, "rebuild")       /* a vertex changed eye side, O or n_x changed sign */  \
+  X(flightplan, "flightplan") /* a mesh reached a key (certificates recomputed) */    \
+  X(insert, "insert")         /* a mesh appeared after the start */                   \
   X(remove, "delete")         /* a mesh disappeared */
 
 struct SquareEventCounts {

@@ -38,6 +38,7 @@ TEST(PixelSquareSets, SyntheticSceneMatchesBruteForceAtRandomTimes) {
   // The scene reaches every kind of event, and both kinds of record.
   EXPECT_GT(stats.events.corner, 0u);
   EXPECT_GT(stats.events.side, 0u);
+  EXPECT_GT(stats.events.row, 0u);
   EXPECT_GT(stats.events.rebuild, 0u);
   EXPECT_EQ(stats.events.flightplan, 3u * scene.meshes.size());  // keys 0, 1 and 2
   EXPECT_GT(stats.triangles_straddling, 0u);
@@ -132,6 +133,7 @@ TEST(PixelSquareSets, EventsDoNotDependOnTheFramesReadOut) {
   const SquareStats a = once.stats(), b = often.stats();
   EXPECT_EQ(a.events.corner, b.events.corner);
   EXPECT_EQ(a.events.side, b.events.side);
+  EXPECT_EQ(a.events.row, b.events.row);
   EXPECT_EQ(a.events.rebuild, b.events.rebuild);
   EXPECT_EQ(a.events.flightplan, b.events.flightplan);
   for (int j = 0; j < 12; ++j)
