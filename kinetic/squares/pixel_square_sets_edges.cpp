@@ -127,6 +127,7 @@ void PixelSquareSets::edge_corner_event(uint32_t edge, size_t index) {
       for (int e = 0; e < 3; ++e) {
         if (m_triangle_edges[tri][size_t(e)] != edge) continue;
         const int dir = edge_direction(tri, e);
+        KINRAY_DCHECK(k >= rec.line_begin && k < rec.line_end());
         for (int b = 0; b < 2; ++b) {
           EdgeOnLine& copy = rec.lines[size_t((k - rec.line_begin) * 2 + b)];
           if (copy.edge == e) copy.step = CornerStep{dir * step.first, step.count};

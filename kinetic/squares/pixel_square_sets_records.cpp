@@ -68,6 +68,7 @@ void PixelSquareSets::follow_lines(uint32_t tri, TriangleRecord& rec, const Tria
       line.edge = int8_t(e);
       if (rec.mode == Mode::kFront) {  // a copy of the edge's own step (followed already)
         const EdgeTracker& et = m_edges[m_triangle_edges[tri][size_t(e)]];
+        KINRAY_DCHECK(k >= et.line_begin && k - et.line_begin < int(et.lines.size()));
         const CornerStep& own = et.lines[size_t(k - et.line_begin)].step;
         line.step = CornerStep{edge_direction(tri, e) * own.first, own.count};
         rec.lines.push_back(line);
