@@ -105,6 +105,7 @@ InputError name_the_flag(const OptionError& error) {
       {"frame_range", "--frame-range"},
       {"frame_slice", "--chunk/--frame-range"},
       {"aa_samples", "--aa-samples"},
+      {"aa", "--aa"},
   };
   for (const auto& [field, flag] : kFlags)
     if (error.where() == field) return InputError(flag, error.message());

@@ -119,6 +119,10 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
                   "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 4)")
       ->capture_default_str()
       ->group(group);
+  add_enum_option(command, "--aa", options.params.aa, kAntialiasingNames,
+                  "Antialiasing: none (the pixel's centre) or exact (kinetic: the box-filtered "
+                  "mean over the pixel's square, from its visible regions)")
+      ->group(group);
   command
       .add_option("--aa-samples", options.params.aa_samples,
                   "Antialiasing, sampling backends (embree): stratified jittered samples per "

@@ -207,10 +207,10 @@ std::unique_ptr<Backend> make_auto_backend(const CameraSpaceScene& scene,
                                            const BackendConfig& config) {
   const BackendConfig defaults;
   if (config.shutter.enabled() || config.sort != defaults.sort || config.audit ||
-      config.shadow_tree != defaults.shadow_tree)
+      config.shadow_tree != defaults.shadow_tree || config.aa == Antialiasing::exact)
     return make_kinetic_backend(scene, config);
   if (config.embree_packet != defaults.embree_packet ||
-      config.embree_build != defaults.embree_build)
+      config.embree_build != defaults.embree_build || config.aa_samples > 1)
     return make_embree_backend(scene, config);
   return std::make_unique<AutoBackend>(scene, config);
 }

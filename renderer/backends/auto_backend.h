@@ -4,7 +4,8 @@
 // however many frames share them; Embree pays a cost per frame. The break-even moves with the
 // scene and the image (about 10 frames per keyframe interval on wavy-sphere, 60 on flythrough,
 // 100 on BART), so no rule of thumb decides it; what the first frames cost does:
-//   1. Embree (refit, its widest native packet up to 8) renders the first two frames: its BVH build and
+//   1. Embree (refit, its widest native packet up to 8) renders the first two frames: its BVH build
+//   and
 //      the cost of one more frame, E.
 //   2. When the shot has fewer than kMinFramesPerInterval frames per keyframe interval, or the
 //      frames left cost less with Embree than kInitInEmbreeBuilds first Embree frames (the grid's
@@ -18,8 +19,8 @@
 // Every frame is its backend's exact frame: the grid built at any frame renders what a grid
 // built at the first would (docs/render_farm.md), and Embree refits to any time, so a frame of an
 // auto render equals the same frame of whichever backend rendered it. Flags that only one backend
-// reads choose it outright (--sort, --audit, --shadow-tree, --shutter: kinetic; --packet,
-// --embree-mode: Embree).
+// reads choose it outright (--sort, --audit, --shadow-tree, --shutter, --aa exact: kinetic;
+// --packet, --embree-mode, --aa-samples: Embree).
 #include <memory>
 
 #include "renderer/backends/backend.h"

@@ -35,6 +35,10 @@ void Backend::render_shutter(const ShutterWindow&, Frame&) {
   throw OptionError("shutter", "the " + name() + " backend has no motion blur");
 }
 
+void Backend::render_antialiased(double, Frame&) {
+  throw OptionError("aa", "the " + name() + " backend has no exact antialiasing");
+}
+
 void Backend::render_supersampled(double, Frame&) {
   throw OptionError("aa_samples", "the " + name() + " backend does not supersample");
 }
@@ -54,6 +58,10 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpace
     std::unique_ptr<Backend> backend = entry.make(scene, config);
     if (config.shutter.enabled() && !backend->has_motion_blur())
       throw OptionError("shutter", "the " + name + " backend has no motion blur (kinetic and embree have)");
+    if (config.aa == Antialiasing::exact && !backend->has_exact_antialiasing())
+      throw OptionError("aa", "the " + name +
+                                  " backend has no exact antialiasing (kinetic has; the sampling "
+                                  "backends take --aa-samples)");
     if (config.aa_samples > 1 && !backend->has_supersampling())
       throw OptionError("aa_samples",
                         "the " + name + " backend does not supersample (embree does)");

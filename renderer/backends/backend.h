@@ -2,16 +2,16 @@
 // The interface between the frame loop and the backends (kinetic, embree, osmesa). Virtual
 // dispatch is fine here: it happens once per frame, never per ray.
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <span>
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "kinetic/sort/depth_sort_kind.h"
+#include "renderer/antialiasing/antialiasing.h"
 #include "renderer/backends/embree_build.h"
 #include "renderer/frame.h"
-#include "renderer/shadows/shadow_tracer.h"
 #include "renderer/motion_blur/shutter.h"
+#include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "util/work_progress.h"
 
@@ -31,6 +31,8 @@ struct BackendConfig {
   /// Antialiasing samples per pixel of the sampling backends (a square; 1: the centre ray alone,
   /// render() then shade_frame, bit for bit as without antialiasing).
   int aa_samples = 1;
+  /// --aa: exact antialiasing (the box filter from each square's visible regions; kinetic).
+  Antialiasing aa = Antialiasing::none;
 };
 
 class Backend {
@@ -58,6 +60,13 @@ class Backend {
   virtual void render_supersampled(double t, Frame& frame);
   /// True if render_supersampled is implemented (make_backend rejects aa_samples > 1 otherwise).
   [[nodiscard]] virtual bool has_supersampling() const { return false; }
+  /// Exact antialiasing (BackendConfig::aa == exact; renderer/antialiasing/): frame.color is the
+  /// mean of the headlight's shading over each pixel's square, from the square's visible regions;
+  /// object, prim and depth are render(t)'s, the centre ray's. Throws OptionError naming "aa"
+  /// when this backend has none.
+  virtual void render_antialiased(double t, Frame& frame);
+  /// True if render_antialiased is implemented (make_backend rejects --aa exact otherwise).
+  [[nodiscard]] virtual bool has_exact_antialiasing() const { return false; }
   /// Adds this backend's counters and timings to a --stats JSON object.
   virtual void write_stats(nlohmann::json& stats) const {}
   /// What traces this backend's shadow rays at the frame it rendered last; nullptr when the

@@ -89,6 +89,10 @@ void validate(const RenderParams& params) {
   if (params.aa_samples > 1 && params.shutter.enabled())
     throw OptionError("aa_samples",
                       "antialiasing with motion blur (--shutter) is not supported yet");
+  if (params.aa == Antialiasing::exact && params.aa_samples > 1)
+    throw OptionError("aa", "exact antialiasing needs no samples: drop --aa-samples");
+  if (params.aa == Antialiasing::exact && params.shutter.enabled())
+    throw OptionError("aa", "exact antialiasing with motion blur (--shutter) is not supported yet");
   if (params.contacts && params.shutter.enabled())
     throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
 }
@@ -114,6 +118,7 @@ BackendConfig backend_config(const RenderParams& params) {
   config.shadow_tree = params.shadow_tree;
   config.shutter = params.shutter;
   config.aa_samples = params.aa_samples;
+  config.aa = params.aa;
   return config;
 }
 
@@ -152,6 +157,10 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   apply_camera_choice(m_params.camera, m_scene, m_params.time);
   m_scene.validate(m_params.scene);
   if (!m_params.lights.empty()) m_scene.lights = m_params.lights;
+  if (m_params.aa == Antialiasing::exact && !m_scene.lights.empty())
+    throw OptionError("aa",
+                      "exact antialiasing of a scene with lights (shadows) is not supported "
+                      "yet; --aa-samples N on the embree backend samples it");
   if (m_scene.lights.size() > kMaxLights)
     throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
                                          " lights; at most " + std::to_string(kMaxLights) +
@@ -192,9 +201,13 @@ void RenderJob::render_frame(Backend& backend, size_t index, Frame& frame) {
     m_timings.render += now_s() - start;
     return;
   }
-  if (m_params.aa_samples > 1) {
-    // The backend shades its samples itself (with shadow rays when the scene has lights).
-    backend.render_supersampled(m_frame_times.at(index), frame);
+  if (m_params.aa_samples > 1 || m_params.aa == Antialiasing::exact) {
+    // The backend shades its samples or its squares' visible regions itself (supersampling with
+    // shadow rays when the scene has lights).
+    if (m_params.aa == Antialiasing::exact)
+      backend.render_antialiased(m_frame_times.at(index), frame);
+    else
+      backend.render_supersampled(m_frame_times.at(index), frame);
     m_timings.render += now_s() - start;
     if (!m_contact_tint.empty()) tint_contacts(m_contact_tint.at(index), frame);
     return;
@@ -276,6 +289,7 @@ nlohmann::json render_stats(const RenderJob& job, const Backend& backend) {
          params.frame_range ? nlohmann::json(to_string(*params.frame_range)) : nlohmann::json()},
         {"skipped", job.slice().size() - job.frames_to_render().size()}}},
       {"shutter", job.params().shutter.shutter},
+      {"aa", antialiasing_name(params.aa)},
       {"time_s",
        {{"total", timings.total},
         {"load", timings.load},

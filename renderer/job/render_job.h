@@ -55,6 +55,7 @@ struct RenderParams {
   bool contacts = false;    ///< --contacts: tint the triangles in contact (set_contact_tint)
   ShutterParams shutter;  ///< --shutter, --shutter-samples, --shutter-order (motion blur)
   int aa_samples = 1;     ///< --aa-samples N: supersampled antialiasing (a square; 1: centre rays)
+  Antialiasing aa = Antialiasing::none;  ///< --aa (kAntialiasingNames): exact antialiasing
   CameraChoice camera;    ///< --camera, --eye, --target, --fov
 };
 
