@@ -10,7 +10,9 @@
 #include <random>
 #include <vector>
 
+#include "renderer/antialiasing/exact_pixel.h"
 #include "renderer/antialiasing/square_visibility.h"
+#include "renderer/frame.h"
 #include "renderer/shading.h"
 #include "scenes/camera_space.h"
 
@@ -61,6 +63,28 @@ inline std::vector<size_t> overlapping(const SceneTriangles& triangles, const Pi
     if (b[0] <= s.x1 && b[2] >= s.x0 && b[1] <= s.y1 && b[3] >= s.y0) out.push_back(k);
   }
   return out;
+}
+
+/// The exact read-out of a frame at t with each pixel's set found by brute force (the boxes'
+/// superset, which the read-out must reduce to what is seen); its counters added to `stats`.
+inline std::vector<Color> brute_force_exact_colours(const CameraSpaceScene& scene, int width,
+                                                    int height, double t,
+                                                    const SceneTriangles& triangles,
+                                                    ExactPixels::Stats* stats = nullptr) {
+  Frame frame;
+  frame.resize(width, height);
+  frame.time = t;
+  const PixelRays image{width, height};
+  std::vector<std::vector<TriangleRef>> sets(frame.pixel_count());
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i)
+      for (size_t k : overlapping(triangles, pixel_square(image, i, j)))
+        sets[frame.index(i, j)].push_back(triangles.refs[k]);
+  exact_frame_colours(
+      scene, frame,
+      [&](int i, int j) { return std::span<const TriangleRef>(sets[frame.index(i, j)]); }, 2,
+      SameTriangleRef{}, stats);
+  return frame.color;
 }
 
 /// The nearest of `candidates` pierced by the ray d (Moller-Trumbore), or -1.

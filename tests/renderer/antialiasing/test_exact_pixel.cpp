@@ -21,26 +21,15 @@ namespace {
 /// read-out must ignore the extra ones).
 std::vector<Color> exact_colours(const CameraSpaceScene& scene, int width, int height, double t,
                                  const test::SceneTriangles& triangles) {
-  Frame frame;
-  frame.resize(width, height);
-  frame.time = t;
-  const PixelRays image{width, height};
-  std::vector<std::vector<TriangleRef>> sets(frame.pixel_count());
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i)
-      for (size_t k : test::overlapping(triangles, pixel_square(image, i, j)))
-        sets[frame.index(i, j)].push_back(triangles.refs[k]);
   ExactPixels::Stats stats;
-  exact_frame_colours(
-      scene, frame,
-      [&](int i, int j) { return std::span<const TriangleRef>(sets[frame.index(i, j)]); }, 2,
-      SameTriangleRef{}, &stats);
+  const std::vector<Color> colours =
+      test::brute_force_exact_colours(scene, width, height, t, triangles, &stats);
   std::printf("%zu pixels: %zu inside one triangle, %.2f triangles, %.2f pieces, %.1f nodes each\n",
               stats.pixels, stats.covered_by_one, double(stats.triangles) / stats.pixels,
               double(stats.pieces) / stats.pixels, double(stats.nodes) / stats.pixels);
-  EXPECT_EQ(stats.pixels, frame.pixel_count());
+  EXPECT_EQ(stats.pixels, size_t(width) * size_t(height));
   EXPECT_GE(stats.nodes, 7 * stats.pieces);
-  return frame.color;
+  return colours;
 }
 
 std::vector<Color> sampled_colours(int width, int height, const test::SceneTriangles& triangles,
