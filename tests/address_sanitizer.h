@@ -4,11 +4,14 @@
 // terabytes of address space for its shadow at start-up, so an address-space limit (RLIMIT_AS,
 // `ulimit -v`) cannot model a machine with little memory, and freed memory stays resident in its
 // quarantine. Such a test skips that part visibly (GTEST_SKIP with the reason), only here.
-// GCC defines __SANITIZE_ADDRESS__; clang answers __has_feature(address_sanitizer).
+// GCC defines __SANITIZE_ADDRESS__; clang answers __has_feature(address_sanitizer). The suite's
+// own code is compiled without instrumentation in the sanitizer build (tests/CMakeLists.txt),
+// which then defines KINRAY_UNDER_ADDRESS_SANITIZER itself.
 
 namespace kinray::test {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(KINRAY_UNDER_ADDRESS_SANITIZER)
+#elif defined(__SANITIZE_ADDRESS__)
 #define KINRAY_UNDER_ADDRESS_SANITIZER 1
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
