@@ -132,38 +132,15 @@ void GridScene::build_edges() {
 }
 
 MeshSegment GridScene::segment(uint32_t m, uint32_t index) const {
-  const auto keys = m_input.meshes[m].key_times;
-  const uint32_t n = uint32_t(keys.size());
-  MeshSegment seg;
-  seg.index = index;
-  seg.origin = keys[index == 0 ? 0 : index - 1];
-  seg.end = index < n ? keys[index] : std::numeric_limits<double>::infinity();
-  return seg;
+  return mesh_segment(m_input.meshes[m], index);
 }
 
 MeshSegment GridScene::segment_at(uint32_t m, double t) const {
-  const FlightplanMesh& mesh = m_input.meshes[m];
-  const uint32_t n = uint32_t(mesh.key_times.size());
-  if (mesh.is_static) return segment(m, n);
-  const auto index = uint32_t(std::upper_bound(mesh.key_times.begin(), mesh.key_times.end(), t) -
-                              mesh.key_times.begin());
-  return segment(m, index);
+  return mesh_segment_at(m_input.meshes[m], t);
 }
 
 PointMotion GridScene::vertex_motion(uint32_t m, uint32_t local, const MeshSegment& seg) const {
-  const FlightplanMesh& mesh = m_input.meshes[m];
-  const uint32_t n = uint32_t(mesh.key_times.size());
-  PointMotion p;
-  if (seg.index == 0) {
-    p.a = mesh.key_position(0, local);
-  } else if (seg.index >= n) {
-    p.a = mesh.key_position(n - 1, local);
-  } else {
-    const size_t k = seg.index;
-    p.a = mesh.key_position(k - 1, local);
-    p.b = (mesh.key_position(k, local) - p.a) / (mesh.key_times[k] - mesh.key_times[k - 1]);
-  }
-  return p;
+  return mesh_vertex_motion(m_input.meshes[m], local, seg);
 }
 
 TriangleMotion GridScene::triangle_motion(uint32_t tri, const MeshSegment& seg) const {

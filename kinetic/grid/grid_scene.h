@@ -9,20 +9,11 @@
 #include <vector>
 
 #include "kinetic/grid/grid_input.h"
+#include "kinetic/grid/mesh_segments.h"
 #include "kinetic/motion/triangle_motion.h"
 #include "util/work_progress.h"
 
 namespace kinray {
-
-/// The flightplan segment a mesh is on. With keys K_0 < ... < K_{n-1}, segment `index` is the
-/// number of keys <= t: 0 stands still at key 0 until K_0, 1..n-1 moves from key index-1 to key
-/// index over [K_{index-1}, K_index), n stands still at the last key. Polynomials use the local
-/// time s = t - origin.
-struct MeshSegment {
-  uint32_t index = 0;
-  double origin = 0;
-  double end = std::numeric_limits<double>::infinity();  ///< the next flightplan update
-};
 
 class GridScene {
  public:

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "kinetic/core/audit_failure.h"
-#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/grid/mesh_segments.h"
 #include "kinetic/squares/square_event_kinds.h"
 #include "util/check.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/grid/mesh_segments.h"
 #include "kinetic/squares/pixel_square_sets.h"
 
 namespace kinray {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <unordered_map>
 
-#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/grid/mesh_segments.h"
 #include "kinetic/squares/pixel_square_sets.h"
 #include "kinetic/squares/square_event_kinds.h"
 #include "util/check.h"

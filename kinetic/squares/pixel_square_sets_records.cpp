@@ -2,7 +2,7 @@
 // columns, and the pixels it is added to or removed from when they change.
 #include <algorithm>
 
-#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/grid/mesh_segments.h"
 #include "kinetic/squares/pixel_square_sets.h"
 #include "kinetic/squares/square_event_kinds.h"
 #include "util/check.h"

@@ -3,7 +3,7 @@
 // that changes row reshapes the records that read its cells (which lines and edges they follow
 // changes near the line it crossed), and one that crosses a column line within its row moves that
 // cell in their records and recomputes the strip it lies in.
-#include "kinetic/squares/mesh_segments.h"
+#include "kinetic/grid/mesh_segments.h"
 #include "kinetic/squares/pixel_square_sets.h"
 #include "util/check.h"
 
