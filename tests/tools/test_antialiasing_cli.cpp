@@ -1,9 +1,11 @@
-// `diff --aa exact` as a user runs it: the exact frames agree with the supersampled Embree
-// reference within its sampling noise and the diff exits 0; bad combinations are one line naming
+// `diff --aa exact` and `bench --aa exact` as a user runs them: the exact frames agree with the
+// supersampled Embree reference within its sampling noise and the diff exits 0; the bench writes
+// the "antialiasing" JSON with errors in the expected order; bad combinations are one line naming
 // the flag, exit 2, nothing written.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -42,6 +44,33 @@ TEST_F(AntialiasingCli, DiffAgreesWithTheReferenceWithinItsNoise) {
   EXPECT_GT(coarse_summary["rmse"].get<double>(), 2 * rmse);
 }
 
+TEST_F(AntialiasingCli, BenchWritesTheAntialiasingJson) {
+  const auto run = kinray(
+      "bench wavy-sphere:triangles=600 --size 32x24 --aa exact --aa-sample-counts 1,4,16 "
+      "--reference-samples 256 --aa-frames 3 --quiet --json " +
+      path("b.json"));
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("embree/16"), std::string::npos) << run.out;
+  const auto json = nlohmann::json::parse(test::read_text(path("b.json")));
+  const auto& aa = json["antialiasing"];
+  const auto& kinetic = aa["kinetic"];
+  EXPECT_GT(kinetic["ms_per_frame"].get<double>(), 0);
+  EXPECT_GE(kinetic["max_error"].get<double>(), kinetic["rmse"].get<double>());
+  EXPECT_GT(kinetic["events_per_interval"].get<double>(), 0);  // the sphere's waves move edges
+  const auto& embree = aa["embree"];
+  ASSERT_EQ(embree.size(), 3u);
+  constexpr std::array kCounts = {1, 4, 16};
+  for (size_t k = 0; k < embree.size(); ++k) {
+    EXPECT_EQ(embree[k]["samples"].get<int>(), kCounts[k]);
+    EXPECT_GT(embree[k]["ms_per_frame"].get<double>(), 0);
+    if (k > 0) {
+      EXPECT_LT(embree[k]["rmse"].get<double>(), embree[k - 1]["rmse"].get<double>());
+    }
+  }
+  EXPECT_LT(kinetic["rmse"].get<double>(), embree[0]["rmse"].get<double>());
+  EXPECT_LT(kinetic["rmse"].get<double>(), embree[2]["rmse"].get<double>());
+}
+
 TEST_F(AntialiasingCli, BadCombinationsNameTheFlag) {
   const std::string scene = "wavy-sphere:triangles=200 --size 16x16 --frames 2 ";
   const std::pair<std::string, std::string> cases[] = {
@@ -49,6 +78,13 @@ TEST_F(AntialiasingCli, BadCombinationsNameTheFlag) {
       {"diff " + scene + "--aa exact --light point:0,5,0", "--aa"},
       {"diff " + scene + "--aa exact --reference-samples 3", "--reference-samples"},
       {"diff " + scene + "--aa exact --budget 3", "--budget"},
+      {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --shutter 0.5", "--aa"},
+      {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --light point:0,5,0",
+       "--aa"},
+      {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --reference-samples 3",
+       "--reference-samples"},
+      {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --aa-sample-counts 1,3",
+       "--aa-sample-counts"},
   };
   for (const auto& [args, flag] : cases) {
     const auto run = kinray(args + " --json " + path("x.json"));
