@@ -14,6 +14,7 @@
 #include "renderer/output/image_io.h"
 #include "renderer/output/output_check.h"
 #include "scenes/scene_loader.h"
+#include "tools/bench_antialiasing.h"
 #include "tools/bench_motion_blur.h"
 #include "tools/bench_suite_command.h"
 #include "tools/cli/image_flags.h"
@@ -37,6 +38,7 @@ struct BenchOptions {
   int repetitions = 3, reference_frames = 12;
   bool quiet = false;
   MotionBlurBenchOptions motion_blur;  ///< --shutter and its flags
+  AntialiasingBenchOptions antialiasing;  ///< --aa exact and its flags
   SuiteOptions suite;                  ///< --suite and its flags
 };
 
@@ -138,6 +140,10 @@ void run_suite_bench(const BenchOptions& options, const CLI::App& command) {
 
 void run_bench(const BenchOptions& options, const CLI::App& command) {
   check_suite_flags(command, options.suite);
+  if (options.antialiasing.aa == Antialiasing::exact &&
+      (options.suite.enabled || options.structure != "grid"))
+    throw InputError("--aa", "bench --aa exact compares one scene's frames; drop " +
+                                 std::string(options.suite.enabled ? "--suite" : "--structure"));
   if (options.suite.enabled) return run_suite_bench(options, command);
   const bool collide = options.structure.find("ksl") != std::string::npos ||
                        options.structure.find("swept") != std::string::npos;
@@ -151,6 +157,17 @@ void run_bench(const BenchOptions& options, const CLI::App& command) {
     run_tree_bench(options.render.resolve(), options.structure, options.inbetweens, options.triangles,
                    options.repetitions, options.json, options.charts, options.quiet);
     return;
+  }
+  if (options.antialiasing.aa == Antialiasing::exact) {
+    if (options.motion_blur.shutter != 0)
+      throw InputError("--aa",
+                       "exact antialiasing with motion blur (--shutter) is not supported yet");
+    if (!options.csv.empty() || !options.charts.empty())
+      throw InputError(options.csv.empty() ? "--charts" : "--csv",
+                       "bench --aa exact writes a table and --json only");
+    return run_antialiasing_bench_command(options.render.resolve(), options.antialiasing,
+                                          options.motion_blur.reference_samples, options.json,
+                                          options.quiet);
   }
   if (options.motion_blur.shutter != 0) {
     RenderParams base = options.render.resolve();
@@ -217,6 +234,7 @@ void register_bench_command(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   add_motion_blur_bench_options(*command, options->motion_blur);
+  add_antialiasing_bench_options(*command, options->antialiasing);
   add_suite_options(*command, options->suite);
   command->callback([options, command] { run_bench(*options, *command); });
 }

@@ -27,7 +27,8 @@ void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& op
       ->group(group);
   command
       .add_option("--reference-samples", options.reference_samples,
-                  "Time samples per pixel of the Embree reference frame")
+                  "Samples per pixel of the Embree reference frame: time samples with --shutter, "
+                  "antialiasing samples (a square) with --aa exact")
       ->capture_default_str()
       ->group(group);
   command.add_option("--blur-scenes", options.scenes, "More scenes to compare, comma-separated")
@@ -43,15 +44,11 @@ void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& op
       ->group(group);
 }
 
-namespace {
-
-/// `frames` frames at multiples of 1/fps, from `start` (rounded up to a multiple) or centred in
-/// the shot of `params.scene`.
-RenderParams scene_params(RenderParams params, const MotionBlurBenchOptions& options) {
-  if (!(options.fps > 0) || !std::isfinite(options.fps))
-    throw InputError("--blur-fps", "must be a finite number > 0");
-  if (options.frames < 2 || options.frames > 1000)
-    throw InputError("--blur-frames", "must lie in 2..1000 (the first frame is the warm-up)");
+RenderParams centred_frames(RenderParams params, double fps, int frames, const char* fps_flag,
+                            const char* frames_flag) {
+  if (!(fps > 0) || !std::isfinite(fps)) throw InputError(fps_flag, "must be a finite number > 0");
+  if (frames < 2 || frames > 1000)
+    throw InputError(frames_flag, "must lie in 2..1000 (the first frame is the warm-up)");
   double start = 0;
   if (params.time) {
     start = params.time->first;
@@ -60,13 +57,20 @@ RenderParams scene_params(RenderParams params, const MotionBlurBenchOptions& opt
     probe.frames = 2;
     const RenderJob job(probe);
     const double middle = (job.frame_times().front() + job.frame_times().back()) / 2;
-    start = middle - (options.frames - 1) / (2 * options.fps);
+    start = middle - (frames - 1) / (2 * fps);
   }
-  start = std::ceil(start * options.fps - 1e-9) / options.fps;
-  params.time = std::make_pair(start, start + (options.frames - 0.5) / options.fps);
+  start = std::ceil(start * fps - 1e-9) / fps;
+  params.time = std::make_pair(start, start + (frames - 0.5) / fps);
   params.frames.reset();
   params.inbetweens.reset();
-  params.fps = options.fps;
+  params.fps = fps;
+  return params;
+}
+
+namespace {
+
+RenderParams scene_params(RenderParams params, const MotionBlurBenchOptions& options) {
+  params = centred_frames(params, options.fps, options.frames, "--blur-fps", "--blur-frames");
   params.shutter.shutter = options.shutter;
   return params;
 }

@@ -21,6 +21,12 @@ struct MotionBlurBenchOptions {
 /// --shutter, --blur-samples, --reference-samples, --blur-scenes, --blur-fps, --blur-frames.
 void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& options);
 
+/// `params` restricted to `frames` frames at multiples of 1/fps, from --time's start (rounded up
+/// to a multiple) or centred in the shot; bad values throw InputError naming fps_flag or
+/// frames_flag.
+[[nodiscard]] RenderParams centred_frames(RenderParams params, double fps, int frames,
+                                          const char* fps_flag, const char* frames_flag);
+
 /// Runs the comparison on every scene (base: scene, size, threads, model flags), prints a table,
 /// writes {"motion_blur": {scene: ...}} to `json` and the error-against-time chart into `charts`.
 void run_motion_blur_bench_command(const RenderParams& base, const MotionBlurBenchOptions& options,

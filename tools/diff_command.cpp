@@ -13,14 +13,15 @@
 #include <stdexcept>
 
 #include "renderer/output/image_io.h"
-#include "tools/option_scope.h"
 #include "renderer/output/output_check.h"
 #include "renderer/output/progress.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
-#include "verification/shutter_diff.h"
+#include "tools/option_scope.h"
 #include "util/input_error.h"
+#include "verification/antialiasing_diff.h"
 #include "verification/image_diff.h"
+#include "verification/shutter_diff.h"
 
 namespace kinray {
 namespace {
@@ -77,7 +78,8 @@ struct DiffOptions {
   std::string report;
   std::string budget;
   std::string json;
-  std::optional<int> reference_samples;  ///< --shutter: the reference's time samples per pixel
+  /// --shutter: the reference's time samples per pixel; --aa exact: its antialiasing samples
+  std::optional<int> reference_samples;
 };
 
 std::string numbered(const char* prefix, size_t index) {
@@ -88,13 +90,23 @@ std::string numbered(const char* prefix, size_t index) {
 
 void run_diff(const DiffOptions& options) {
   const RenderParams params = options.render.resolve();
+  if (params.aa == Antialiasing::exact) {
+    // Judged by colour against a supersampled reference: the id budget and OSMesa do not apply.
+    if (!options.budget.empty())
+      throw InputError("--budget", "counts id mismatches; --aa exact is judged by colour error");
+    if (options.against != "embree")
+      throw InputError("--against", "--aa exact is compared with embree's supersampling only");
+    return run_antialiasing_diff(
+        params, {options.reference_samples.value_or(kAntialiasingReferenceSamples), options.report,
+                 options.json});
+  }
   if (params.shutter.enabled())
     return run_shutter_diff(params, {options.reference_samples.value_or(kShutterReferenceSamples),
                                      options.report, options.json});
   if (options.reference_samples)
     throw InputError(
         "--reference-samples",
-        "applies to --shutter (the motion blur reference's samples), which is not given");
+        "applies to --shutter or --aa exact (the reference's samples), neither of which is given");
   if (options.against != "embree" && options.against != "osmesa")
     throw InputError("--against",
                      "the reference must be embree or osmesa, not '" + options.against + "'");
@@ -186,8 +198,10 @@ void register_diff_command(CLI::App& app) {
       "reference in dim grey), "
       "both shaded frames where a frame has real mismatches, and summary.json"));
   output_path(command->add_option("--json", options->json, "Write the summary as JSON to FILE"));
-  command->add_option("--reference-samples", options->reference_samples,
-                      "With --shutter: time samples per pixel of the Embree reference (default 4096)");
+  command->add_option(
+      "--reference-samples", options->reference_samples,
+      "With --shutter: time samples per pixel of the Embree reference; with --aa exact: its "
+      "antialiasing samples per pixel, a square (default 4096)");
   command->add_flag("-q,--quiet", options->render.params.quiet, "No progress bar and no table");
   command->callback([options] { run_diff(*options); });
 }

@@ -1,0 +1,167 @@
+#include "verification/antialiasing_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "renderer/antialiasing/pixel_samples.h"
+#include "util/input_error.h"
+#include "verification/antialiasing_diff.h"
+#include "verification/bench_support.h"
+#include "verification/image_diff.h"
+
+namespace kinray {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+/// The kinetic backend's square-set events per frame from its --stats (empty when it has none).
+std::vector<double> square_events(const Backend& backend) {
+  nlohmann::json stats = nlohmann::json::object();
+  backend.write_stats(stats);
+  const nlohmann::json* aa = stats.contains("antialiasing") ? &stats["antialiasing"] : nullptr;
+  if (aa == nullptr || !aa->contains("per_frame")) return {};
+  return (*aa)["per_frame"].value("events", std::vector<double>{});
+}
+
+/// Renders every frame of `job` with `render`, timing each, and measures it against `reference`.
+template <class Render>
+AntialiasingPoint measure(const RenderJob& job, const Render& render,
+                          const std::vector<Frame>& reference, int samples, double* first_ms) {
+  AntialiasingPoint point;
+  point.samples = samples;
+  Frame frame;
+  double squared = 0;
+  std::vector<double> later_ms;
+  for (size_t index = 0; index < job.frame_times().size(); ++index) {
+    const double start = now_ms();
+    render(index, frame);
+    const double ms = now_ms() - start;
+    if (index == 0 && first_ms) *first_ms = ms;
+    if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
+    const ColorError error = compare_colors(frame, reference[index]);
+    squared += error.mse;
+    point.max_error = std::max(point.max_error, error.max_error);
+  }
+  // The median, not the mean: the machine is shared, and one frame slowed by another process
+  // should not move the ratio.
+  point.ms_per_frame = median(later_ms);
+  point.rmse = std::sqrt(squared / double(job.frame_times().size()));
+  return point;
+}
+
+}  // namespace
+
+double keyframe_intervals(const std::vector<double>& keys, double a, double b) {
+  double spanned = 0;
+  for (size_t k = 0; k + 1 < keys.size(); ++k) {
+    const double overlap = std::min(b, keys[k + 1]) - std::max(a, keys[k]);
+    if (overlap > 0) spanned += overlap / (keys[k + 1] - keys[k]);
+  }
+  return spanned;
+}
+
+nlohmann::json AntialiasingResult::to_json() const {
+  nlohmann::json embree_points = nlohmann::json::array();
+  for (const AntialiasingPoint& p : embree)
+    embree_points.push_back({{"samples", p.samples},
+                             {"ms_per_frame", p.ms_per_frame},
+                             {"rmse", p.rmse},
+                             {"max_error", p.max_error}});
+  return {{"scene", scene},
+          {"size", {{"width", width}, {"height", height}}},
+          {"triangles", triangles},
+          {"frames", frames},
+          {"reference_samples", reference_samples},
+          {"kinetic",
+           {{"ms_per_frame", kinetic.ms_per_frame},
+            {"rmse", kinetic.rmse},
+            {"max_error", kinetic.max_error},
+            {"events_per_interval", events_per_interval},
+            {"init_ms", kinetic_init_ms}}},
+          {"embree", embree_points}};
+}
+
+AntialiasingResult run_antialiasing_bench(const RenderParams& params,
+                                          const AntialiasingBenchParams& bench,
+                                          const std::function<void(const std::string&)>& log) {
+  if (params.aa != Antialiasing::exact)
+    throw InputError("--aa", "the antialiasing benchmark measures --aa exact");
+  check_reference_samples(bench.reference_samples);
+  for (int n : bench.samples)
+    if (sample_grid_side(n) == 0 || n > kMaxAaSamples)
+      throw InputError("--aa-sample-counts", "each must be a square in 1.." +
+                                                 std::to_string(kMaxAaSamples) + ", got " +
+                                                 std::to_string(n));
+  RenderJob job(params);
+  AntialiasingResult result;
+  result.scene = params.scene;
+  result.width = params.width;
+  result.height = params.height;
+  result.reference_samples = bench.reference_samples;
+  result.frames = job.frame_times().size();
+  result.triangles = job.scene().triangle_count();
+  const std::vector<double>& times = job.frame_times();
+  char line[512];
+
+  // Embree at `samples` per pixel; the job's render_frame would ask it for --aa exact.
+  const auto embree_at = [&](int samples) {
+    BackendConfig config = backend_config(params);
+    config.aa = Antialiasing::none;
+    config.aa_samples = samples;
+    return make_backend("embree", job.camera_space(), config);
+  };
+  // The reference frames first, kept for every method.
+  std::vector<Frame> reference(times.size());
+  {
+    const double start = now_ms();
+    std::unique_ptr<Backend> embree = embree_at(bench.reference_samples);
+    for (size_t index = 0; index < reference.size(); ++index)
+      embree->render_supersampled(times[index], reference[index]);
+    std::snprintf(line, sizeof line, "%s: reference, %d samples per pixel, %zu frames: %.1f s",
+                  params.scene.c_str(), bench.reference_samples, reference.size(),
+                  (now_ms() - start) / 1000);
+    log(line);
+  }
+  {
+    std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
+    double first_ms = 0;
+    result.kinetic = measure(
+        job, [&](size_t index, Frame& frame) { job.render_frame(*kinetic, index, frame); },
+        reference, 0, &first_ms);
+    result.kinetic_init_ms = std::max(0.0, first_ms - result.kinetic.ms_per_frame);
+    // The first frame builds the sets; the events of the later ones advance them from the first
+    // frame's time to the last's.
+    const std::vector<double> events = square_events(*kinetic);
+    double later = 0;
+    for (size_t f = 1; f < events.size(); ++f) later += events[f];
+    const double intervals =
+        keyframe_intervals(job.scene().key_times(), times.front(), times.back());
+    result.events_per_interval = intervals > 0 ? later / intervals : 0;
+    std::snprintf(line, sizeof line,
+                  "%s: kinetic exact: %.2f ms per frame (init %.0f ms), %.0f square events per "
+                  "keyframe interval, rmse %.3g, max %.3g",
+                  params.scene.c_str(), result.kinetic.ms_per_frame, result.kinetic_init_ms,
+                  result.events_per_interval, result.kinetic.rmse, result.kinetic.max_error);
+    log(line);
+  }
+  for (int n : bench.samples) {
+    std::unique_ptr<Backend> embree = embree_at(n);
+    result.embree.push_back(measure(
+        job, [&](size_t index, Frame& frame) { embree->render_supersampled(times[index], frame); },
+        reference, n, nullptr));
+    const AntialiasingPoint& p = result.embree.back();
+    std::snprintf(line, sizeof line,
+                  "%s: embree %4d samples: %.2f ms per frame, rmse %.3g, max %.3g",
+                  params.scene.c_str(), n, p.ms_per_frame, p.rmse, p.max_error);
+    log(line);
+  }
+  return result;
+}
+
+}  // namespace kinray
