@@ -90,12 +90,16 @@ std::string numbered(const char* prefix, size_t index) {
 
 void run_diff(const DiffOptions& options) {
   const RenderParams params = options.render.resolve();
-  if (params.aa == Antialiasing::exact) {
+  if (params.aa == Antialiasing::exact || params.aa_samples > 1) {
     // Judged by colour against a supersampled reference: the id budget and OSMesa do not apply.
+    // The tested frames are --aa exact's, or the sampling peer's at --aa-samples.
+    const char* flag = params.aa == Antialiasing::exact ? "--aa exact" : "--aa-samples";
     if (!options.budget.empty())
-      throw InputError("--budget", "counts id mismatches; --aa exact is judged by colour error");
+      throw InputError("--budget",
+                       std::string("counts id mismatches; ") + flag + " is judged by colour error");
     if (options.against != "embree")
-      throw InputError("--against", "--aa exact is compared with embree's supersampling only");
+      throw InputError("--against",
+                       std::string(flag) + " is compared with embree's supersampling only");
     return run_antialiasing_diff(
         params, {options.reference_samples.value_or(kAntialiasingReferenceSamples), options.report,
                  options.json});
@@ -106,7 +110,8 @@ void run_diff(const DiffOptions& options) {
   if (options.reference_samples)
     throw InputError(
         "--reference-samples",
-        "applies to --shutter or --aa exact (the reference's samples), neither of which is given");
+        "applies to --shutter, --aa exact or --aa-samples (the reference's samples), none of "
+        "which is given");
   if (options.against != "embree" && options.against != "osmesa")
     throw InputError("--against",
                      "the reference must be embree or osmesa, not '" + options.against + "'");

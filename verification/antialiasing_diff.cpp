@@ -42,8 +42,8 @@ void check_reference_samples(int samples) {
 }
 
 void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOptions& options) {
-  if (params.aa != Antialiasing::exact)
-    throw InputError("--aa", "the antialiasing diff compares --aa exact frames");
+  if (params.aa != Antialiasing::exact && params.aa_samples <= 1)
+    throw InputError("--aa", "the antialiasing diff compares --aa exact or --aa-samples frames");
   const int samples = options.reference_samples;
   check_reference_samples(samples);
   if (!options.report.empty()) check_output_folder(options.report, "--report");
@@ -101,6 +101,7 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
       {"scene", params.scene},
       {"tested", tested->name()},
       {"aa", antialiasing_name(params.aa)},
+      {"aa_samples", params.aa_samples},
       {"reference", "embree"},
       {"reference_samples", samples},
       {"tolerance", {{"rmse", tolerance.rmse}, {"max_error", tolerance.max_error}}},

@@ -38,7 +38,8 @@ struct AntialiasingDiffOptions {
 /// Throws InputError naming --reference-samples unless `samples` is a square in 1..kMaxAaSamples.
 void check_reference_samples(int samples);
 
-/// Renders every frame with params.backend (params.aa == exact) and with the Embree reference at
+/// Renders every frame with params.backend (--aa exact, or --aa-samples N: the sampling peer) and
+/// with the Embree reference at
 /// options.reference_samples, prints RMSE and max error per frame and a last line with the worst,
 /// and throws std::runtime_error when a frame is outside AntialiasingTolerance.
 void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOptions& options);
