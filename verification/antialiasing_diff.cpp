@@ -120,8 +120,11 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
         overall_rmse, worst_max, samples, tolerance.rmse, tolerance.max_error,
         over ? "exceeded" : "met");
   if (over > 0)
-    throw std::runtime_error("diff --aa exact: " + std::to_string(over) + " of " +
-                             std::to_string(count) + " frames outside the tolerance");
+    throw std::runtime_error(
+        std::string(params.aa == Antialiasing::exact
+                        ? "diff --aa exact: "
+                        : "diff --aa-samples " + std::to_string(params.aa_samples) + ": ") +
+        std::to_string(over) + " of " + std::to_string(count) + " frames outside the tolerance");
 }
 
 }  // namespace kinray
