@@ -9,28 +9,16 @@
 #include "renderer/antialiasing/pixel_samples.h"
 #include "renderer/output/image_io.h"
 #include "renderer/output/output_check.h"
-#include "renderer/output/progress.h"
 #include "util/input_error.h"
-#include "verification/shutter_error.h"
+#include "verification/color_diff.h"
 
 namespace kinray {
-namespace {
-
-std::string numbered(const char* prefix, size_t index) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s_%05zu.png", prefix, index);
-  return name;
-}
-
-}  // namespace
-
 AntialiasingTolerance AntialiasingTolerance::for_samples(int samples) {
   const double m = std::sqrt(double(samples));
-  return {1 / (m * std::sqrt(m)), 3 / m};
-}
-
-bool AntialiasingTolerance::met(const ColorError& e) const {
-  return std::sqrt(e.mse) <= rmse && e.max_error <= max_error;
+  AntialiasingTolerance tolerance;
+  tolerance.rmse = 1 / (m * std::sqrt(m));
+  tolerance.max_error = 3 / m;
+  return tolerance;
 }
 
 void check_reference_samples(int samples) {
@@ -59,44 +47,13 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
   // Everything is valid: from here on files are written.
   create_output_folder(options.report, "--report");
   create_output_folder(std::filesystem::path(options.json).parent_path(), "--json");
-  const std::filesystem::path report(options.report);
   const AntialiasingTolerance tolerance = AntialiasingTolerance::for_samples(samples);
-  nlohmann::json frames = nlohmann::json::array();
-  const size_t count = job.frame_times().size();
-  Progress progress(count, !params.quiet && Progress::stderr_is_terminal());
-  Frame a, b;
-  size_t over = 0;
-  double worst_rmse = 0, worst_max = 0, squared = 0;
-  for (size_t index = 0; index < count; ++index) {
-    job.render_frame(*tested, index, a);
-    reference->render_supersampled(job.frame_times()[index], b);
-    const ColorError error = compare_colors(a, b);
-    const double rmse = std::sqrt(error.mse);
-    squared += error.mse;
-    worst_rmse = std::max(worst_rmse, rmse);
-    worst_max = std::max(worst_max, error.max_error);
-    const bool met = tolerance.met(error);
-    if (!met) ++over;
-    if (!options.report.empty()) {
-      write_color_png((report / numbered("tested", index)).string(), a);
-      write_color_png((report / numbered("reference", index)).string(), b);
-      write_error_png(a, b, (report / numbered("error", index)).string());
-    }
-    frames.push_back({{"frame", index},
-                      {"time", job.frame_times()[index]},
-                      {"rmse", rmse},
-                      {"max_error", error.max_error},
-                      {"within_tolerance", met}});
-    if (!params.quiet) {
-      std::printf("frame %5zu  t=%-10g rmse %.3g  max %.3g%s\n", index, job.frame_times()[index],
-                  rmse, error.max_error, met ? "" : "  OUTSIDE TOLERANCE");
-      std::fflush(stdout);
-    }
-    progress.update(index + 1);
-  }
-  progress.finish();
-  // Pooled over every channel of every pixel of every frame (all frames have the same size).
-  const double overall_rmse = count ? std::sqrt(squared / double(count)) : 0;
+  const ColorDiffFrames diff = diff_frames_by_color(
+      job, *tested,
+      [&](size_t index, Frame& frame) {
+        reference->render_supersampled(job.frame_times()[index], frame);
+      },
+      tolerance, options.report, params.quiet);
   const nlohmann::json summary = {
       {"scene", params.scene},
       {"tested", tested->name()},
@@ -105,26 +62,28 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
       {"reference", "embree"},
       {"reference_samples", samples},
       {"tolerance", {{"rmse", tolerance.rmse}, {"max_error", tolerance.max_error}}},
-      {"rmse", overall_rmse},
-      {"worst_rmse", worst_rmse},
-      {"worst_max_error", worst_max},
-      {"frames_outside", over},
-      {"per_frame", frames}};
+      {"rmse", diff.rmse},
+      {"worst_rmse", diff.worst_rmse},
+      {"worst_max_error", diff.worst_max_error},
+      {"frames_outside", diff.outside},
+      {"per_frame", diff.per_frame}};
   if (!options.json.empty()) write_file_atomically(options.json, summary.dump(2) + "\n");
   if (!options.report.empty())
-    write_file_atomically((report / "summary.json").string(), summary.dump(2) + "\n");
+    write_file_atomically((std::filesystem::path(options.report) / "summary.json").string(),
+                          summary.dump(2) + "\n");
   if (!params.quiet)
     std::printf(
         "all frames: rmse %.3g  max %.3g\nreference: embree, %d antialiasing samples per pixel; "
         "tolerance rmse <= %g, max <= %g: %s\n",
-        overall_rmse, worst_max, samples, tolerance.rmse, tolerance.max_error,
-        over ? "exceeded" : "met");
-  if (over > 0)
+        diff.rmse, diff.worst_max_error, samples, tolerance.rmse, tolerance.max_error,
+        diff.outside ? "exceeded" : "met");
+  if (diff.outside > 0)
     throw std::runtime_error(
         std::string(params.aa == Antialiasing::exact
                         ? "diff --aa exact: "
                         : "diff --aa-samples " + std::to_string(params.aa_samples) + ": ") +
-        std::to_string(over) + " of " + std::to_string(count) + " frames outside the tolerance");
+        std::to_string(diff.outside) + " of " + std::to_string(job.frame_times().size()) +
+        " frames outside the tolerance");
 }
 
 }  // namespace kinray

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "renderer/job/render_job.h"
-#include "verification/image_diff.h"
+#include "verification/color_diff.h"
 
 namespace kinray {
 
@@ -21,12 +21,9 @@ inline constexpr int kAntialiasingReferenceSamples = 4096;
 /// holds even when every pixel holds an edge: at the default 4096 samples 0.047 and 1.95e-3, the
 /// bounds of `diff --shutter`. Measured on wavy-sphere:triangles=2000 at 32x24: RMSE 2.4e-5 at
 /// 4096 samples, 6.6e-5 at 1024 -- falling as the reference's noise does.
-struct AntialiasingTolerance {
-  double rmse = 2e-3;
-  double max_error = 0.05;
+struct AntialiasingTolerance : ColorTolerance {
   /// The bounds above for a reference of `samples` (a square) per pixel.
   [[nodiscard]] static AntialiasingTolerance for_samples(int samples);
-  [[nodiscard]] bool met(const ColorError& e) const;
 };
 
 struct AntialiasingDiffOptions {

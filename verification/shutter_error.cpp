@@ -8,10 +8,6 @@
 
 namespace kinray {
 
-bool ShutterTolerance::met(const ColorError& e) const {
-  return std::sqrt(e.mse) <= rmse && e.max_error <= max_error;
-}
-
 void write_error_png(const Frame& a, const Frame& b, const std::string& path, double gain) {
   cv::Mat image(a.height, a.width, CV_8UC3);
   for (int j = 0; j < a.height; ++j)

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "renderer/frame.h"
-#include "verification/image_diff.h"
+#include "verification/color_diff.h"
 
 namespace kinray {
 
@@ -16,10 +16,8 @@ inline constexpr int kShutterReferenceSamples = 4096;
 /// What `kinray diff --shutter` accepts per frame (linear RGB): the kinetic frame is exact up to
 /// the quadrature of the shading and float rounding, so nearly all of its difference is the
 /// reference's own sampling error, which these bounds leave room for at 4096 samples.
-struct ShutterTolerance {
-  double rmse = 2e-3;
-  double max_error = 0.05;
-  [[nodiscard]] bool met(const ColorError& e) const;
+struct ShutterTolerance : ColorTolerance {
+  ShutterTolerance() : ColorTolerance{2e-3, 0.05} {}
 };
 
 /// Writes |a - b| (largest channel per pixel), times `gain`, as a grey-to-red 8-bit PNG: black
