@@ -1,7 +1,6 @@
 #include "verification/antialiasing_bench.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -14,12 +13,6 @@
 namespace kinray {
 namespace {
 
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
 /// The kinetic backend's square-set events per frame from its --stats (empty when it has none).
 std::vector<double> square_events(const Backend& backend) {
   nlohmann::json stats = nlohmann::json::object();
@@ -27,32 +20,6 @@ std::vector<double> square_events(const Backend& backend) {
   const nlohmann::json* aa = stats.contains("antialiasing") ? &stats["antialiasing"] : nullptr;
   if (aa == nullptr || !aa->contains("per_frame")) return {};
   return (*aa)["per_frame"].value("events", std::vector<double>{});
-}
-
-/// Renders every frame of `job` with `render`, timing each, and measures it against `reference`.
-template <class Render>
-AntialiasingPoint measure(const RenderJob& job, const Render& render,
-                          const std::vector<Frame>& reference, int samples, double* first_ms) {
-  AntialiasingPoint point;
-  point.samples = samples;
-  Frame frame;
-  double squared = 0;
-  std::vector<double> later_ms;
-  for (size_t index = 0; index < job.frame_times().size(); ++index) {
-    const double start = now_ms();
-    render(index, frame);
-    const double ms = now_ms() - start;
-    if (index == 0 && first_ms) *first_ms = ms;
-    if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
-    const ColorError error = compare_colors(frame, reference[index]);
-    squared += error.mse;
-    point.max_error = std::max(point.max_error, error.max_error);
-  }
-  // The median, not the mean: the machine is shared, and one frame slowed by another process
-  // should not move the ratio.
-  point.ms_per_frame = median(later_ms);
-  point.rmse = std::sqrt(squared / double(job.frame_times().size()));
-  return point;
 }
 
 }  // namespace
@@ -68,11 +35,7 @@ double keyframe_intervals(const std::vector<double>& keys, double a, double b) {
 
 nlohmann::json AntialiasingResult::to_json() const {
   nlohmann::json embree_points = nlohmann::json::array();
-  for (const AntialiasingPoint& p : embree)
-    embree_points.push_back({{"samples", p.samples},
-                             {"ms_per_frame", p.ms_per_frame},
-                             {"rmse", p.rmse},
-                             {"max_error", p.max_error}});
+  for (const AntialiasingPoint& p : embree) embree_points.push_back(p.to_json());
   return {{"scene", scene},
           {"size", {{"width", width}, {"height", height}}},
           {"triangles", triangles},
@@ -131,7 +94,7 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
   {
     std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
     double first_ms = 0;
-    result.kinetic = measure(
+    result.kinetic = measure_quality(
         job, [&](size_t index, Frame& frame) { job.render_frame(*kinetic, index, frame); },
         reference, 0, &first_ms);
     result.kinetic_init_ms = std::max(0.0, first_ms - result.kinetic.ms_per_frame);
@@ -152,7 +115,7 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
   }
   for (int n : bench.samples) {
     std::unique_ptr<Backend> embree = embree_at(n);
-    result.embree.push_back(measure(
+    result.embree.push_back(measure_quality(
         job, [&](size_t index, Frame& frame) { embree->render_supersampled(times[index], frame); },
         reference, n, nullptr));
     const AntialiasingPoint& p = result.embree.back();

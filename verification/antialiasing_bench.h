@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/job/render_job.h"
+#include "verification/quality_point.h"
 
 namespace kinray {
 
@@ -20,10 +21,7 @@ struct AntialiasingBenchParams {
   int reference_samples = 4096;  ///< the reference frame's samples per pixel (a square)
 };
 
-struct AntialiasingPoint {
-  int samples = 0;  ///< 0: the kinetic backend
-  double ms_per_frame = 0, rmse = 0, max_error = 0;
-};
+using AntialiasingPoint = QualityPoint;
 
 struct AntialiasingResult {
   std::string scene;

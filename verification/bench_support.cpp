@@ -1,9 +1,16 @@
 #include "verification/bench_support.h"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 
 namespace kinray {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
 
 double median(std::vector<double> values) {
   if (values.empty()) return 0;

@@ -5,6 +5,8 @@
 
 namespace kinray {
 
+/// Milliseconds on the steady clock (differences only).
+[[nodiscard]] double now_ms();
 /// The median (0 for none).
 [[nodiscard]] double median(std::vector<double> values);
 /// `spec` with its triangles= parameter set to `triangles` ("wavy-sphere:duration=2" ->

@@ -1,6 +1,5 @@
 #include "verification/motion_blur_bench.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -11,12 +10,6 @@
 
 namespace kinray {
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 /// The backend's --stats "shutter" seconds (zeros when it has none).
 struct ShutterSeconds {
@@ -30,48 +23,11 @@ ShutterSeconds shutter_seconds(const Backend& backend) {
   return {s.value("events_s", 0.0), s.value("integrate_s", 0.0), s.value("readout_s", 0.0)};
 }
 
-/// Renders every frame of `job` with `backend`, timing each, and measures it against `reference`.
-/// `split`, when given, gets the backend's ShutterSeconds of the frames after the first.
-MotionBlurPoint measure(RenderJob& job, Backend& backend, const std::vector<Frame>& reference,
-                        int samples, double* first_ms, ShutterSeconds* split = nullptr) {
-  MotionBlurPoint point;
-  point.samples = samples;
-  Frame frame;
-  double squared = 0;
-  std::vector<double> later_ms;
-  for (size_t index = 0; index < job.frame_times().size(); ++index) {
-    const double start = now_ms();
-    job.render_frame(backend, index, frame);
-    const double ms = now_ms() - start;
-    if (index == 0 && first_ms) *first_ms = ms;
-    if (index == 0 && split) *split = shutter_seconds(backend);
-    if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
-    const ColorError error = compare_colors(frame, reference[index]);
-    squared += error.mse;
-    point.max_error = std::max(point.max_error, error.max_error);
-  }
-  // The median, not the mean: the machine is shared, and one frame slowed by another process
-  // should not move the ratio.
-  point.ms_per_frame = median(later_ms);
-  if (split && job.frame_times().size() > 1) {
-    const ShutterSeconds all = shutter_seconds(backend);
-    const double timed = double(job.frame_times().size() - 1);
-    *split = {(all.events - split->events) / timed, (all.integrate - split->integrate) / timed,
-              (all.readout - split->readout) / timed};
-  }
-  point.rmse = std::sqrt(squared / double(job.frame_times().size()));
-  return point;
-}
-
 }  // namespace
 
 nlohmann::json MotionBlurResult::to_json() const {
   nlohmann::json embree_points = nlohmann::json::array();
-  for (const MotionBlurPoint& p : embree)
-    embree_points.push_back({{"samples", p.samples},
-                             {"ms_per_frame", p.ms_per_frame},
-                             {"rmse", p.rmse},
-                             {"max_error", p.max_error}});
+  for (const MotionBlurPoint& p : embree) embree_points.push_back(p.to_json());
   return {{"scene", scene},
           {"size", {{"width", width}, {"height", height}}},
           {"triangles", triangles},
@@ -140,7 +96,16 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
     std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
     double first_ms = 0;
     ShutterSeconds split;
-    result.kinetic = measure(job, *kinetic, reference, 0, &first_ms, &split);
+    result.kinetic = measure_quality(
+        job, [&](size_t index, Frame& frame) { job.render_frame(*kinetic, index, frame); },
+        reference, 0, &first_ms, [&] { split = shutter_seconds(*kinetic); });
+    if (job.frame_times().size() > 1) {
+      // The frames after the first: the whole run's seconds less the first frame's.
+      const ShutterSeconds all = shutter_seconds(*kinetic);
+      const double timed = double(job.frame_times().size() - 1);
+      split = {(all.events - split.events) / timed, (all.integrate - split.integrate) / timed,
+               (all.readout - split.readout) / timed};
+    }
     result.kinetic_events_ms = split.events * 1000;
     result.kinetic_integrate_ms = split.integrate * 1000;
     result.kinetic_readout_ms = split.readout * 1000;
@@ -158,7 +123,9 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
     BackendConfig config = backend_config(params);
     config.shutter.samples = n;
     std::unique_ptr<Backend> embree = make_backend("embree", job.camera_space(), config);
-    result.embree.push_back(measure(job, *embree, reference, n, nullptr));
+    result.embree.push_back(measure_quality(
+        job, [&](size_t index, Frame& frame) { job.render_frame(*embree, index, frame); },
+        reference, n, nullptr));
     const MotionBlurPoint& p = result.embree.back();
     std::snprintf(line, sizeof line,
                   "%s: embree %4d samples: %.2f ms per frame, rmse %.3g, max %.3g",

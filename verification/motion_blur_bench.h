@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/job/render_job.h"
+#include "verification/quality_point.h"
 
 namespace kinray {
 
@@ -20,10 +21,7 @@ struct MotionBlurBenchParams {
   int reference_samples = 4096;                 ///< the reference frame's samples per pixel
 };
 
-struct MotionBlurPoint {
-  int samples = 0;  ///< 0: the kinetic backend
-  double ms_per_frame = 0, rmse = 0, max_error = 0;
-};
+using MotionBlurPoint = QualityPoint;
 
 struct MotionBlurResult {
   std::string scene;

@@ -1,0 +1,31 @@
+#pragma once
+// One point of an equal-quality comparison (`bench --shutter`, `bench --aa`): a method's time per
+// frame and its error against a densely sampled reference, measured over the same frames.
+#include <cstddef>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "renderer/frame.h"
+#include "renderer/job/render_job.h"
+
+namespace kinray {
+
+struct QualityPoint {
+  int samples = 0;  ///< 0: the kinetic backend
+  double ms_per_frame = 0, rmse = 0, max_error = 0;
+  /// {"samples", "ms_per_frame", "rmse", "max_error"}.
+  [[nodiscard]] nlohmann::json to_json() const;
+};
+
+/// Renders every frame of `job` with render(index, frame), timing each, and measures it against
+/// `reference` (one frame per frame time). ms_per_frame is the median of the frames after the
+/// first (the first pays a build or an initialisation, whose time goes to `first_ms`);
+/// `after_first`, when given, runs once the first frame is rendered (to read counters then).
+[[nodiscard]] QualityPoint measure_quality(const RenderJob& job,
+                                           const std::function<void(size_t, Frame&)>& render,
+                                           const std::vector<Frame>& reference, int samples,
+                                           double* first_ms,
+                                           const std::function<void()>& after_first = {});
+
+}  // namespace kinray
