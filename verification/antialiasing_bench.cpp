@@ -57,7 +57,7 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
     throw InputError("--aa", "the antialiasing benchmark measures --aa exact");
   check_reference_samples(bench.reference_samples);
   for (int n : bench.samples)
-    if (sample_grid_side(n) == 0 || n > kMaxAaSamples)
+    if (!is_aa_sample_count(n))
       throw InputError("--aa-sample-counts", "each must be a square in 1.." +
                                                  std::to_string(kMaxAaSamples) + ", got " +
                                                  std::to_string(n));

@@ -22,7 +22,7 @@ AntialiasingTolerance AntialiasingTolerance::for_samples(int samples) {
 }
 
 void check_reference_samples(int samples) {
-  if (sample_grid_side(samples) == 0 || samples > kMaxAaSamples)
+  if (!is_aa_sample_count(samples))
     throw InputError("--reference-samples",
                      "the reference's antialiasing samples must be a square in 1.." +
                          std::to_string(kMaxAaSamples) + " (1024, 4096, ...), got " +

@@ -4,8 +4,10 @@
 // jitter in each, drawn from a hash of (pixel, sample, n) so that a frame is the same whatever
 // the threads and the run, and runs at different sample counts are not correlated.
 #include <cstdint>
+#include <string>
 
 #include "renderer/antialiasing/square_visibility.h"
+#include "util/input_error.h"
 
 namespace kinray {
 
@@ -17,6 +19,18 @@ inline constexpr int kMaxAaSamples = 65536;
   for (int m = 1; m * m <= n; ++m)
     if (m * m == n) return m;
   return 0;
+}
+
+/// Whether n is a count of antialiasing samples per pixel: a square in 1..kMaxAaSamples.
+[[nodiscard]] inline bool is_aa_sample_count(int n) {
+  return n <= kMaxAaSamples && sample_grid_side(n) != 0;
+}
+
+/// Throws OptionError naming "aa_samples" unless is_aa_sample_count(n).
+inline void check_aa_samples(int n) {
+  if (!is_aa_sample_count(n))
+    throw OptionError("aa_samples", "must be a square in 1.." + std::to_string(kMaxAaSamples) +
+                                        " (1, 4, 16, 64, ...), got " + std::to_string(n));
 }
 
 /// splitmix64: a well-spread 64-bit hash.

@@ -45,10 +45,7 @@ void Backend::render_supersampled(double, Frame&) {
 
 std::unique_ptr<Backend> make_backend(const std::string& name, const CameraSpaceScene& scene,
                                       const BackendConfig& config) {
-  if (sample_grid_side(config.aa_samples) == 0 || config.aa_samples > kMaxAaSamples)
-    throw OptionError("aa_samples", "must be a square in 1.." + std::to_string(kMaxAaSamples) +
-                                        " (1, 4, 16, 64, ...), got " +
-                                        std::to_string(config.aa_samples));
+  check_aa_samples(config.aa_samples);
   std::string names;
   for (const BackendEntry& entry : kBackends) {
     if (name != entry.name) {

@@ -82,10 +82,7 @@ void validate(const RenderParams& params) {
                                     std::to_string(params.lights.size()));
   validate(params.chunk, params.frame_range);
   validate(params.shutter);
-  if (sample_grid_side(params.aa_samples) == 0 || params.aa_samples > kMaxAaSamples)
-    throw OptionError("aa_samples", "must be a square in 1.." + std::to_string(kMaxAaSamples) +
-                                        " (1, 4, 16, 64, ...), got " +
-                                        std::to_string(params.aa_samples));
+  check_aa_samples(params.aa_samples);
   if (params.aa_samples > 1 && params.shutter.enabled())
     throw OptionError("aa_samples",
                       "antialiasing with motion blur (--shutter) is not supported yet");
