@@ -98,17 +98,17 @@ class KineticBackend final : public Backend {
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_squares ? m_squares->stats().events.total() : 0;
     if (!m_squares) {
-      m_square_input = kinetic_grid_input(m_scene, m_config.width, m_config.height);
       PixelSquareSets::Config config;
       config.audit = m_config.audit;
-      m_squares = std::make_unique<PixelSquareSets>(m_square_input, t, config);
+      m_squares = std::make_unique<PixelSquareSets>(
+          kinetic_grid_input(m_scene, m_config.width, m_config.height), t, config);
     } else {
       m_squares->advance_to(t);
     }
     const auto advanced = std::chrono::steady_clock::now();
     // The sets hold meshes by their index in the grid's input; its meshes carry their objects.
     const auto to_ref = [this](const SquareTriangle& e) {
-      return TriangleRef{m_square_input.meshes[e.mesh].id, e.triangle};
+      return TriangleRef{m_squares->input().meshes[e.mesh].id, e.triangle};
     };
     exact_frame_colours(
         m_scene, frame, [this](int i, int j) { return m_squares->triangles(i, j); },
@@ -263,9 +263,8 @@ class KineticBackend final : public Backend {
   std::unique_ptr<ShadowTracer> m_shadows;  ///< when the scene has lights
   CameraSpaceLights m_lights;               ///< the scene's, for motion blur's shading
   std::unique_ptr<KineticShutter> m_shutter;  ///< motion blur, made by the first render_shutter
-  // Exact antialiasing, made by the first render_antialiased: the per-square sets over their own
-  // copy of the grid's input (which they keep), and their read-out's counters and times.
-  GridInput m_square_input;
+  // Exact antialiasing, made by the first render_antialiased: the per-square sets (over the
+  // grid's input, which they keep), and their read-out's counters and times.
   std::unique_ptr<PixelSquareSets> m_squares;
   ExactPixels::Stats m_exact_stats;
   std::vector<double> m_square_events_s, m_exact_readout_s;
