@@ -17,6 +17,7 @@
 #include "renderer/shading.h"
 #include "renderer/shadows/lighting.h"
 #include "scenes/procedural.h"
+#include "tests/rejected_where.h"
 #include "tests/renderer/antialiasing/brute_force_squares.h"
 #include "util/input_error.h"
 
@@ -171,20 +172,12 @@ TEST(EmbreeSupersampling, RenderJobSupersamples) {
   const Frame direct = supersampled(job.camera_space(), 16, job.frame_times()[1]);
   EXPECT_TRUE(same_bits(frame.color, direct.color));
   EXPECT_EQ(frame.object, direct.object);
-  auto where = [](RenderParams p) {
-    try {
-      validate(p);
-    } catch (const InputError& e) {
-      return e.where();
-    }
-    return std::string("(accepted)");
-  };
-  EXPECT_EQ(where(params), "(accepted)");
+  EXPECT_EQ(test::rejected_where(params), "(accepted)");
   params.aa_samples = 12;
-  EXPECT_EQ(where(params), "aa_samples");
+  EXPECT_EQ(test::rejected_where(params), "aa_samples");
   params.aa_samples = 4;
   params.shutter.shutter = 0.5;
-  EXPECT_EQ(where(params), "aa_samples");
+  EXPECT_EQ(test::rejected_where(params), "aa_samples");
 }
 
 // The key test: the exact read-out, every pixel's triangles found by brute force, against Embree
