@@ -34,7 +34,7 @@ ExactPixels::ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, 
     : m_scene(scene), m_lights(lights), m_image(image), m_t(t), m_config(config) {
   m_config.textured_subdivision = std::max(1, m_config.textured_subdivision);
   m_config.kink_depth = std::clamp(m_config.kink_depth, 0, 12);
-  m_config.shadow_depth = std::clamp(m_config.shadow_depth, 0, 12);
+  m_config.shadow_area = std::clamp(m_config.shadow_area, 1e-6, 1.0);
   m_config.shadow_bisections = std::clamp(m_config.shadow_bisections, 0, 48);
   if (m_lights != nullptr) {
     if (m_lights->lights == nullptr || m_lights->tracer == nullptr ||
@@ -271,7 +271,7 @@ void ExactPixels::integrate_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c
 // turns to face the eye (lit_color flips it: a jump), a light's terminator (a kink of
 // max(0, cos)), and a shadow boundary (a jump of the mask). A triangle whose corners and nodes
 // agree on all of them takes the rule on the nodes already shaded. Otherwise it is halved, to
-// kink_depth for the first two and shadow_depth for the third, so that only the sub-triangles
+// kink_depth for the first two and to shadow_area for the third, so that only the sub-triangles
 // along the lines are refined; a last one is cut along the chord of each line it holds and each
 // part takes the rule. A kink's chord is where the linear interpolant of its function between
 // the corners vanishes (as the headlight's); a shadow boundary has no function to interpolate,
@@ -309,7 +309,7 @@ void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners,
   for (const LitPoint& point : nodes) shadowed = shadowed || point.mask != corners[0].mask;
 
   if ((crossing != 0 && depth < m_config.kink_depth) ||
-      (shadowed && depth < m_config.shadow_depth)) {
+      (shadowed && area > m_config.shadow_area * m_pixel_area)) {
     const std::array<Vec2, 3> middle = {(a + b) / 2, (b + c) / 2, (c + a) / 2};
     std::array<LitPoint, 3> m;
     shade_lit(middle, m);
@@ -433,6 +433,7 @@ Color ExactPixels::colour_of_refs(int i, int j) {
   }
 
   const PixelSquare square = pixel_square(m_image, i, j);
+  m_pixel_area = square.area();
   m_visibility.resolve(square, m_image_triangles);
   ++m_stats.pixels;
   m_stats.covered_by_one += m_visibility.covered_by_one();

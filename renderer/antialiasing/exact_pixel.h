@@ -61,11 +61,11 @@ class ExactPixels {
     /// kink's chord: the error falls about 20-fold per halving (flythrough at 32 x 24, worst
     /// pixel against 9 halvings: 4e-4 at 0, 5e-7 at 2, the cost 79 -> 165 nodes per pixel).
     int kink_depth = 2;
-    /// Lit read-out: halvings of a fan triangle whose corners or nodes see different light masks
-    /// (a shadow boundary crosses it). Each halving quarters the area left unresolved along the
-    /// boundary: at 3 a last sub-triangle is 1/64 of its fan triangle, at most 1/128 of the
-    /// pixel.
-    int shadow_depth = 3;
+    /// Lit read-out: a fan triangle whose corners or nodes see different light masks (a shadow
+    /// boundary crosses it) is halved until its sub-triangles are at most this share of the
+    /// pixel's area (a fan triangle is at most half the pixel: at 1/64, three halvings at most).
+    /// It bounds the area left unresolved where a sub-triangle holds more than one boundary.
+    double shadow_area = 1.0 / 64;
     /// Lit read-out: bisection steps locating a shadow boundary on each of the two edges of a
     /// last sub-triangle it crosses (one corner lit differently from the other two); the
     /// sub-triangle is then cut along the chord between the two crossings, each within 2^-steps
@@ -154,6 +154,7 @@ class ExactPixels {
 
   const CameraSpaceScene& m_scene;
   const ExactLights* m_lights = nullptr;
+  double m_pixel_area = 0;  ///< the square's, for Config::shadow_area
   // The lit piece being integrated, and the buffers of its shading.
   const TriangleAtInstant* m_lit_triangle = nullptr;
   TriangleRef m_lit_ref;
