@@ -213,18 +213,30 @@ void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> ou
   const TriangleAtInstant& triangle = *m_lit_triangle;
   m_lit_hits.clear();
   m_lit_rays.clear();
-  m_lit_traced.clear();
-  for (const Vec2& p : points) {
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Vec2& p = points[k];
     const Vec3 d(p.x(), p.y(), 1.0);
     const LitHit& hit =
         m_lit_hits.emplace_back(lit_hit(triangle, d, view_direction(d, triangle.tan_half_fov)));
-    uint32_t traced = 0;
-    for (size_t l = 0; l < lights.size(); ++l)
+    LitPoint& point = out[k];
+    point.p = p;
+    point.faced = 0;
+    // lit_color's own terms: the normal turned to the eye where facing > 0, and its cosine with
+    // each light (max(0, cos) kinks at the terminator).
+    const SurfacePoint& s = hit.surface;
+    const float facing = s.normal.dot(s.view);
+    point.kinks[0] = facing;
+    const Eigen::Vector3f n = facing > 0 ? Eigen::Vector3f(-s.normal) : s.normal;
+    for (size_t l = 0; l < lights.size(); ++l) {
+      const float cosine = n.dot(
+          unfold(lights[l].vector_from(hit.origin), s.tan_half_fov).normalized().cast<float>());
+      point.kinks[1 + l] = cosine;
+      if (!(cosine > 0)) continue;
       if (const auto ray = shadow_ray(hit, lights[l], m_lit_ref.object, m_lit_ref.prim)) {
         m_lit_rays.push_back(*ray);
-        traced |= 1u << l;
+        point.faced |= 1u << l;
       }
-    m_lit_traced.push_back(traced);
+    }
   }
   // One batch per call: the tree tracer's cost per call (its frame boxes' lock, its ray buffer)
   // is shared by every point's rays.
@@ -234,22 +246,11 @@ void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> ou
   size_t r = 0;
   for (size_t k = 0; k < points.size(); ++k) {
     LitPoint& point = out[k];
-    point.p = points[k];
     point.mask = 0;
     for (size_t l = 0; l < lights.size(); ++l)
-      if (m_lit_traced[k] >> l & 1u)
+      if (point.faced >> l & 1u)
         if (!m_lit_blocked[r++]) point.mask |= 1u << l;
-    const LitHit& hit = m_lit_hits[k];
-    point.colour = lit_color(hit, lights, point.mask);
-    // lit_color's own terms: the normal turned to the eye where facing > 0, and its cosine with
-    // each light (max(0, cos) kinks at the terminator).
-    const SurfacePoint& s = hit.surface;
-    const float facing = s.normal.dot(s.view);
-    point.kinks[0] = facing;
-    const Eigen::Vector3f n = facing > 0 ? Eigen::Vector3f(-s.normal) : s.normal;
-    for (size_t l = 0; l < lights.size(); ++l)
-      point.kinks[1 + l] = n.dot(
-          unfold(lights[l].vector_from(hit.origin), s.tan_half_fov).normalized().cast<float>());
+    point.colour = lit_color(m_lit_hits[k], lights, point.mask);
   }
 }
 
@@ -292,9 +293,21 @@ void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners,
   std::array<LitPoint, 7> nodes;
   shade_lit(at, nodes);
 
+  // Light l's shadow boundary crosses where, of the points it faces, some see it and some not;
+  // its terminator matters only where it reaches some point (elsewhere it adds nothing).
+  uint32_t reached = 0, blocked = 0;
+  auto tally = [&](const LitPoint& point) {
+    reached |= point.mask;
+    blocked |= point.faced & ~point.mask;
+  };
+  for (const LitPoint& point : corners) tally(point);
+  for (const LitPoint& point : nodes) tally(point);
+  const uint32_t boundaries = reached & blocked;
+  const bool shadowed = boundaries != 0;
   const size_t functions = 1 + m_lights->lights->size();
   uint64_t crossing = 0;  // bit f: function f changes sign over the corners and nodes
   for (size_t f = 0; f < functions; ++f) {
+    if (f > 0 && !(reached >> (f - 1) & 1u)) continue;
     bool positive = false, negative = false;
     auto see = [&](const LitPoint& point) {
       positive = positive || point.kinks[f] > 0;
@@ -304,9 +317,6 @@ void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners,
     for (const LitPoint& point : nodes) see(point);
     if (positive && negative) crossing |= uint64_t(1) << f;
   }
-  bool shadowed = false;  // the masks differ: a shadow boundary crosses
-  for (const LitPoint& point : corners) shadowed = shadowed || point.mask != corners[0].mask;
-  for (const LitPoint& point : nodes) shadowed = shadowed || point.mask != corners[0].mask;
 
   if ((crossing != 0 && depth < m_config.kink_depth) ||
       (shadowed && area > m_config.shadow_area * m_pixel_area)) {
@@ -337,14 +347,16 @@ void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners,
       chords[count++] = affine_through(a, b, c, fa, fb, fc);
   }
   if (shadowed) {
+    // The corners' masks of the lights whose boundary crosses (a terminator is a kink's chord).
+    const auto mask = [&](const LitPoint& point) { return point.mask & boundaries; };
     size_t odd = 3;
     for (size_t k = 0; k < 3; ++k)
-      if (corners[k].mask != corners[(k + 1) % 3].mask &&
-          corners[k].mask != corners[(k + 2) % 3].mask &&
-          corners[(k + 1) % 3].mask == corners[(k + 2) % 3].mask)
+      if (mask(corners[k]) != mask(corners[(k + 1) % 3]) &&
+          mask(corners[k]) != mask(corners[(k + 2) % 3]) &&
+          mask(corners[(k + 1) % 3]) == mask(corners[(k + 2) % 3]))
         odd = k;
     if (odd < 3) {
-      const uint32_t inside = corners[odd].mask;
+      const uint32_t inside = mask(corners[odd]);
       // Each edge from the odd corner: [near, far] holds the change of mask.
       std::array<Vec2, 2> near = {corners[odd].p, corners[odd].p};
       std::array<Vec2, 2> far = {corners[(odd + 1) % 3].p, corners[(odd + 2) % 3].p};
@@ -353,7 +365,7 @@ void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners,
       for (int step = 0; step < m_config.shadow_bisections; ++step) {
         for (size_t e = 0; e < 2; ++e) middle[e] = (near[e] + far[e]) / 2;
         shade_lit(middle, probe);
-        for (size_t e = 0; e < 2; ++e) (probe[e].mask == inside ? near[e] : far[e]) = middle[e];
+        for (size_t e = 0; e < 2; ++e) (mask(probe[e]) == inside ? near[e] : far[e]) = middle[e];
       }
       chords[count++] = line_through((near[0] + far[0]) / 2, (near[1] + far[1]) / 2);
       ++m_stats.shadow_cuts;

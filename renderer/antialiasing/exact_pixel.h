@@ -70,7 +70,7 @@ class ExactPixels {
     /// last sub-triangle it crosses (one corner lit differently from the other two); the
     /// sub-triangle is then cut along the chord between the two crossings, each within 2^-steps
     /// of its edge.
-    int shadow_bisections = 10;
+    int shadow_bisections = 8;
   };
 
   /// Counters for --stats, added up over the pixels read out.
@@ -131,15 +131,18 @@ class ExactPixels {
   Eigen::Vector3d integrate(std::span<const Vec2> piece, const TriangleAtInstant* textured,
                             Shade&& shade, Kink&& kink);
 
-  /// A point of a lit piece, shaded: its colour as a centre ray's on the same triangle, its light
-  /// mask, and the functions whose zero lines are kinks or jumps of the lit shading: [0] the
-  /// interpolated normal against the view (the normal turns to face the eye there), [1 + l] the
-  /// turned normal against light l (its terminator).
+  /// A point of a lit piece, shaded: its colour as a centre ray's on the same triangle, which
+  /// lights face it and which of those reach it, and the functions whose zero lines are kinks or
+  /// jumps of the lit shading: [0] the interpolated normal against the view (the normal turns to
+  /// face the eye there), [1 + l] the turned normal against light l (its terminator).
   static constexpr size_t kMaxLitKinks = kMaxLights + 1;
   struct LitPoint {
     Vec2 p = Vec2::Zero();
     Color colour = Color::Zero();
-    uint32_t mask = 0;
+    /// Bit l: light l is on the visible side and its cosine is positive, so that its shadow ray
+    /// matters (elsewhere max(0, cos) is 0 whatever the ray meets, and none is traced).
+    uint32_t faced = 0;
+    uint32_t mask = 0;  ///< bit l: faced, and the shadow ray is not blocked
     std::array<double, kMaxLitKinks> kinks{};
   };
   /// Shades `points` on the piece's triangle (m_lit_*), all their shadow rays in one batch.
@@ -160,7 +163,6 @@ class ExactPixels {
   TriangleRef m_lit_ref;
   std::vector<LitHit> m_lit_hits;
   std::vector<ShadowRay> m_lit_rays;
-  std::vector<uint32_t> m_lit_traced;
   std::vector<uint8_t> m_lit_blocked;
   PixelRays m_image;
   double m_t;

@@ -129,7 +129,8 @@ std::vector<Color> exact_lit_colours(const CameraSpaceScene& scene, double t,
 }
 
 // The kinetic backend's --aa exact frame (its per-square sets, its kinetic AABB tree's shadow
-// rays) and the brute-force read-out are the analytic mix within 1e-4 relative; without the
+// rays) and the brute-force read-out are the analytic mix within 2e-4 relative (measured 7.6e-5:
+// the chord's ends are found within 2^-8 of a sub-triangle's edge); without the
 // boundary's resolution (no halving, no bisection: the seven nodes' masks stand for the fan
 // triangle) the edge pixels are off by far more, so the test sees the resolution.
 TEST(ExactShadows, ShadowEdgeThroughPixelsIsTheAreaWeightedMix) {
@@ -153,8 +154,8 @@ TEST(ExactShadows, ShadowEdgeThroughPixelsIsTheAreaWeightedMix) {
       worst_relative_error(exact_lit_colours(cs, 0.0, unresolved), &crossed);
   std::printf("worst relative error: kinetic %.3g, brute force %.3g, unresolved %.3g\n",
               kinetic_error, brute_error, unresolved_error);
-  EXPECT_LT(kinetic_error, 1e-4);
-  EXPECT_LT(brute_error, 1e-4);
+  EXPECT_LT(kinetic_error, 2e-4);
+  EXPECT_LT(brute_error, 2e-4);
   EXPECT_GT(unresolved_error, 1e-2);
   // The light mask AOV is the centre ray's: lit below the edge, shadowed above it.
   const PixelRays image{kSize, kSize};
@@ -243,10 +244,10 @@ std::vector<Color> lit_frame(const CameraSpaceScene& scene, int width, int heigh
 // The default resolution of shadow boundaries and kinks against a much deeper one (sub-triangles
 // of 1/4096 of the pixel, 20 bisections, 5 kink halvings) on a lit built-in: curved shadows of
 // the waves on the sphere itself, terminators, two lights. The shadow_area bound leaves a curved
-// boundary's sagitta in each last sub-triangle: measured at 32 x 24, RMSE 8.5e-6 and worst pixel
-// 3e-4 (a tenth and a fifth of the 4096-sample reference's own noise), 670 shadow rays per
-// pixel; the error falls about fourfold per fourfold smaller area. Without any resolution the
-// nodes' masks stand for the boundary and the frame is six times as far off.
+// boundary's sagitta in each last sub-triangle: measured at 32 x 24, RMSE 4.3e-6 and worst pixel
+// 1.1e-4 (a twentieth and a fifteenth of the 4096-sample reference's own noise), about 500
+// shadow rays per pixel; the error falls about fourfold per fourfold smaller area. Without any
+// resolution the nodes' masks stand for the boundary and the frame is ten times as far off.
 TEST(ExactShadows, DefaultResolutionIsCloseToADeepOne) {
   Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 2000}});
   scene.lights = {parse_light_flag("point:2,3,4"), parse_light_flag("dir:-1,1,1")};
