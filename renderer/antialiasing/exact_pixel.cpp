@@ -208,7 +208,8 @@ Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
   return sum;
 }
 
-void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> out) {
+void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> out,
+                            uint32_t traced) {
   const std::vector<CameraSpaceLight>& lights = *m_lights->lights;
   const TriangleAtInstant& triangle = *m_lit_triangle;
   m_lit_hits.clear();
@@ -231,7 +232,7 @@ void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> ou
       const float cosine = n.dot(
           unfold(lights[l].vector_from(hit.origin), s.tan_half_fov).normalized().cast<float>());
       point.kinks[1 + l] = cosine;
-      if (!(cosine > 0)) continue;
+      if (!(cosine > 0) || !(traced >> l & 1u)) continue;
       if (const auto ray = shadow_ray(hit, lights[l], m_lit_ref.object, m_lit_ref.prim)) {
         m_lit_rays.push_back(*ray);
         point.faced |= 1u << l;
@@ -364,7 +365,7 @@ void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners,
       std::array<LitPoint, 2> probe;
       for (int step = 0; step < m_config.shadow_bisections; ++step) {
         for (size_t e = 0; e < 2; ++e) middle[e] = (near[e] + far[e]) / 2;
-        shade_lit(middle, probe);
+        shade_lit(middle, probe, boundaries);
         for (size_t e = 0; e < 2; ++e) (mask(probe[e]) == inside ? near[e] : far[e]) = middle[e];
       }
       chords[count++] = line_through((near[0] + far[0]) / 2, (near[1] + far[1]) / 2);

@@ -147,8 +147,9 @@ class ExactPixels {
     /// thousand per pixel on the stack (zeroing them was 7% of a lit read-out).
     std::array<double, kMaxLitKinks> kinks;
   };
-  /// Shades `points` on the piece's triangle (m_lit_*), all their shadow rays in one batch.
-  void shade_lit(std::span<const Vec2> points, std::span<LitPoint> out);
+  /// Shades `points` on the piece's triangle (m_lit_*), all their shadow rays in one batch;
+  /// only the lights of `traced` get rays (a bisection needs its boundary's lights' masks only).
+  void shade_lit(std::span<const Vec2> points, std::span<LitPoint> out, uint32_t traced = ~0u);
   /// The integral over one convex piece of triangle m_lit_triangle's lit shading.
   Eigen::Vector3d integrate_lit(std::span<const Vec2> piece);
   /// integrate_lit over the triangle of `corners` (shaded), halved `depth` times so far.
