@@ -44,8 +44,9 @@ void run_antialiasing_bench_command(const RenderParams& base,
   const AntialiasingResult r = run_antialiasing_bench(params, bench, [&](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
   });
-  std::printf("antialiasing, %dx%d, %zu frames, reference embree %d samples per pixel\n", r.width,
-              r.height, r.frames, r.reference_samples);
+  std::printf(
+      "antialiasing, %dx%d, %zu frames, %zu lights, reference embree %d samples per pixel\n",
+      r.width, r.height, r.frames, r.lights, r.reference_samples);
   std::printf("%-12s %12s %12s %12s %16s\n", "method", "ms/frame", "rmse", "max",
               "events/interval");
   std::printf("%-12s %12.2f %12.3g %12.3g %16.0f\n", "kinetic", r.kinetic.ms_per_frame,

@@ -82,6 +82,8 @@ step blur_lights_kitchen "$kinray" bench "$shared/data/bart/kitchen/kitchen.aff"
 for scene in wavy-sphere orbit cloth flythrough; do
   step "aa_$scene" "$kinray" bench "$scene" --aa exact --size 128x128 --json "$out/aa_$scene.json"
 done
+step aa_lights "$kinray" bench wavy-sphere --aa exact --size 128x128 --light point:2,3,4 \
+  --light dir:-1,1,1 --json "$out/aa_lights.json"
 
 # Kinetic trees.
 step trees "$kinray" bench wavy-sphere:triangles=100000 --structure aabb \

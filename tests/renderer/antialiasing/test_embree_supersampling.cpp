@@ -77,11 +77,14 @@ TEST(EmbreeSupersampling, RejectsCountsThatAreNotSquares) {
 }
 
 // One sample per pixel is the centre ray: the frame render() and shade_frame give, bit for bit,
-// with the headlight and with a light and its shadow rays.
+// with the headlight and with a point and a directional light and their shadow rays.
 TEST(EmbreeSupersampling, OneSampleIsTheCentreFrame) {
   for (bool lit : {false, true}) {
     Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 400}});
-    if (lit) scene.lights = {Light{Light::Kind::point, Vec3(3, 4, 5)}};
+    Light sun;
+    sun.kind = Light::Kind::directional;
+    sun.direction = Vec3(1, -1, -1).normalized();
+    if (lit) scene.lights = {Light{Light::Kind::point, Vec3(3, 4, 5)}, sun};
     const CameraSpaceScene cs = CameraSpaceScene::build(scene);
     const double t = 0.3;
     const Frame one = supersampled(cs, 1, t);
