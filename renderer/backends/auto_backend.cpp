@@ -195,17 +195,18 @@ class AutoBackend final : public Backend {
     m_check_s += seconds;
     ++m_check_frames;
     const auto next = std::upper_bound(m_plan.begin(), m_plan.end(), t);
-    if (next != m_plan.end() && *next <= m_check_end) return;  // the interval goes on
+    if (next == m_plan.end()) return;  // the shot's last frame: nothing to hand on
+    if (*next <= m_check_end) return;  // the interval goes on
     if (grid_lost_interval(m_check_s, m_check_frames, m_embree_frame_s)) {
       char text[240];
       std::snprintf(text, sizeof text,
-                    "Embree: a later keyframe interval cost the grid %.3f s for %zu frames, Embree "
-                    "%.3f s a frame, more than %.1f times as much",
-                    m_check_s, m_check_frames, m_embree_frame_s, kGridCheckMargin);
+                    "Embree: a later keyframe interval cost the grid %.1f ms for %zu frames, "
+                    "Embree's frame %.3f ms, more than %.1f times as much",
+                    1e3 * m_check_s, m_check_frames, 1e3 * m_embree_frame_s, kGridCheckMargin);
       decide(Phase::embree, text);
       return;
     }
-    if (next != m_plan.end()) start_check(*next);
+    start_check(*next);
   }
 
   [[nodiscard]] std::string summary() const {
