@@ -83,13 +83,8 @@ void validate(const RenderParams& params) {
   validate(params.chunk, params.frame_range);
   validate(params.shutter);
   check_aa_samples(params.aa_samples);
-  if (params.aa_samples > 1 && params.shutter.enabled())
-    throw OptionError("aa_samples",
-                      "antialiasing with motion blur (--shutter) is not supported yet");
   if (params.aa == Antialiasing::exact && params.aa_samples > 1)
     throw OptionError("aa", "exact antialiasing needs no samples: drop --aa-samples");
-  if (params.aa == Antialiasing::exact && params.shutter.enabled())
-    throw OptionError("aa", "exact antialiasing with motion blur (--shutter) is not supported yet");
   if (params.contacts && params.shutter.enabled())
     throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
 }
