@@ -1,7 +1,9 @@
 #include "renderer/antialiasing/exact_shutter.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <mutex>
 
 #include "renderer/motion_blur/window_pieces.h"
@@ -19,73 +21,154 @@ double seconds_since(std::chrono::steady_clock::time_point& since) {
 
 }  // namespace
 
-std::vector<ShutterNode> space_time_nodes(const CameraSpaceScene& scene,
-                                          const ShutterWindow& window, const GaussLegendre& rule) {
-  if (!(window.close > window.open)) return {{window.time, 1.0}};
-  const std::vector<double> breaks = window_breaks(scene, window);
-  std::vector<ShutterNode> nodes;
-  for (size_t k = 0; k + 1 < breaks.size(); ++k) {
-    const double middle = (breaks[k] + breaks[k + 1]) / 2, half = (breaks[k + 1] - breaks[k]) / 2;
-    // Gauss-Legendre weights sum to 2 on [-1, 1]: a piece's nodes share half / length each.
-    for (size_t n = 0; n < rule.nodes.size(); ++n)
-      nodes.push_back({middle + half * rule.nodes[n], rule.weights[n] * half / window.length()});
-  }
-  // The sets only move forward: the nodes in time order (gauss_legendre lists them from +1 down).
-  std::sort(nodes.begin(), nodes.end(),
-            [](const ShutterNode& a, const ShutterNode& b) { return a.t < b.t; });
-  return nodes;
-}
-
-ExactShutter::ExactShutter(const CameraSpaceScene& scene, int order, int threads,
+ExactShutter::ExactShutter(const CameraSpaceScene& scene, const Config& config, int threads,
                            MakeSets make_sets)
     : m_scene(scene),
-      m_rule(gauss_legendre(order > 0 ? order : kDefaultShutterOrder)),
+      m_config(config),
+      m_rule(gauss_legendre(config.order > 0 ? config.order : kDefaultShutterOrder)),
       m_threads(threads),
-      m_make_sets(std::move(make_sets)) {}
+      m_make_sets(std::move(make_sets)),
+      m_fixed_fov(scene.fixed_tan_half_fov().has_value()) {
+  for (const CameraSpaceObject& cs : scene.objects) m_moves.push_back(moves(cs));
+  for (size_t nodes = 1; nodes <= m_rule.nodes.size(); ++nodes)
+    m_rules.push_back(gauss_legendre(int(nodes)));
+}
 
 void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
   auto clock = std::chrono::steady_clock::now();
-  const std::vector<ShutterNode> nodes = space_time_nodes(m_scene, window, m_rule);
   frame.time = window.time;
-  const size_t n = frame.pixel_count();
-  m_average.assign(n, ColorAverage{});
-  const PixelRays image{frame.width, frame.height};
-  // The sets hold meshes by their index in the grid's input; its meshes carry their objects.
-  const auto to_ref = [this](const SquareTriangle& e) {
-    return TriangleRef{m_sets->input().meshes[e.mesh].id, e.triangle};
-  };
-  std::mutex mutex;
-  for (const ShutterNode& node : nodes) {
-    // The nodes come in time order; only a window opening before the last one's time (an
-    // irregular schedule) takes the sets back, by building them again.
-    if (!m_sets || node.t < m_sets->now()) {
-      m_stats.rebuilds += m_sets != nullptr;
-      m_sets = m_make_sets(node.t);
-    }
-    m_sets->advance_to(node.t);
-    m_stats.events_s += seconds_since(clock);
-    parallel_for(size_t(frame.height), m_threads, [&](size_t row) {
-      const int j = int(row);
-      ExactPixels pixels(m_scene, image, node.t);
-      for (int i = 0; i < frame.width; ++i) {
-        const size_t p = frame.index(i, j);
-        m_average[p].add(pixels.colour(i, j, m_sets->triangles(i, j), to_ref), node.weight);
-      }
-      const std::lock_guard lock(mutex);
-      m_readout += pixels.stats();
-    });
-    m_stats.readout_s += seconds_since(clock);
+  const double open = window.open, close = std::max(window.close, window.open);
+  // The sets at the open time, then through the window with the log on: one advance, every
+  // event in time order. Only a window opening before the sets' time takes them back.
+  if (!m_sets || m_sets->now() > open) {
+    m_stats.rebuilds += m_sets != nullptr;
+    m_sets = m_make_sets(open);
   }
-  // A pixel whose read-outs are all one colour (nothing moves over its square) keeps it exactly.
+  m_sets->log_changes(false);
+  m_sets->advance_to(open);
+  m_sets->clear_changes();
+  m_sets->log_changes(true);
+  m_sets->advance_to(close);
+  m_sets->log_changes(false);
+  const SquareChangeLog& log = m_sets->changes();
+  // The log by pixel, each pixel's changes in time order (a stable counting sort).
+  const size_t n = frame.pixel_count();
+  m_change_begin.assign(n + 1, 0);
+  for (const SquareChange& c : log) ++m_change_begin[c.pixel + 1];
+  for (size_t p = 0; p < n; ++p) m_change_begin[p + 1] += m_change_begin[p];
+  m_change_order.resize(log.size());
+  {
+    std::vector<uint32_t> next(m_change_begin.begin(), m_change_begin.end() - 1);
+    for (size_t k = 0; k < log.size(); ++k) m_change_order[next[log[k].pixel]++] = uint32_t(k);
+  }
+  m_stats.events_s += seconds_since(clock);
+
+  const std::vector<double> breaks = window_breaks(m_scene, window);
+  const auto rule_of = [&](size_t nodes) -> const GaussLegendre& { return m_rules[nodes - 1]; };
+  const bool long_window = close > open;
+  const PixelRays image{frame.width, frame.height};
+  const GridInput& input = m_sets->input();
+  const auto to_ref = [&](const SquareTriangle& e) {
+    return TriangleRef{input.meshes[e.mesh].id, e.triangle};
+  };
+  std::atomic<uint64_t> readouts{0}, pieces{0}, still{0};
+  std::mutex mutex;
   parallel_for(size_t(frame.height), m_threads, [&](size_t row) {
+    const int j = int(row);
+    ExactPixels pixels(m_scene, image, window.time);
+    std::vector<SquareTriangle> set;
+    std::vector<double> cuts;
+    uint64_t row_readouts = 0, row_pieces = 0, row_still = 0;
     for (int i = 0; i < frame.width; ++i) {
-      const size_t p = frame.index(i, int(row));
-      frame.color[p] = m_average[p].result();
+      const size_t p = frame.index(i, j);
+      // Every triangle over the square at some time of the window.
+      const std::span<const SquareTriangle> at_close = m_sets->triangles(i, j);
+      set.assign(at_close.begin(), at_close.end());
+      for (uint32_t k = m_change_begin[p]; k < m_change_begin[p + 1]; ++k)
+        set.push_back(log[m_change_order[k]].triangle);
+      cuts.clear();
+      if (m_config.cut_at_events)
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int qi = i + di, qj = j + dj;
+            if (qi < 0 || qj < 0 || qi >= frame.width || qj >= frame.height) continue;
+            const size_t q = frame.index(qi, qj);
+            for (uint32_t k = m_change_begin[q]; k < m_change_begin[q + 1]; ++k) {
+              const SquareChange& c = log[m_change_order[k]];
+              if (!(c.time > open && c.time < close)) continue;
+              if (q == p || std::find(set.begin(), set.end(), c.triangle) != set.end())
+                cuts.push_back(c.time);
+            }
+          }
+      std::sort(cuts.begin(), cuts.end());
+      cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+      // Nothing over the square moves, appears or changes: g is constant, one read-out.
+      const bool still_pixel =
+          !long_window ||
+          (m_fixed_fov && breaks.size() == 2 && m_change_begin[p] == m_change_begin[p + 1] &&
+           std::none_of(set.begin(), set.end(), [&](const SquareTriangle& e) {
+             return m_moves[input.meshes[e.mesh].id] != 0;
+           }));
+      if (still_pixel) {
+        pixels.set_time(window.time);
+        frame.color[p] = pixels.colour(i, j, std::span<const SquareTriangle>(set), to_ref);
+        ++row_readouts;
+        ++row_pieces;
+        ++row_still;
+        continue;
+      }
+      ColorAverage average;
+      // `nodes` Gauss-Legendre nodes over [a, b].
+      const auto integrate = [&](double a, double b, size_t nodes) {
+        const GaussLegendre& rule = rule_of(nodes);
+        const double middle = (a + b) / 2, half = (b - a) / 2;
+        // Gauss-Legendre weights sum to 2: a piece's nodes share half / length of the window.
+        for (size_t node = 0; node < rule.nodes.size(); ++node) {
+          pixels.set_time(middle + half * rule.nodes[node]);
+          average.add(pixels.colour(i, j, std::span<const SquareTriangle>(set), to_ref),
+                      rule.weights[node] * half / (close - open));
+        }
+        row_readouts += rule.nodes.size();
+        ++row_pieces;
+      };
+      const size_t order = m_rule.nodes.size();
+      auto cut = cuts.begin();
+      for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+        const double a = breaks[k], b = breaks[k + 1];
+        const auto first = cut;
+        while (cut != cuts.end() && *cut < b) ++cut;
+        const size_t inside = size_t(cut - first);
+        // A piece with no event, or more events than nodes (many small turns of g, which one
+        // rule averages), takes the rule whole. Else each part between the events is smooth and
+        // takes the rule's nodes in proportion to its length, at least one: at most `order` +
+        // `inside` read-outs where the rule took `order`.
+        if (inside == 0 || inside > order) {
+          integrate(a, b, order);
+          continue;
+        }
+        double from = a;
+        for (auto c = first; c <= cut; ++c) {
+          const double to = c == cut ? b : *c;
+          integrate(from, to,
+                    std::max<size_t>(1, size_t(std::ceil(double(order) * (to - from) / (b - a)))));
+          from = to;
+        }
+      }
+      // A pixel whose read-outs are all one colour keeps it exactly.
+      frame.color[p] = average.result();
     }
+    readouts.fetch_add(row_readouts, std::memory_order_relaxed);
+    pieces.fetch_add(row_pieces, std::memory_order_relaxed);
+    still.fetch_add(row_still, std::memory_order_relaxed);
+    const std::lock_guard lock(mutex);
+    m_readout += pixels.stats();
   });
   m_stats.readout_s += seconds_since(clock);
   ++m_stats.windows;
-  m_stats.nodes += nodes.size();
+  m_stats.readouts += readouts.load();
+  m_stats.pieces += pieces.load();
+  m_stats.still_pixels += still.load();
+  m_stats.changes += log.size();
 }
 
 }  // namespace kinray

@@ -145,7 +145,8 @@ class KineticBackend final : public Backend {
     render(window.time, frame);
     if (!m_exact_shutter)
       m_exact_shutter = std::make_unique<ExactShutter>(
-          m_scene, m_config.shutter.order, m_config.threads, [this](double t) {
+          m_scene, ExactShutter::Config{.order = m_config.shutter.order}, m_config.threads,
+          [this](double t) {
             PixelSquareSets::Config config;
             config.audit = m_config.audit;
             return std::make_unique<PixelSquareSets>(
@@ -187,7 +188,10 @@ class KineticBackend final : public Backend {
         const ExactShutterStats& s = m_exact_shutter->stats();
         aa["shutter"] = {{"order", m_exact_shutter->order()},
                          {"windows", s.windows},
-                         {"nodes", s.nodes},
+                         {"readouts", s.readouts},
+                         {"pieces", s.pieces},
+                         {"still_pixels", s.still_pixels},
+                         {"changes", s.changes},
                          {"rebuilds", s.rebuilds},
                          {"events_s", s.events_s},
                          {"readout_s", s.readout_s}};
