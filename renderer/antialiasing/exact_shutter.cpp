@@ -102,13 +102,13 @@ void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
           }
       std::sort(cuts.begin(), cuts.end());
       cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-      // Nothing over the square moves, appears or changes: g is constant, one read-out.
+      // Nothing over the square moves, appears or changes (a triangle appearing or disappearing
+      // enters or leaves the set, which the log holds): g is constant, one read-out.
       const bool still_pixel =
-          !long_window ||
-          (m_fixed_fov && breaks.size() == 2 && m_change_begin[p] == m_change_begin[p + 1] &&
-           std::none_of(set.begin(), set.end(), [&](const SquareTriangle& e) {
-             return m_moves[input.meshes[e.mesh].id] != 0;
-           }));
+          !long_window || (m_fixed_fov && m_change_begin[p] == m_change_begin[p + 1] &&
+                           std::none_of(set.begin(), set.end(), [&](const SquareTriangle& e) {
+                             return m_moves[input.meshes[e.mesh].id] != 0;
+                           }));
       if (still_pixel) {
         pixels.set_time(window.time);
         frame.color[p] = pixels.colour(i, j, std::span<const SquareTriangle>(set), to_ref);
