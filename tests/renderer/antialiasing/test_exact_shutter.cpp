@@ -214,8 +214,8 @@ TEST(ExactShutter, OneSpaceTimeSampleIsTheCentreRaysMotionBlur) {
   EXPECT_EQ(sixteen.object, blurred.object);
 }
 
-// Nothing moves in a window of length zero nor in a static scene's: each pixel keeps the exact
-// frame's colour bit for bit (the read-outs at the nodes agree, and ColorAverage returns it).
+// Nothing moves in a window of length zero nor in a static scene's: each pixel is the exact
+// frame's colour (one read-out at the frame time).
 TEST(ExactShutter, AStillWindowIsTheExactFrame) {
   const Scene scene = sweeping_edge_scene();
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
@@ -223,6 +223,17 @@ TEST(ExactShutter, AStillWindowIsTheExactFrame) {
   const std::vector<Color> exact =
       test::brute_force_exact_colours(cs, 8, 8, 0.5, test::scene_triangles(cs, 0.5));
   EXPECT_LT(test::image_error(zero.color, exact).max, 1e-6);
+  // A static triangle in a window of length 0.5: every pixel is read once, at the frame time.
+  const double z = 2;
+  const Scene still = test::analytic_scene({test::camera_space_object(
+      "still", {Triangle{0, 1, 2}},
+      {{{-0.3 * z, -0.6 * z, z}, {0.55 * z, 0.1 * z, z}, {-0.8 * z, 0.7 * z, z}}})});
+  const CameraSpaceScene still_cs = CameraSpaceScene::build(still);
+  const Frame window = exact_shutter_frame(still_cs, 8, {0.25, 0.5, 0.75}, 4);
+  const std::vector<Color> still_exact =
+      test::brute_force_exact_colours(still_cs, 8, 8, 0.5, test::scene_triangles(still_cs, 0.5));
+  EXPECT_LT(test::image_error(window.color, still_exact).max, 1e-6);
+  EXPECT_GT(test::image_error(window.color, std::vector<Color>(64, kBackgroundColor)).max, 0.1);
 }
 
 }  // namespace
