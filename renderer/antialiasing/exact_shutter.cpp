@@ -132,25 +132,36 @@ void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
         ++row_pieces;
       };
       const size_t order = m_rule.nodes.size();
+      // The nodes of a part of [a, b] that has `nodes` of them: in proportion to its length
+      // (rounded up, less the rounding of the lengths: half of four nodes is two), at least
+      // `least`.
+      const auto share = [](size_t nodes, double from, double to, double a, double b,
+                            size_t least) {
+        const double exact = double(nodes) * (to - from) / (b - a);
+        return std::clamp<size_t>(size_t(std::ceil(exact - 1e-9)), std::min(least, nodes), nodes);
+      };
       auto cut = cuts.begin();
       for (size_t k = 0; k + 1 < breaks.size(); ++k) {
         const double a = breaks[k], b = breaks[k + 1];
+        // The window's `order` nodes shared by its pieces of the motion (g is smooth in each,
+        // and a piece much shorter than the window needs fewer), at least two each (exact for
+        // cubics): many short pieces make a composite rule.
+        const size_t nodes = share(order, a, b, open, close, 2);
         const auto first = cut;
         while (cut != cuts.end() && *cut < b) ++cut;
         const size_t inside = size_t(cut - first);
         // A piece with no event, or more events than nodes (many small turns of g, which one
-        // rule averages), takes the rule whole. Else each part between the events is smooth and
-        // takes the rule's nodes in proportion to its length, at least one: at most `order` +
-        // `inside` read-outs where the rule took `order`.
-        if (inside == 0 || inside > order) {
-          integrate(a, b, order);
+        // rule averages), takes its rule whole. Else each part between the events is smooth and
+        // takes the piece's nodes in proportion to its length, at least one: at most `inside`
+        // read-outs more than the piece's rule.
+        if (inside == 0 || inside > nodes) {
+          integrate(a, b, nodes);
           continue;
         }
         double from = a;
         for (auto c = first; c <= cut; ++c) {
           const double to = c == cut ? b : *c;
-          integrate(from, to,
-                    std::max<size_t>(1, size_t(std::ceil(double(order) * (to - from) / (b - a)))));
+          integrate(from, to, share(nodes, from, to, a, b, 1));
           from = to;
         }
       }

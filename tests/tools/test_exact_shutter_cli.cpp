@@ -40,6 +40,12 @@ TEST_F(ExactShutterCli, RendersBothPeersWithStats) {
                               " --backend embree --aa-samples 16 --quiet --out " + path("s"));
   ASSERT_EQ(sampled.status, 0) << sampled.err;
   EXPECT_TRUE(fs::exists(path("s") + "/frame_00001.png"));
+  // The sampling peer shades its (x, y, t) samples with lights and shadow rays too.
+  const auto lit =
+      kinray(std::string("render ") + kScene +
+             " --backend embree --aa-samples 4 --light point:0,5,0 --quiet --out " + path("lit"));
+  ASSERT_EQ(lit.status, 0) << lit.err;
+  EXPECT_TRUE(fs::exists(path("lit") + "/frame_00001.png"));
 }
 
 TEST_F(ExactShutterCli, DiffAgreesWithTheSpaceTimeReference) {

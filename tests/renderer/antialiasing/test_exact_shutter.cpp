@@ -214,6 +214,31 @@ TEST(ExactShutter, OneSpaceTimeSampleIsTheCentreRaysMotionBlur) {
   EXPECT_EQ(sixteen.object, blurred.object);
 }
 
+// Overlapping windows (an irregular schedule): a window that opens before the sets' time builds
+// them again and renders what a fresh filter renders, bit for bit.
+TEST(ExactShutter, AWindowOpeningEarlierRebuildsTheSets) {
+  const Scene scene = sweeping_edge_scene();
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const auto make = [&](double t) {
+    return std::make_unique<PixelSquareSets>(kinetic_grid_input(cs, 8, 8), t);
+  };
+  ExactShutter shutter(cs, {}, 2, make);
+  Frame first, second;
+  first.resize(8, 8);
+  second.resize(8, 8);
+  shutter.render({0.4, 0.5, 0.6}, first);
+  shutter.render({0.3, 0.4, 0.5}, second);
+  EXPECT_EQ(shutter.stats().rebuilds, 1u);
+  ExactShutter fresh(cs, {}, 2, make);
+  Frame expected;
+  expected.resize(8, 8);
+  fresh.render({0.3, 0.4, 0.5}, expected);
+  EXPECT_EQ(std::memcmp(second.color.data(), expected.color.data(),
+                        expected.color.size() * sizeof(Color)),
+            0);
+  EXPECT_GT(test::image_error(first.color, second.color).max, 0.01);  // the edge moved
+}
+
 // Nothing moves in a window of length zero nor in a static scene's: each pixel is the exact
 // frame's colour (one read-out at the frame time).
 TEST(ExactShutter, AStillWindowIsTheExactFrame) {
