@@ -9,7 +9,8 @@
 //
 // g is smooth only between the pixel's events: where a triangle enters or leaves the square, or
 // crosses into a neighbour's, its visible area turns. So each pixel's window is cut at the breaks
-// of the motion (renderer/motion_blur/window_pieces.h: keys, appear and disappear times) and at
+// of the motion (renderer/motion_blur/window_pieces.h: keys, appear and disappear times; the
+// window's nodes shared by those pieces in proportion to their length, two at least) and at
 // the times the sets' change log (square_change_log.h) gives for it: its own set's changes, and
 // its neighbours' changes of triangles its set holds. A piece of the motion with a few such
 // events is cut there, each part taking the rule's nodes in proportion to its length (at least
