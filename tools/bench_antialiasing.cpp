@@ -47,12 +47,13 @@ void run_antialiasing_bench_command(const RenderParams& base,
   });
   if (r.shutter > 0)
     std::printf(
-        "antialiasing under the shutter %g, %dx%d, %zu frames, reference embree %d samples per "
-        "pixel in (x, y, t)\n",
-        r.shutter, r.width, r.height, r.frames, r.reference_samples);
+        "antialiasing under the shutter %g, %dx%d, %zu frames, %zu lights, reference embree %d "
+        "samples per pixel in (x, y, t)\n",
+        r.shutter, r.width, r.height, r.frames, r.lights, r.reference_samples);
   else
-    std::printf("antialiasing, %dx%d, %zu frames, reference embree %d samples per pixel\n", r.width,
-                r.height, r.frames, r.reference_samples);
+    std::printf(
+        "antialiasing, %dx%d, %zu frames, %zu lights, reference embree %d samples per pixel\n",
+        r.width, r.height, r.frames, r.lights, r.reference_samples);
   std::printf("%-12s %12s %12s %12s %16s\n", "method", "ms/frame", "rmse", "max",
               "events/interval");
   std::printf("%-12s %12.2f %12.3g %12.3g %16.0f\n", "kinetic", r.kinetic.ms_per_frame,

@@ -98,10 +98,8 @@ void check_output_paths(const std::string& out, const RenderParams& params) {
 }
 
 /// The summary's parenthesis after the total time: how much of it was loading, and the kinetic
-/// backend's event count.
-std::string summary_details(const RenderTimings& timings, const Backend& backend) {
-  nlohmann::json stats;
-  backend.write_stats(stats);
+/// backend's event count (from the backend's `stats`).
+std::string summary_details(const RenderTimings& timings, const nlohmann::json& stats) {
   char text[128];
   std::snprintf(text, sizeof text, " (loading %.2f s", timings.load);
   std::string details = text;
@@ -137,12 +135,12 @@ void print_summary(const RenderJob& job, const Backend& backend, const RenderTim
                    const RenderOutputs& outputs) {
   const RenderParams& params = job.params();
   const size_t n = timings.frames;
+  nlohmann::json stats;
+  backend.write_stats(stats);
   std::printf("rendered %zu frame%s of %s (%zu triangles, %dx%d) with %s in %.2f s%s\n", n,
               n == 1 ? "" : "s", params.scene.c_str(), job.scene().triangle_count(), params.width,
               params.height, backend.name().c_str(), timings.total,
-              summary_details(timings, backend).c_str());
-  nlohmann::json stats;
-  backend.write_stats(stats);
+              summary_details(timings, stats).c_str());
   if (stats.contains("auto"))  // which backend rendered which frames, and why
     std::printf("auto:   %s\n", stats["auto"]["summary"].get<std::string>().c_str());
   const FrameSlice& slice = job.slice();

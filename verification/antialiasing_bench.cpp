@@ -39,6 +39,7 @@ nlohmann::json AntialiasingResult::to_json() const {
   nlohmann::json json = {{"scene", scene},
                          {"size", {{"width", width}, {"height", height}}},
                          {"triangles", triangles},
+                         {"lights", lights},
                          {"frames", frames},
                          {"reference_samples", reference_samples},
                          {"kinetic",
@@ -72,6 +73,7 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
   result.shutter = params.shutter.shutter;
   result.frames = job.frame_times().size();
   result.triangles = job.scene().triangle_count();
+  result.lights = job.scene().lights.size();
   const std::vector<double>& times = job.frame_times();
   char line[512];
 

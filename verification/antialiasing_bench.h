@@ -30,13 +30,14 @@ struct AntialiasingResult {
   int width = 0, height = 0, reference_samples = 0;
   double shutter = 0;  ///< the shutter of every frame (0: sharp frames)
   size_t frames = 0, triangles = 0;
+  size_t lights = 0;  ///< the scene's (or --light's): every method shades them with shadow rays
   double kinetic_init_ms = 0;  ///< the first kinetic frame's time beyond the median
   /// The square sets' events of the timed frames (after the first) per keyframe interval they
   /// span: the cost of keeping the sets that no sample count has.
   double events_per_interval = 0;
   AntialiasingPoint kinetic;
   std::vector<AntialiasingPoint> embree;
-  /// {"kinetic": {"ms_per_frame", "rmse", "max_error", "events_per_interval", ...},
+  /// {"lights", "kinetic": {"ms_per_frame", "rmse", "max_error", "events_per_interval", ...},
   ///  "embree": [{"samples", "ms_per_frame", "rmse", "max_error"}, ...], ...; "shutter" when
   ///  the frames are blurred}
   [[nodiscard]] nlohmann::json to_json() const;

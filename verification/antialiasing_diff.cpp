@@ -63,6 +63,7 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
       {"tested", tested->name()},
       {"aa", antialiasing_name(params.aa)},
       {"aa_samples", params.aa_samples},
+      {"lights", job.scene().lights.size()},
       {"reference", "embree"},
       {"reference_samples", samples},
       {"tolerance", {{"rmse", tolerance.rmse}, {"max_error", tolerance.max_error}}},

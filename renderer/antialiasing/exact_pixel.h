@@ -8,8 +8,11 @@
 // read-out differ by the peer's noise only. No shading is constant over a piece (the headlight's
 // view direction turns across the pixel), so every piece takes the rule; pieces are cut finer
 // where the shading is not smooth: bilinear texels, and the headlight's |cos| kink.
-// Lights (shadow rays at the nodes, their terminators as kinks) are another step: the read-out
-// shades by the headlight only.
+// With lights (ExactLights) every node is shaded as a lit centre ray is (lighting.h: Lambert
+// with a shadow ray per light through the backend's ShadowTracer); a fan triangle whose corners
+// or nodes see different light masks is halved towards the shadow boundary and its last pieces
+// cut along the boundary's chord, found by bisection on their edges (docs/antialiasing.md,
+// "Lights and shadows").
 #include <array>
 #include <mutex>
 #include <span>
@@ -18,7 +21,10 @@
 #include "renderer/antialiasing/square_visibility.h"
 #include "renderer/frame.h"
 #include "renderer/shading.h"
+#include "renderer/shadows/lighting.h"
+#include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
+#include "scenes/camera_space_lights.h"
 #include "util/parallel.h"
 
 namespace kinray {
@@ -34,6 +40,13 @@ struct TriangleQuadratureNode {
 /// the pixel's size to the sixth, far below a float colour's rounding.
 [[nodiscard]] std::span<const TriangleQuadratureNode, 7> degree5_triangle_rule();
 
+/// What a lit read-out shades with: the lights at the read-out's time and the tracer of their
+/// shadow rays, advanced to that time (its occluded() is called concurrently from the rows).
+struct ExactLights {
+  const std::vector<CameraSpaceLight>* lights = nullptr;  ///< 1 to kMaxLights
+  const ShadowTracer* tracer = nullptr;
+};
+
 /// Reads pixels out exactly at one time. Holds the buffers of the read-out: keep one per row (or
 /// thread), and a pixel allocates nothing once they have grown.
 class ExactPixels {
@@ -48,6 +61,16 @@ class ExactPixels {
     /// kink's chord: the error falls about 20-fold per halving (flythrough at 32 x 24, worst
     /// pixel against 9 halvings: 4e-4 at 0, 5e-7 at 2, the cost 79 -> 165 nodes per pixel).
     int kink_depth = 2;
+    /// Lit read-out: a fan triangle whose corners or nodes see different light masks (a shadow
+    /// boundary crosses it) is halved until its sub-triangles are at most this share of the
+    /// pixel's area (a fan triangle is at most half the pixel: at 1/64, three halvings at most).
+    /// It bounds the area left unresolved where a sub-triangle holds more than one boundary.
+    double shadow_area = 1.0 / 64;
+    /// Lit read-out: bisection steps locating a shadow boundary on each of the two edges of a
+    /// last sub-triangle it crosses (one corner lit differently from the other two); the
+    /// sub-triangle is then cut along the chord between the two crossings, each within 2^-steps
+    /// of its edge.
+    int shadow_bisections = 8;
   };
 
   /// Counters for --stats, added up over the pixels read out.
@@ -57,7 +80,11 @@ class ExactPixels {
     size_t triangles = 0;       ///< overlapping triangles, visible objects, no repeats
     size_t pieces = 0;          ///< visible convex pieces
     size_t nodes = 0;           ///< quadrature nodes shaded
+    size_t shadow_rays = 0;     ///< lit: shadow rays traced (nodes, corners, bisections)
+    size_t shadow_cuts = 0;     ///< lit: last sub-triangles cut along a shadow boundary's chord
     Stats& operator+=(const Stats& o) {
+      shadow_rays += o.shadow_rays;
+      shadow_cuts += o.shadow_cuts;
       pixels += o.pixels;
       covered_by_one += o.covered_by_one;
       triangles += o.triangles;
@@ -69,11 +96,14 @@ class ExactPixels {
 
   ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t);
   ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t, Config config);
+  /// A lit read-out when `lights` is given (its lights not empty): nodes shaded with shadows.
+  ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t, Config config,
+              const ExactLights* lights);
 
-  /// The box-filtered headlight colour of pixel (i, j): the mean over its square,
-  /// kBackgroundColor where no triangle is seen. `overlapping` must hold every triangle whose
-  /// image region meets the square (more do no harm, repeats are ignored); objects invisible at
-  /// t are skipped.
+  /// The box-filtered colour of pixel (i, j) (headlight, or lit and shadowed): the mean over its
+  /// square, kBackgroundColor where no triangle is seen. `overlapping` must hold every triangle
+  /// whose image region meets the square (more do no harm, repeats are ignored); objects invisible
+  /// at t are skipped.
   [[nodiscard]] Color colour(int i, int j, std::span<const TriangleRef> overlapping);
   /// colour() of a set held as another type, to_ref(element) its TriangleRef (the kinetic square
   /// sets' {mesh, triangle}: the kinetic grid's meshes are the objects, in order).
@@ -104,7 +134,42 @@ class ExactPixels {
   Eigen::Vector3d integrate(std::span<const Vec2> piece, const TriangleAtInstant* textured,
                             Shade&& shade, Kink&& kink);
 
+  /// A point of a lit piece, shaded: its colour as a centre ray's on the same triangle, which
+  /// lights face it and which of those reach it, and the functions whose zero lines are kinks or
+  /// jumps of the lit shading: [0] the interpolated normal against the view (the normal turns to
+  /// face the eye there), [1 + l] the turned normal against light l (its terminator).
+  static constexpr size_t kMaxLitKinks = kMaxLights + 1;
+  struct LitPoint {
+    Vec2 p = Vec2::Zero();
+    Color colour = Color::Zero();
+    /// Bit l: light l is on the visible side and its cosine is positive, so that its shadow ray
+    /// matters (elsewhere max(0, cos) is 0 whatever the ray meets, and none is traced).
+    uint32_t faced = 0;
+    uint32_t mask = 0;  ///< bit l: faced, and the shadow ray is not blocked
+    /// Entries 0..lights written by shade_lit; not zeroed, as the points are made by the
+    /// thousand per pixel on the stack (zeroing them was 7% of a lit read-out).
+    std::array<double, kMaxLitKinks> kinks;
+  };
+  /// Shades `points` on the piece's triangle (m_lit_*), all their shadow rays in one batch;
+  /// only the lights of `traced` get rays (a bisection needs its boundary's lights' masks only).
+  void shade_lit(std::span<const Vec2> points, std::span<LitPoint> out, uint32_t traced = ~0u);
+  /// The integral over one convex piece of triangle m_lit_triangle's lit shading.
+  Eigen::Vector3d integrate_lit(std::span<const Vec2> piece);
+  /// integrate_lit over the triangle of `corners` (shaded), halved `depth` times so far.
+  void integrate_lit_triangle(const std::array<LitPoint, 3>& corners, int depth,
+                              Eigen::Vector3d& sum);
+  /// The rule over the triangle (a, b, c) with fresh nodes.
+  void integrate_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c, Eigen::Vector3d& sum);
+
   const CameraSpaceScene& m_scene;
+  const ExactLights* m_lights = nullptr;
+  double m_pixel_area = 0;  ///< the square's, for Config::shadow_area
+  // The lit piece being integrated, and the buffers of its shading.
+  const TriangleAtInstant* m_lit_triangle = nullptr;
+  TriangleRef m_lit_ref;
+  std::vector<LitHit> m_lit_hits;
+  std::vector<ShadowRay> m_lit_rays;
+  std::vector<uint8_t> m_lit_blocked;
   PixelRays m_image;
   double m_t;
   Config m_config;
@@ -113,6 +178,7 @@ class ExactPixels {
   std::vector<TriangleAtInstant> m_at_instant;
   std::vector<ImageTriangle> m_image_triangles;
   std::vector<Vec2> m_kink_side;  ///< one side of a kink's chord in a fan triangle
+  std::vector<std::vector<Vec2>> m_cut_pieces, m_cut_next;  ///< a lit triangle cut by its chords
   Stats m_stats;
 };
 
@@ -130,14 +196,16 @@ struct SameTriangleRef {
 /// same thread; it is called concurrently for different rows), to_ref(element) the TriangleRef of
 /// each. Rows in parallel, `threads` as parallel_for takes them. Object, prim and depth are left
 /// as they are. With `stats`, the frame's counters are added to it.
+/// With `lights`, the read-out is lit (ExactLights; their tracer advanced to frame.time).
 template <class Overlapping, class ToRef = SameTriangleRef>
 void exact_frame_colours(const CameraSpaceScene& scene, Frame& frame, Overlapping&& overlapping,
-                         int threads = 0, ToRef to_ref = {}, ExactPixels::Stats* stats = nullptr) {
+                         int threads = 0, ToRef to_ref = {}, ExactPixels::Stats* stats = nullptr,
+                         const ExactLights* lights = nullptr) {
   const PixelRays image{frame.width, frame.height};
   std::mutex mutex;
   parallel_for(size_t(frame.height), threads, [&](size_t row) {
     const int j = int(row);
-    ExactPixels pixels(scene, image, frame.time);
+    ExactPixels pixels(scene, image, frame.time, ExactPixels::Config{}, lights);
     for (int i = 0; i < frame.width; ++i)
       frame.color[frame.index(i, j)] = pixels.colour(i, j, overlapping(i, j), to_ref);
     if (stats) {

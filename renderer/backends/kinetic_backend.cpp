@@ -12,6 +12,7 @@
 #include "renderer/motion_blur/kinetic_shutter.h"
 #include "renderer/output/stats_json.h"
 #include "renderer/shadows/kinetic_shadow_tracer.h"
+#include "renderer/shadows/lighting.h"
 #include "util/check.h"
 #include "util/input_error.h"
 
@@ -111,9 +112,18 @@ class KineticBackend final : public Backend {
     const auto to_ref = [this](const SquareTriangle& e) {
       return TriangleRef{m_squares->input().meshes[e.mesh].id, e.triangle};
     };
+    // With lights the centre rays are shaded first, as a lit frame is: frame.lit is the centre
+    // hit's light mask (the AOV), and the tracer stands at t for the read-out's shadow rays.
+    std::vector<CameraSpaceLight> lights;
+    ExactLights exact_lights;
+    if (m_shadows) {
+      shade_frame_lit(m_scene, m_lights, *m_shadows, frame, m_config.threads);
+      lights = m_lights.at(t);
+      exact_lights = {&lights, m_shadows.get()};
+    }
     exact_frame_colours(
         m_scene, frame, [this](int i, int j) { return m_squares->triangles(i, j); },
-        m_config.threads, to_ref, &m_exact_stats);
+        m_config.threads, to_ref, &m_exact_stats, m_shadows ? &exact_lights : nullptr);
     const auto done = std::chrono::steady_clock::now();
     m_square_events_s.push_back(std::chrono::duration<double>(advanced - start).count());
     m_exact_readout_s.push_back(std::chrono::duration<double>(done - advanced).count());
@@ -180,7 +190,9 @@ class KineticBackend final : public Backend {
                        {"covered_by_one", readout.covered_by_one},
                        {"triangles", readout.triangles},
                        {"pieces", readout.pieces},
-                       {"nodes", readout.nodes}};
+                       {"nodes", readout.nodes},
+                       {"shadow_rays", readout.shadow_rays},
+                       {"shadow_cuts", readout.shadow_cuts}};
       aa["per_frame"] = {{"events_s", m_square_events_s},
                          {"readout_s", m_exact_readout_s},
                          {"events", m_square_events}};

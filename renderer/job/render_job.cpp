@@ -149,10 +149,12 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   apply_camera_choice(m_params.camera, m_scene, m_params.time);
   m_scene.validate(m_params.scene);
   if (!m_params.lights.empty()) m_scene.lights = m_params.lights;
-  if (m_params.aa == Antialiasing::exact && !m_scene.lights.empty())
+  // The lit read-out traces its shadow rays through the kinetic tree at one time, and the space-
+  // time box filter reads out at each pixel's own times.
+  if (m_params.aa == Antialiasing::exact && m_params.shutter.enabled() && !m_scene.lights.empty())
     throw OptionError("aa",
-                      "exact antialiasing of a scene with lights (shadows) is not supported "
-                      "yet; --aa-samples N on the embree backend samples it");
+                      "exact antialiasing under the shutter (--shutter) of a scene with lights is "
+                      "not supported yet; --aa-samples N on the embree backend samples it");
   if (m_scene.lights.size() > kMaxLights)
     throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
                                          " lights; at most " + std::to_string(kMaxLights) +

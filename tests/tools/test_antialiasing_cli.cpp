@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -71,17 +72,45 @@ TEST_F(AntialiasingCli, BenchWritesTheAntialiasingJson) {
   EXPECT_LT(kinetic["rmse"].get<double>(), embree[2]["rmse"].get<double>());
 }
 
+// With lights: render writes the exact lit frame, diff checks it against the lit reference
+// (shadow rays at every sample) and exits 0, bench measures it with lights in its JSON.
+TEST_F(AntialiasingCli, LightsAreRenderedDiffedAndBenched) {
+  const std::string lights = " --light point:2,3,4 --light dir:-1,1,1";
+  const auto render =
+      kinray("render wavy-sphere:triangles=600 --size 24x16 --frames 1 --aa exact" + lights +
+             " --quiet --out " + path("out") + " --stats " + path("s.json"));
+  ASSERT_EQ(render.status, 0) << render.err;
+  EXPECT_TRUE(fs::exists(path("out/frame_00000.png"))) << render.out;
+  const auto stats = nlohmann::json::parse(test::read_text(path("s.json")));
+  EXPECT_EQ(stats["lights"], 2);
+  EXPECT_GT(stats["antialiasing"]["readout"]["shadow_rays"].get<double>(), 0);
+  const auto diff = kinray("diff wavy-sphere:triangles=600 --size 24x16 --frames 1 --aa exact" +
+                           lights + " --reference-samples 1024 --quiet --json " + path("d.json"));
+  ASSERT_EQ(diff.status, 0) << diff.out << diff.err;
+  const auto summary = nlohmann::json::parse(test::read_text(path("d.json")));
+  EXPECT_EQ(summary["frames_outside"], 0);
+  EXPECT_LT(summary["rmse"].get<double>(), 1 / std::pow(32.0, 1.5));
+  const auto bench = kinray("bench wavy-sphere:triangles=600 --size 24x16 --aa exact" + lights +
+                            " --aa-sample-counts 1,16 --reference-samples 256 --aa-frames 2 "
+                            "--quiet --json " +
+                            path("b.json"));
+  ASSERT_EQ(bench.status, 0) << bench.out << bench.err;
+  const auto aa = nlohmann::json::parse(test::read_text(path("b.json")))["antialiasing"];
+  EXPECT_EQ(aa["lights"], 2);
+  EXPECT_LT(aa["kinetic"]["rmse"].get<double>(), aa["embree"][1]["rmse"].get<double>());
+}
+
 TEST_F(AntialiasingCli, BadCombinationsNameTheFlag) {
   const std::string scene = "wavy-sphere:triangles=200 --size 16x16 --frames 2 ";
   const std::pair<std::string, std::string> cases[] = {
       {"diff " + scene + "--aa exact --shutter 0.5 --light point:0,5,0", "--aa"},
-      {"diff " + scene + "--aa exact --light point:0,5,0", "--aa"},
       {"diff " + scene + "--aa exact --reference-samples 3", "--reference-samples"},
       {"diff " + scene + "--aa exact --budget 3", "--budget"},
       {"bench " + scene.substr(0, scene.find(" --frames")) +
            " --aa exact --shutter 0.5 --blur-scenes orbit",
        "--blur-scenes"},
-      {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --light point:0,5,0",
+      {"bench " + scene.substr(0, scene.find(" --frames")) +
+           " --aa exact --shutter 0.5 --light point:0,5,0",
        "--aa"},
       {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --reference-samples 3",
        "--reference-samples"},

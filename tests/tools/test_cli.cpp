@@ -15,6 +15,7 @@
 #include "renderer/job/render_job.h"
 #include "renderer/output/image_io.h"
 #include "scenes/scene_loader.h"
+#include "tests/rejected_where.h"
 #include "tests/tools/kinray_process.h"
 #include "tools/cli/image_flags.h"
 #include "util/input_error.h"
@@ -208,32 +209,24 @@ TEST(RenderParams, ValidationNamesTheField) {
   RenderParams params;
   params.scene = "wavy-sphere";
   EXPECT_NO_THROW(validate(params));
-  auto where = [](RenderParams p) {
-    try {
-      validate(p);
-    } catch (const InputError& e) {
-      return e.where();
-    }
-    return std::string("(accepted)");
-  };
   RenderParams p = params;
   p.width = 0;
-  EXPECT_EQ(where(p), "width");
+  EXPECT_EQ(test::rejected_where(p), "width");
   p = params;
   p.threads = -1;
-  EXPECT_EQ(where(p), "threads");
+  EXPECT_EQ(test::rejected_where(p), "threads");
   p = params;
   p.packet = 2;
-  EXPECT_EQ(where(p), "packet");
+  EXPECT_EQ(test::rejected_where(p), "packet");
   p = params;
   p.fps = -1;
-  EXPECT_EQ(where(p), "fps");
+  EXPECT_EQ(test::rejected_where(p), "fps");
   p = params;
   p.keyrate = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(where(p), "keyrate");
+  EXPECT_EQ(test::rejected_where(p), "keyrate");
   p = params;
   p.video = "clip.gif";
-  EXPECT_EQ(where(p), "--video");
+  EXPECT_EQ(test::rejected_where(p), "--video");
 }
 
 TEST_F(Cli, EverySubcommandHasHelp) {

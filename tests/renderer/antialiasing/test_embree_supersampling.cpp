@@ -17,6 +17,7 @@
 #include "renderer/shading.h"
 #include "renderer/shadows/lighting.h"
 #include "scenes/procedural.h"
+#include "tests/rejected_where.h"
 #include "tests/renderer/antialiasing/brute_force_squares.h"
 #include "util/input_error.h"
 
@@ -76,11 +77,14 @@ TEST(EmbreeSupersampling, RejectsCountsThatAreNotSquares) {
 }
 
 // One sample per pixel is the centre ray: the frame render() and shade_frame give, bit for bit,
-// with the headlight and with a light and its shadow rays.
+// with the headlight and with a point and a directional light and their shadow rays.
 TEST(EmbreeSupersampling, OneSampleIsTheCentreFrame) {
   for (bool lit : {false, true}) {
     Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 400}});
-    if (lit) scene.lights = {Light{Light::Kind::point, Vec3(3, 4, 5)}};
+    Light sun;
+    sun.kind = Light::Kind::directional;
+    sun.direction = Vec3(1, -1, -1).normalized();
+    if (lit) scene.lights = {Light{Light::Kind::point, Vec3(3, 4, 5)}, sun};
     const CameraSpaceScene cs = CameraSpaceScene::build(scene);
     const double t = 0.3;
     const Frame one = supersampled(cs, 1, t);
@@ -171,20 +175,12 @@ TEST(EmbreeSupersampling, RenderJobSupersamples) {
   const Frame direct = supersampled(job.camera_space(), 16, job.frame_times()[1]);
   EXPECT_TRUE(same_bits(frame.color, direct.color));
   EXPECT_EQ(frame.object, direct.object);
-  auto where = [](RenderParams p) {
-    try {
-      validate(p);
-    } catch (const InputError& e) {
-      return e.where();
-    }
-    return std::string("(accepted)");
-  };
-  EXPECT_EQ(where(params), "(accepted)");
+  EXPECT_EQ(test::rejected_where(params), "(accepted)");
   params.aa_samples = 12;
-  EXPECT_EQ(where(params), "aa_samples");
+  EXPECT_EQ(test::rejected_where(params), "aa_samples");
   params.aa_samples = 4;
   params.shutter.shutter = 0.5;
-  EXPECT_EQ(where(params), "(accepted)");
+  EXPECT_EQ(test::rejected_where(params), "(accepted)");
 }
 
 // The key test: the exact read-out, every pixel's triangles found by brute force, against Embree

@@ -12,9 +12,9 @@
 #include "renderer/shading.h"
 #include "scenes/camera_space.h"
 #include "scenes/procedural.h"
+#include "tests/rejected_where.h"
 #include "tests/renderer/analytic_scenes.h"
 #include "tests/renderer/motion_blur/blur_config.h"
-#include "util/input_error.h"
 #include "verification/image_diff.h"
 #include "verification/shutter_error.h"
 
@@ -63,20 +63,12 @@ TEST(ShutterWindows, CentredOnEachFrameAndClippedToTheShot) {
 }
 
 TEST(ShutterParams, ValidationNamesTheFlag) {
-  auto where = [](ShutterParams p) {
-    try {
-      validate(p);
-    } catch (const InputError& e) {
-      return e.where();
-    }
-    return std::string("(accepted)");
-  };
-  EXPECT_EQ(where({0.5, 16, 0}), "(accepted)");
-  EXPECT_EQ(where({1.5, 16, 0}), "--shutter");
-  EXPECT_EQ(where({-0.1, 16, 0}), "--shutter");
-  EXPECT_EQ(where({std::nan(""), 16, 0}), "--shutter");
-  EXPECT_EQ(where({0.5, 0, 0}), "--shutter-samples");
-  EXPECT_EQ(where({0.5, 16, 17}), "--shutter-order");
+  EXPECT_EQ(test::rejected_where(ShutterParams{0.5, 16, 0}), "(accepted)");
+  EXPECT_EQ(test::rejected_where(ShutterParams{1.5, 16, 0}), "--shutter");
+  EXPECT_EQ(test::rejected_where(ShutterParams{-0.1, 16, 0}), "--shutter");
+  EXPECT_EQ(test::rejected_where(ShutterParams{std::nan(""), 16, 0}), "--shutter");
+  EXPECT_EQ(test::rejected_where(ShutterParams{0.5, 0, 0}), "--shutter-samples");
+  EXPECT_EQ(test::rejected_where(ShutterParams{0.5, 16, 17}), "--shutter-order");
 }
 
 /// A quad at depth 2 whose left edge slides from column 10 to column 50 of a 64 x 32 image
