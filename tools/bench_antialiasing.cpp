@@ -15,7 +15,8 @@ namespace kinray {
 void add_antialiasing_bench_options(CLI::App& command, AntialiasingBenchOptions& options) {
   const char* group = "Antialiasing (with --aa exact)";
   add_enum_option(command, "--aa", options.aa, kAntialiasingNames,
-                  "exact: compare the kinetic exact antialiasing with Embree's supersampling "
+                  "exact: compare the kinetic exact antialiasing (with --shutter: the "
+                  "space-time box filter) with Embree's supersampling "
                   "instead of the sweeps")
       ->group(group);
   command
@@ -44,9 +45,15 @@ void run_antialiasing_bench_command(const RenderParams& base,
   const AntialiasingResult r = run_antialiasing_bench(params, bench, [&](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
   });
-  std::printf(
-      "antialiasing, %dx%d, %zu frames, %zu lights, reference embree %d samples per pixel\n",
-      r.width, r.height, r.frames, r.lights, r.reference_samples);
+  if (r.shutter > 0)
+    std::printf(
+        "antialiasing under the shutter %g, %dx%d, %zu frames, %zu lights, reference embree %d "
+        "samples per pixel in (x, y, t)\n",
+        r.shutter, r.width, r.height, r.frames, r.lights, r.reference_samples);
+  else
+    std::printf(
+        "antialiasing, %dx%d, %zu frames, %zu lights, reference embree %d samples per pixel\n",
+        r.width, r.height, r.frames, r.lights, r.reference_samples);
   std::printf("%-12s %12s %12s %12s %16s\n", "method", "ms/frame", "rmse", "max",
               "events/interval");
   std::printf("%-12s %12.2f %12.3g %12.3g %16.0f\n", "kinetic", r.kinetic.ms_per_frame,

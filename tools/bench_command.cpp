@@ -159,13 +159,15 @@ void run_bench(const BenchOptions& options, const CLI::App& command) {
     return;
   }
   if (options.antialiasing.aa == Antialiasing::exact) {
-    if (options.motion_blur.shutter != 0)
-      throw InputError("--aa",
-                       "exact antialiasing with motion blur (--shutter) is not supported yet");
+    if (!options.motion_blur.scenes.empty())
+      throw InputError("--blur-scenes", "bench --aa exact compares one scene's frames");
     if (!options.csv.empty() || !options.charts.empty())
       throw InputError(options.csv.empty() ? "--charts" : "--csv",
                        "bench --aa exact writes a table and --json only");
-    return run_antialiasing_bench_command(options.render.resolve(), options.antialiasing,
+    // With --shutter every frame is its window's: the space-time box filter.
+    RenderParams base = options.render.resolve();
+    base.shutter.shutter = options.motion_blur.shutter;
+    return run_antialiasing_bench_command(base, options.antialiasing,
                                           options.motion_blur.reference_samples, options.json,
                                           options.quiet);
   }

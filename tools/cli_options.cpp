@@ -116,17 +116,20 @@ void add_frame_options(CLI::App& command, RenderOptions& options) {
       ->group(group);
   command
       .add_option("--shutter-order", options.params.shutter.order,
-                  "Motion blur, kinetic: Gauss-Legendre nodes per front interval (0: default 4)")
+                  "Motion blur, kinetic: Gauss-Legendre nodes per front interval, with --aa "
+                  "exact per piece of the window (0: default 4)")
       ->capture_default_str()
       ->group(group);
   add_enum_option(command, "--aa", options.params.aa, kAntialiasingNames,
                   "Antialiasing: none (the pixel's centre) or exact (kinetic: the box-filtered "
-                  "mean over the pixel's square, from its visible regions)")
+                  "mean over the pixel's square, from its visible regions; with --shutter over "
+                  "the square and the shutter window)")
       ->group(group);
   command
       .add_option("--aa-samples", options.params.aa_samples,
                   "Antialiasing, sampling backends (embree): stratified jittered samples per "
-                  "pixel, box-filtered (a square: 1, 4, 16, 64, ...; 1: the pixel's centre)")
+                  "pixel, box-filtered (a square: 1, 4, 16, 64, ...; 1: the pixel's centre); "
+                  "with --shutter, samples in (x, y, t)")
       ->capture_default_str()
       ->group(group);
   add_threads_option(command, options.params.threads, "Render threads (0: all cores)")

@@ -84,6 +84,10 @@ for scene in wavy-sphere orbit cloth flythrough; do
 done
 step aa_lights "$kinray" bench wavy-sphere --aa exact --size 128x128 --light point:2,3,4 \
   --light dir:-1,1,1 --json "$out/aa_lights.json"
+for scene in wavy-sphere orbit; do
+  step "aa_shutter_$scene" "$kinray" bench "$scene" --aa exact --shutter 0.5 --size 128x128 \
+    --json "$out/aa_shutter_$scene.json"
+done
 
 # Kinetic trees.
 step trees "$kinray" bench wavy-sphere:triangles=100000 --structure aabb \

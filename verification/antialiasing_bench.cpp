@@ -36,19 +36,21 @@ double keyframe_intervals(const std::vector<double>& keys, double a, double b) {
 nlohmann::json AntialiasingResult::to_json() const {
   nlohmann::json embree_points = nlohmann::json::array();
   for (const AntialiasingPoint& p : embree) embree_points.push_back(p.to_json());
-  return {{"scene", scene},
-          {"size", {{"width", width}, {"height", height}}},
-          {"triangles", triangles},
-          {"lights", lights},
-          {"frames", frames},
-          {"reference_samples", reference_samples},
-          {"kinetic",
-           {{"ms_per_frame", kinetic.ms_per_frame},
-            {"rmse", kinetic.rmse},
-            {"max_error", kinetic.max_error},
-            {"events_per_interval", events_per_interval},
-            {"init_ms", kinetic_init_ms}}},
-          {"embree", embree_points}};
+  nlohmann::json json = {{"scene", scene},
+                         {"size", {{"width", width}, {"height", height}}},
+                         {"triangles", triangles},
+                         {"lights", lights},
+                         {"frames", frames},
+                         {"reference_samples", reference_samples},
+                         {"kinetic",
+                          {{"ms_per_frame", kinetic.ms_per_frame},
+                           {"rmse", kinetic.rmse},
+                           {"max_error", kinetic.max_error},
+                           {"events_per_interval", events_per_interval},
+                           {"init_ms", kinetic_init_ms}}},
+                         {"embree", embree_points}};
+  if (shutter > 0) json["shutter"] = shutter;
+  return json;
 }
 
 AntialiasingResult run_antialiasing_bench(const RenderParams& params,
@@ -68,6 +70,7 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
   result.width = params.width;
   result.height = params.height;
   result.reference_samples = bench.reference_samples;
+  result.shutter = params.shutter.shutter;
   result.frames = job.frame_times().size();
   result.triangles = job.scene().triangle_count();
   result.lights = job.scene().lights.size();
@@ -81,13 +84,22 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
     config.aa_samples = samples;
     return make_backend("embree", job.camera_space(), config);
   };
+  // Under the shutter the job renders each frame's window (samples in (x, y, t)); else the
+  // frame time's supersampled frame.
+  const bool blurred = params.shutter.enabled();
+  const auto render_embree = [&](Backend& embree, size_t index, Frame& frame) {
+    if (blurred)
+      job.render_frame(embree, index, frame);
+    else
+      embree.render_supersampled(times[index], frame);
+  };
   // The reference frames first, kept for every method.
   std::vector<Frame> reference(times.size());
   {
     const double start = now_ms();
     std::unique_ptr<Backend> embree = embree_at(bench.reference_samples);
     for (size_t index = 0; index < reference.size(); ++index)
-      embree->render_supersampled(times[index], reference[index]);
+      render_embree(*embree, index, reference[index]);
     std::snprintf(line, sizeof line, "%s: reference, %d samples per pixel, %zu frames: %.1f s",
                   params.scene.c_str(), bench.reference_samples, reference.size(),
                   (now_ms() - start) / 1000);
@@ -109,17 +121,18 @@ AntialiasingResult run_antialiasing_bench(const RenderParams& params,
         keyframe_intervals(job.scene().key_times(), times.front(), times.back());
     result.events_per_interval = intervals > 0 ? later / intervals : 0;
     std::snprintf(line, sizeof line,
-                  "%s: kinetic exact: %.2f ms per frame (init %.0f ms), %.0f square events per "
+                  "%s: kinetic exact%s: %.2f ms per frame (init %.0f ms), %.0f square events per "
                   "keyframe interval, rmse %.3g, max %.3g",
-                  params.scene.c_str(), result.kinetic.ms_per_frame, result.kinetic_init_ms,
-                  result.events_per_interval, result.kinetic.rmse, result.kinetic.max_error);
+                  params.scene.c_str(), blurred ? " (space-time)" : "", result.kinetic.ms_per_frame,
+                  result.kinetic_init_ms, result.events_per_interval, result.kinetic.rmse,
+                  result.kinetic.max_error);
     log(line);
   }
   for (int n : bench.samples) {
     std::unique_ptr<Backend> embree = embree_at(n);
     result.embree.push_back(measure_quality(
-        job, [&](size_t index, Frame& frame) { embree->render_supersampled(times[index], frame); },
-        reference, n, nullptr));
+        job, [&](size_t index, Frame& frame) { render_embree(*embree, index, frame); }, reference,
+        n, nullptr));
     const AntialiasingPoint& p = result.embree.back();
     std::snprintf(line, sizeof line,
                   "%s: embree %4d samples: %.2f ms per frame, rmse %.3g, max %.3g",

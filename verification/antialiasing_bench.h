@@ -5,7 +5,9 @@
 // reference frame (Embree with very many samples). Error is the RMSE (and max) over every channel
 // of every pixel, in linear RGB, pooled over the frames; time per frame is the median wall time of
 // the frames after the first (the first holds the kinetic grid's scan conversion, the square
-// sets' construction and each backend's warm-up). Mirrors motion_blur_bench.h.
+// sets' construction and each backend's warm-up). Mirrors motion_blur_bench.h. Under the shutter
+// (params.shutter) every frame is its window's: the kinetic space-time box filter against Embree's
+// samples in (x, y, t) (one sample: the centre ray's motion blur at --shutter-samples times).
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -26,6 +28,7 @@ using AntialiasingPoint = QualityPoint;
 struct AntialiasingResult {
   std::string scene;
   int width = 0, height = 0, reference_samples = 0;
+  double shutter = 0;  ///< the shutter of every frame (0: sharp frames)
   size_t frames = 0, triangles = 0;
   size_t lights = 0;  ///< the scene's (or --light's): every method shades them with shadow rays
   double kinetic_init_ms = 0;  ///< the first kinetic frame's time beyond the median
@@ -35,7 +38,8 @@ struct AntialiasingResult {
   AntialiasingPoint kinetic;
   std::vector<AntialiasingPoint> embree;
   /// {"lights", "kinetic": {"ms_per_frame", "rmse", "max_error", "events_per_interval", ...},
-  ///  "embree": [{"samples", "ms_per_frame", "rmse", "max_error"}, ...], ...}
+  ///  "embree": [{"samples", "ms_per_frame", "rmse", "max_error"}, ...], ...; "shutter" when
+  ///  the frames are blurred}
   [[nodiscard]] nlohmann::json to_json() const;
 };
 

@@ -51,10 +51,14 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
   const ColorDiffFrames diff = diff_frames_by_color(
       job, *tested,
       [&](size_t index, Frame& frame) {
-        reference->render_supersampled(job.frame_times()[index], frame);
+        // Under the shutter the job renders the window: samples in (x, y, t).
+        if (params.shutter.enabled())
+          job.render_frame(*reference, index, frame);
+        else
+          reference->render_supersampled(job.frame_times()[index], frame);
       },
       tolerance, options.report, params.quiet);
-  const nlohmann::json summary = {
+  nlohmann::json summary = {
       {"scene", params.scene},
       {"tested", tested->name()},
       {"aa", antialiasing_name(params.aa)},
@@ -68,16 +72,17 @@ void run_antialiasing_diff(const RenderParams& params, const AntialiasingDiffOpt
       {"worst_max_error", diff.worst_max_error},
       {"frames_outside", diff.outside},
       {"per_frame", diff.per_frame}};
+  if (params.shutter.enabled()) summary["shutter"] = params.shutter.shutter;
   if (!options.json.empty()) write_file_atomically(options.json, summary.dump(2) + "\n");
   if (!options.report.empty())
     write_file_atomically((std::filesystem::path(options.report) / "summary.json").string(),
                           summary.dump(2) + "\n");
   if (!params.quiet)
     std::printf(
-        "all frames: rmse %.3g  max %.3g\nreference: embree, %d antialiasing samples per pixel; "
+        "all frames: rmse %.3g  max %.3g\nreference: embree, %d antialiasing samples per pixel%s; "
         "tolerance rmse <= %g, max <= %g: %s\n",
-        diff.rmse, diff.worst_max_error, samples, tolerance.rmse, tolerance.max_error,
-        diff.outside ? "exceeded" : "met");
+        diff.rmse, diff.worst_max_error, samples, params.shutter.enabled() ? " in (x, y, t)" : "",
+        tolerance.rmse, tolerance.max_error, diff.outside ? "exceeded" : "met");
   if (diff.outside > 0)
     throw std::runtime_error(
         std::string(params.aa == Antialiasing::exact

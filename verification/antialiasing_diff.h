@@ -2,7 +2,8 @@
 // `kinray diff --aa exact`: an exactly antialiased pixel is the box-filtered mean over its square,
 // which no single ray gives, so the tested backend's frames are compared by colour with Embree's
 // stratified supersampling at very many samples per pixel (embree_supersampling.h), frame by
-// frame, within a stated tolerance -- as `diff --shutter` does for motion blur.
+// frame, within a stated tolerance -- as `diff --shutter` does for motion blur. Under the shutter
+// (`--aa exact --shutter S`) the reference samples the pixel's square and its window together.
 #include <string>
 
 #include "renderer/job/render_job.h"

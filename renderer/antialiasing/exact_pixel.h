@@ -114,6 +114,9 @@ class ExactPixels {
     return colour_of_refs(i, j);
   }
 
+  /// Reads the next pixels out at time t (under the shutter each pixel has its own nodes).
+  void set_time(double t) { m_t = t; }
+
   /// The last colour()'s visible pieces; their owners index triangles().
   [[nodiscard]] const SquareVisibility& visibility() const { return m_visibility; }
   /// The last colour()'s triangles: the visible ones of `overlapping`, sorted, without repeats.

@@ -240,8 +240,10 @@ class AutoBackend final : public Backend {
 std::unique_ptr<Backend> make_auto_backend(const CameraSpaceScene& scene,
                                            const BackendConfig& config) {
   const BackendConfig defaults;
-  if (config.shutter.enabled() || config.sort != defaults.sort || config.audit ||
-      config.shadow_tree != defaults.shadow_tree || config.aa == Antialiasing::exact)
+  // Motion blur with antialiasing samples is the sampling peer's (x, y, t) sampling: embree.
+  if ((config.shutter.enabled() && config.aa_samples == 1) || config.sort != defaults.sort ||
+      config.audit || config.shadow_tree != defaults.shadow_tree ||
+      config.aa == Antialiasing::exact)
     return make_kinetic_backend(scene, config);
   if (config.embree_packet != defaults.embree_packet ||
       config.embree_build != defaults.embree_build || config.aa_samples > 1)

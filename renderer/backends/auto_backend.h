@@ -23,7 +23,7 @@
 // built at the first would (docs/render_farm.md), and Embree refits to any time, so a frame of an
 // auto render equals the same frame of whichever backend rendered it. Flags that only one backend
 // reads choose it outright (--sort, --audit, --shadow-tree, --shutter, --aa exact: kinetic;
-// --packet, --embree-mode, --aa-samples: Embree).
+// --packet, --embree-mode, --aa-samples: Embree, also with --shutter).
 #include <memory>
 
 #include "renderer/backends/backend.h"

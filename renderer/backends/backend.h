@@ -46,10 +46,12 @@ class Backend {
   /// may render them ahead, several at a time (the kinetic grid does, band by band). A render(t)
   /// off the plan drops what is left of it and renders t as if none had been given.
   virtual void plan_frames(std::span<const double> times) {}
-  /// Motion blur (renderer/motion_blur/shutter.h): frame.color is the time average of the shaded radiance over
-  /// the window; object, prim and depth are those of render(window.time). Windows' open times
-  /// must not decrease between calls for the kinetic backend. Throws OptionError naming the
-  /// shutter when this backend has no motion blur.
+  /// Motion blur (renderer/motion_blur/shutter.h): frame.color is the time average of the shaded
+  /// radiance over the window; object, prim and depth are those of render(window.time). Windows'
+  /// open times must not decrease between calls for the kinetic backend. With BackendConfig::aa
+  /// exact (kinetic) or aa_samples > 1 (embree) the average runs over the pixel's square too: the
+  /// space-time box filter (renderer/antialiasing/exact_shutter.h) or its (x, y, t) samples.
+  /// Throws OptionError naming the shutter when this backend has no motion blur.
   virtual void render_shutter(const ShutterWindow& window, Frame& frame);
   /// True if render_shutter is implemented (make_backend rejects --shutter otherwise).
   [[nodiscard]] virtual bool has_motion_blur() const { return false; }

@@ -300,7 +300,8 @@ class EmbreeBackend final : public Backend {
       frame.resize(m_config.width, m_config.height);
     if (!m_motion_blur)
       m_motion_blur = std::make_unique<EmbreeMotionBlur>(m_scene, m_device.handle(), m_threads,
-                                                         m_config.shutter.samples, &m_lights);
+                                                         m_config.shutter.samples, &m_lights,
+                                                         m_config.aa_samples);
     const uint64_t mark = m_device.error_count();
     m_motion_blur->render(window, frame);
     m_device.check(mark, "motion blur");

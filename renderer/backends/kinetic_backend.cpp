@@ -7,6 +7,7 @@
 #include "kinetic/grid/frustum_grid.h"
 #include "kinetic/squares/pixel_square_sets.h"
 #include "renderer/antialiasing/exact_pixel.h"
+#include "renderer/antialiasing/exact_shutter.h"
 #include "renderer/backends/grid_meshes.h"
 #include "renderer/motion_blur/kinetic_shutter.h"
 #include "renderer/output/stats_json.h"
@@ -133,6 +134,7 @@ class KineticBackend final : public Backend {
 
   void render_shutter(const ShutterWindow& window, Frame& frame) override {
     plan_frames({});
+    if (m_config.aa == Antialiasing::exact) return render_exact_shutter(window, frame);
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_grid ? m_grid->event_count() : 0;
     if (!m_grid)
@@ -147,24 +149,65 @@ class KineticBackend final : public Backend {
     m_events.push_back(m_grid->event_count() - events_before);
   }
 
+  /// Exact antialiasing under the shutter (renderer/antialiasing/exact_shutter.h): the ids and
+  /// depths are the centre ray's at the frame time, as --aa exact and --shutter each have them.
+  void render_exact_shutter(const ShutterWindow& window, Frame& frame) {
+    render(window.time, frame);
+    if (!m_exact_shutter)
+      m_exact_shutter = std::make_unique<ExactShutter>(
+          m_scene, ExactShutter::Config{.order = m_config.shutter.order}, m_config.threads,
+          [this](double t) {
+            PixelSquareSets::Config config;
+            config.audit = m_config.audit;
+            return std::make_unique<PixelSquareSets>(
+                kinetic_grid_input(m_scene, m_config.width, m_config.height), t, config);
+          });
+    const PixelSquareSets* before = m_exact_shutter->sets();
+    const uint64_t events_before = before ? before->stats().events.total() : 0;
+    const ExactShutterStats times_before = m_exact_shutter->stats();
+    m_exact_shutter->render(window, frame);
+    const PixelSquareSets& sets = *m_exact_shutter->sets();
+    // Rebuilt sets count their events from zero.
+    m_square_events.push_back(sets.stats().events.total() - (&sets == before ? events_before : 0));
+    m_square_events_s.push_back(m_exact_shutter->stats().events_s - times_before.events_s);
+    m_exact_readout_s.push_back(m_exact_shutter->stats().readout_s - times_before.readout_s);
+  }
+
   void write_stats(nlohmann::json& stats) const override {
     if (m_shadows) m_shadows->write_stats(stats);
     if (!m_grid) return;
-    if (m_squares) {
+    const PixelSquareSets* squares = m_squares         ? m_squares.get()
+                                     : m_exact_shutter ? m_exact_shutter->sets()
+                                                       : nullptr;
+    if (squares) {
+      const ExactPixels::Stats& readout =
+          m_exact_shutter ? m_exact_shutter->readout_stats() : m_exact_stats;
       nlohmann::json& aa = stats["antialiasing"];
       aa["mode"] = "exact";
-      aa["squares"] = counters_json(m_squares->stats());
-      aa["squares"]["events"] = event_counts_json(m_squares->stats().events);
-      aa["readout"] = {{"pixels", m_exact_stats.pixels},
-                       {"covered_by_one", m_exact_stats.covered_by_one},
-                       {"triangles", m_exact_stats.triangles},
-                       {"pieces", m_exact_stats.pieces},
-                       {"nodes", m_exact_stats.nodes},
-                       {"shadow_rays", m_exact_stats.shadow_rays},
-                       {"shadow_cuts", m_exact_stats.shadow_cuts}};
+      aa["squares"] = counters_json(squares->stats());
+      aa["squares"]["events"] = event_counts_json(squares->stats().events);
+      aa["readout"] = {{"pixels", readout.pixels},
+                       {"covered_by_one", readout.covered_by_one},
+                       {"triangles", readout.triangles},
+                       {"pieces", readout.pieces},
+                       {"nodes", readout.nodes},
+                       {"shadow_rays", readout.shadow_rays},
+                       {"shadow_cuts", readout.shadow_cuts}};
       aa["per_frame"] = {{"events_s", m_square_events_s},
                          {"readout_s", m_exact_readout_s},
                          {"events", m_square_events}};
+      if (m_exact_shutter) {
+        const ExactShutterStats& s = m_exact_shutter->stats();
+        aa["shutter"] = {{"order", m_exact_shutter->order()},
+                         {"windows", s.windows},
+                         {"readouts", s.readouts},
+                         {"pieces", s.pieces},
+                         {"still_pixels", s.still_pixels},
+                         {"changes", s.changes},
+                         {"rebuilds", s.rebuilds},
+                         {"events_s", s.events_s},
+                         {"readout_s", s.readout_s}};
+      }
     }
     if (m_shutter) {
       const KineticShutterStats& s = m_shutter->stats();
@@ -278,6 +321,9 @@ class KineticBackend final : public Backend {
   // Exact antialiasing, made by the first render_antialiased: the per-square sets (over the
   // grid's input, which they keep), and their read-out's counters and times.
   std::unique_ptr<PixelSquareSets> m_squares;
+  /// Exact antialiasing under the shutter, made by the first render_shutter with --aa exact; it
+  /// owns its sets (advanced through the windows' nodes).
+  std::unique_ptr<ExactShutter> m_exact_shutter;
   ExactPixels::Stats m_exact_stats;
   std::vector<double> m_square_events_s, m_exact_readout_s;
   std::vector<uint64_t> m_square_events;

@@ -83,13 +83,8 @@ void validate(const RenderParams& params) {
   validate(params.chunk, params.frame_range);
   validate(params.shutter);
   check_aa_samples(params.aa_samples);
-  if (params.aa_samples > 1 && params.shutter.enabled())
-    throw OptionError("aa_samples",
-                      "antialiasing with motion blur (--shutter) is not supported yet");
   if (params.aa == Antialiasing::exact && params.aa_samples > 1)
     throw OptionError("aa", "exact antialiasing needs no samples: drop --aa-samples");
-  if (params.aa == Antialiasing::exact && params.shutter.enabled())
-    throw OptionError("aa", "exact antialiasing with motion blur (--shutter) is not supported yet");
   if (params.contacts && params.shutter.enabled())
     throw InputError("--contacts", "tints sharp frames; drop --shutter (motion blur) or --contacts");
 }
@@ -154,6 +149,12 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   apply_camera_choice(m_params.camera, m_scene, m_params.time);
   m_scene.validate(m_params.scene);
   if (!m_params.lights.empty()) m_scene.lights = m_params.lights;
+  // The lit read-out traces its shadow rays through the kinetic tree at one time, and the space-
+  // time box filter reads out at each pixel's own times.
+  if (m_params.aa == Antialiasing::exact && m_params.shutter.enabled() && !m_scene.lights.empty())
+    throw OptionError("aa",
+                      "exact antialiasing under the shutter (--shutter) of a scene with lights is "
+                      "not supported yet; --aa-samples N on the embree backend samples it");
   if (m_scene.lights.size() > kMaxLights)
     throw InputError(m_params.scene, "has " + std::to_string(m_scene.lights.size()) +
                                          " lights; at most " + std::to_string(kMaxLights) +

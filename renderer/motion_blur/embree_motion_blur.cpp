@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "renderer/antialiasing/pixel_samples.h"
 #include "renderer/flush_denormals.h"
+#include "renderer/motion_blur/window_pieces.h"
 #include "renderer/plane_depth.h"
 #include "renderer/shading.h"
 #include "renderer/shadows/embree_shadow_tracer.h"
@@ -23,8 +25,15 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-bool moves(const CameraSpaceObject& cs) {
-  return !cs.is_static && cs.key_times.size() > 1;
+/// The time stratum of each of n spatial strata: a shuffle of 0..n-1 (Fisher-Yates, drawn from
+/// splitmix64 of `seed`), so that the samples are stratified in (x, y) and in t at once.
+void deal_time_strata(uint64_t seed, int n, std::vector<uint32_t>& strata) {
+  strata.resize(size_t(n));
+  for (int k = 0; k < n; ++k) strata[size_t(k)] = uint32_t(k);
+  for (int k = n - 1; k > 0; --k) {
+    seed = splitmix64(seed);
+    std::swap(strata[size_t(k)], strata[size_t(seed % uint64_t(k + 1))]);
+  }
 }
 
 /// Writes positions as Embree's float3 into an Embree-owned buffer.
@@ -40,12 +49,15 @@ void write_vertices(RTCGeometry geometry, unsigned slot, const std::vector<Vec3>
 }  // namespace
 
 EmbreeMotionBlur::EmbreeMotionBlur(const CameraSpaceScene& scene, RTCDevice device, int threads,
-                                   int samples, const CameraSpaceLights* lights)
+                                   int samples, const CameraSpaceLights* lights, int aa_samples)
     : m_scene(scene),
       m_lights(lights != nullptr && !lights->empty() ? lights : nullptr),
       m_device(device),
       m_threads(resolve_threads(threads)),
-      m_samples(samples) {
+      m_samples(samples),
+      m_aa_samples(aa_samples) {
+  if (aa_samples > 1 && sample_grid_side(aa_samples) == 0)
+    throw std::invalid_argument("EmbreeMotionBlur: the antialiasing sample count must be a square");
   m_static.assign(scene.objects.size(), nullptr);
   std::vector<Vec3> positions;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
@@ -84,19 +96,7 @@ void EmbreeMotionBlur::release_pieces() {
 
 void EmbreeMotionBlur::build(const ShutterWindow& window) {
   release_pieces();
-  m_breaks = {window.open, window.close};
-  auto cut = [&](double t) {
-    if (t > window.open && t < window.close) m_breaks.push_back(t);
-  };
-  for (const CameraSpaceObject& cs : m_scene.objects) {
-    cut(cs.appear);
-    cut(cs.disappear);
-    if (moves(cs))
-      for (double key : cs.key_times) cut(key);
-  }
-  std::sort(m_breaks.begin(), m_breaks.end());
-  m_breaks.erase(std::unique(m_breaks.begin(), m_breaks.end()), m_breaks.end());
-  if (m_breaks.size() < 2) m_breaks.push_back(window.close);  // a window of length 0
+  m_breaks = window_breaks(m_scene, window);
 
   std::vector<Vec3> positions;
   for (size_t k = 0; k + 1 < m_breaks.size(); ++k) {
@@ -136,7 +136,7 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
   frame.time = window.time;
   // Fresh times each frame, and different ones for different sample counts, so that a run at N
   // samples is not correlated with the reference.
-  const uint64_t seed = (++m_frame << 20) ^ uint64_t(m_samples);
+  const uint64_t seed = (++m_frame << 20) ^ uint64_t(m_samples) ^ (uint64_t(m_aa_samples) << 40);
   // The piece a time falls in, and the ray time inside it.
   auto piece_of = [&](double t) {
     return std::min<size_t>(
@@ -177,6 +177,12 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
   auto shade = [&](const RTCHit& hit, int i, int j, const Vec3& d, double t,
                    std::vector<CameraSpaceLight>& scratch) -> Color {
     if (hit.geomID == RTC_INVALID_GEOMETRY_ID) return kBackgroundColor;
+    if (!m_lights && m_aa_samples > 1) {
+      // Off the centre: the headlight as shade_hit colours a ray, on this sample's ray.
+      const TriangleAtInstant triangle = triangle_at_instant(
+          m_scene, hit.geomID, hit.primID, shading_instant(m_scene, hit.geomID, t));
+      return headlight_color(triangle, d, view_direction(d, triangle.tan_half_fov));
+    }
     if (!m_lights) return shade_hit(m_scene, image, i, j, hit.geomID, hit.primID, t);
     const LitHit lit = lit_hit(m_scene, hit.geomID, hit.primID, d, t);
     if (still_lights.empty()) m_lights->at(t, scratch);
@@ -189,14 +195,29 @@ void EmbreeMotionBlur::render(const ShutterWindow& window, Frame& frame) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     std::vector<CameraSpaceLight> scratch;
+    std::vector<uint32_t> time_strata;
     const int j = int(row);
     for (int i = 0; i < frame.width; ++i) {
       const size_t p = frame.index(i, j);
       const Vec3 d = image.direction(i, j);
       ColorAverage average;
-      for (int s = 0; s < m_samples; ++s) {
-        const double t = stratified_time(window, uint32_t(p), s, m_samples, seed);
-        average.add(shade(trace(d, t, context), i, j, d, t, scratch), 1.0);
+      if (m_aa_samples > 1) {
+        const int m = sample_grid_side(m_aa_samples);
+        const PixelSquare square = pixel_square(image, i, j);
+        deal_time_strata(splitmix64(seed ^ (uint64_t(p) * 0x9E3779B97F4A7C15ull)), m_aa_samples,
+                         time_strata);
+        for (int s = 0; s < m_aa_samples; ++s) {
+          const Vec2 x = pixel_sample(square, p, s, m);
+          const Vec3 ds(x.x(), x.y(), 1.0);
+          const double t =
+              stratified_time(window, uint32_t(p), int(time_strata[size_t(s)]), m_aa_samples, seed);
+          average.add(shade(trace(ds, t, context), i, j, ds, t, scratch), 1.0);
+        }
+      } else {
+        for (int s = 0; s < m_samples; ++s) {
+          const double t = stratified_time(window, uint32_t(p), s, m_samples, seed);
+          average.add(shade(trace(d, t, context), i, j, d, t, scratch), 1.0);
+        }
       }
       frame.color[p] = average.result();
       const RTCHit hit = trace(d, window.time, context);
@@ -222,6 +243,7 @@ void EmbreeMotionBlur::write_stats(nlohmann::json& stats) const {
   for (double x : m_trace_s) trace += x;
   stats["motion_blur"] = {
       {"samples", m_samples},
+      {"aa_samples", m_aa_samples},
       {"build_s", build},
       {"trace_s", trace},
       {"per_frame", {{"pieces", m_piece_counts}, {"build_s", m_build_s}, {"trace_s", m_trace_s}}}};

@@ -11,6 +11,12 @@
 // by every piece. N samples per pixel, stratified with a fixed per-pixel jitter. With lights, each
 // sample's hit traces one shadow ray per light through the same piece at the same ray time, and
 // is shaded as renderer/shadows/lighting.h shades a sharp frame's.
+//
+// With antialiasing samples (--aa-samples N > 1 with --shutter), the samples spread over the
+// pixel's square too, the sampling peer of the exact space-time box filter: N = m x m spatial
+// strata jittered as the still supersampler jitters them (renderer/antialiasing/pixel_samples.h),
+// and N time strata of the window dealt to them by a per-pixel shuffle (a Latin hypercube in
+// (x, y) x t), each sample traced through the piece its time falls in.
 #include <embree3/rtcore.h>
 
 #include <nlohmann/json_fwd.hpp>
@@ -25,15 +31,16 @@ namespace kinray {
 
 class EmbreeMotionBlur {
  public:
-  /// `device` must outlive this; `samples` time samples per pixel. With `lights` (not empty;
-  /// they must outlive this) samples are lit and shadowed, else lit by the headlight.
+  /// `device` must outlive this; `samples` time samples per pixel at its centre, or, when
+  /// `aa_samples` > 1 (a square), that many samples in (x, y, t) instead. With `lights` (not
+  /// empty; they must outlive this) samples are lit and shadowed, else lit by the headlight.
   EmbreeMotionBlur(const CameraSpaceScene& scene, RTCDevice device, int threads, int samples,
-                   const CameraSpaceLights* lights = nullptr);
+                   const CameraSpaceLights* lights = nullptr, int aa_samples = 1);
   ~EmbreeMotionBlur();
   EmbreeMotionBlur(const EmbreeMotionBlur&) = delete;
   EmbreeMotionBlur& operator=(const EmbreeMotionBlur&) = delete;
 
-  /// frame.color: the mean of `samples` shaded samples per pixel over the window; object, prim
+  /// frame.color: the mean of the shaded samples of each pixel over the window; object, prim
   /// and depth (and with lights the light mask): the hit at window.time (one more ray per pixel).
   void render(const ShutterWindow& window, Frame& frame);
   /// Adds "motion_blur": {samples, pieces, build_s, trace_s (totals and per frame)}.
@@ -50,6 +57,7 @@ class EmbreeMotionBlur {
   RTCDevice m_device;
   int m_threads;
   int m_samples;
+  int m_aa_samples = 1;               ///< > 1: samples in (x, y, t), a square
   uint64_t m_frame = 0;               ///< seeds the jitter: each frame draws fresh times
   std::vector<RTCGeometry> m_static;  ///< per object: its shared geometry if it never moves
   std::vector<double> m_breaks;       ///< piece k is [m_breaks[k], m_breaks[k + 1]]

@@ -103,10 +103,15 @@ TEST_F(AntialiasingCli, LightsAreRenderedDiffedAndBenched) {
 TEST_F(AntialiasingCli, BadCombinationsNameTheFlag) {
   const std::string scene = "wavy-sphere:triangles=200 --size 16x16 --frames 2 ";
   const std::pair<std::string, std::string> cases[] = {
-      {"diff " + scene + "--aa exact --shutter 0.5", "--aa"},
+      {"diff " + scene + "--aa exact --shutter 0.5 --light point:0,5,0", "--aa"},
       {"diff " + scene + "--aa exact --reference-samples 3", "--reference-samples"},
       {"diff " + scene + "--aa exact --budget 3", "--budget"},
-      {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --shutter 0.5", "--aa"},
+      {"bench " + scene.substr(0, scene.find(" --frames")) +
+           " --aa exact --shutter 0.5 --blur-scenes orbit",
+       "--blur-scenes"},
+      {"bench " + scene.substr(0, scene.find(" --frames")) +
+           " --aa exact --shutter 0.5 --light point:0,5,0",
+       "--aa"},
       {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --reference-samples 3",
        "--reference-samples"},
       {"bench " + scene.substr(0, scene.find(" --frames")) + " --aa exact --aa-sample-counts 1,3",
