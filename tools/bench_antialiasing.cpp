@@ -1,6 +1,7 @@
 #include "tools/bench_antialiasing.h"
 
 #include <cstdio>
+#include <filesystem>
 
 #include "renderer/output/image_io.h"
 #include "renderer/output/output_check.h"
@@ -9,6 +10,7 @@
 #include "util/input_error.h"
 #include "verification/antialiasing_bench.h"
 #include "verification/benchmark.h"
+#include "verification/quality_point.h"
 
 namespace kinray {
 
@@ -33,7 +35,8 @@ void add_antialiasing_bench_options(CLI::App& command, AntialiasingBenchOptions&
 
 void run_antialiasing_bench_command(const RenderParams& base,
                                     const AntialiasingBenchOptions& options, int reference_samples,
-                                    const std::string& json, bool quiet) {
+                                    const std::string& json, const std::string& charts,
+                                    bool quiet) {
   AntialiasingBenchParams bench;
   bench.samples = parse_int_list(options.sample_counts, "--aa-sample-counts");
   bench.reference_samples = reference_samples;
@@ -42,6 +45,7 @@ void run_antialiasing_bench_command(const RenderParams& base,
   params.aa = options.aa;
   validate(params);
   if (!json.empty()) check_output_file(json, "--json");
+  if (!charts.empty()) check_output_folder(charts, "--charts");
   const AntialiasingResult r = run_antialiasing_bench(params, bench, [&](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
   });
@@ -65,6 +69,14 @@ void run_antialiasing_bench_command(const RenderParams& base,
   }
   if (!json.empty())
     write_file_atomically(json, nlohmann::json({{"antialiasing", r.to_json()}}).dump(2) + "\n");
+  if (!charts.empty()) {
+    create_output_folder(charts, "--charts");
+    const std::string path = (std::filesystem::path(charts) / "antialiasing.png").string();
+    write_quality_chart(
+        r.shutter > 0 ? "Exact antialiasing under the shutter" : "Exact antialiasing",
+        {{r.scene, r.kinetic, r.embree}}, path);
+    std::printf("chart: %s\n", path.c_str());
+  }
 }
 
 }  // namespace kinray

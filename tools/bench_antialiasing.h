@@ -22,11 +22,12 @@ struct AntialiasingBenchOptions {
 void add_antialiasing_bench_options(CLI::App& command, AntialiasingBenchOptions& options);
 
 /// Runs the comparison on base's scene (size, threads, camera and model flags, --time's start),
-/// prints a table and writes {"antialiasing": {...}} to `json` when given; with base.shutter the
+/// prints a table, writes {"antialiasing": {...}} to `json` and the chart of error against time
+/// per frame into the folder `charts` (antialiasing.png) when given; with base.shutter the
 /// frames are blurred (the space-time box filter). Throws InputError naming the flag for bad
 /// counts, or lights with --shutter. With lights every method shades them with shadows.
 void run_antialiasing_bench_command(const RenderParams& base,
                                     const AntialiasingBenchOptions& options, int reference_samples,
-                                    const std::string& json, bool quiet);
+                                    const std::string& json, const std::string& charts, bool quiet);
 
 }  // namespace kinray

@@ -161,15 +161,14 @@ void run_bench(const BenchOptions& options, const CLI::App& command) {
   if (options.antialiasing.aa == Antialiasing::exact) {
     if (!options.motion_blur.scenes.empty())
       throw InputError("--blur-scenes", "bench --aa exact compares one scene's frames");
-    if (!options.csv.empty() || !options.charts.empty())
-      throw InputError(options.csv.empty() ? "--charts" : "--csv",
-                       "bench --aa exact writes a table and --json only");
+    if (!options.csv.empty())
+      throw InputError("--csv", "bench --aa exact writes a table, --json and --charts only");
     // With --shutter every frame is its window's: the space-time box filter.
     RenderParams base = options.render.resolve();
     base.shutter.shutter = options.motion_blur.shutter;
     return run_antialiasing_bench_command(base, options.antialiasing,
                                           options.motion_blur.reference_samples, options.json,
-                                          options.quiet);
+                                          options.charts, options.quiet);
   }
   if (options.motion_blur.shutter != 0) {
     RenderParams base = options.render.resolve();

@@ -5,7 +5,6 @@
 
 #include "util/input_error.h"
 #include "verification/bench_support.h"
-#include "verification/chart.h"
 #include "verification/image_diff.h"
 
 namespace kinray {
@@ -137,31 +136,9 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
 
 void write_motion_blur_chart(const std::vector<MotionBlurResult>& results,
                              const std::string& path) {
-  const Color palette[] = {Color(0.1f, 0.3f, 0.8f), Color(0.8f, 0.3f, 0.1f),
-                           Color(0.1f, 0.6f, 0.2f), Color(0.6f, 0.1f, 0.6f),
-                           Color(0.4f, 0.4f, 0.4f)};
-  Chart chart;
-  chart.title = "Motion blur: error against time per frame";
-  chart.x_label = "ms per frame";
-  chart.y_label = "RMSE against the reference";
-  chart.log_x = chart.log_y = true;
-  for (size_t s = 0; s < results.size(); ++s) {
-    const MotionBlurResult& r = results[s];
-    ChartSeries embree{r.scene + " embree 4..256 spp", {}, {}, palette[s % 5], true};
-    for (const MotionBlurPoint& p : r.embree) {
-      embree.x.push_back(p.ms_per_frame);
-      embree.y.push_back(p.rmse);
-    }
-    chart.series.push_back(embree);
-    // A point drawn as a short segment, so the chart's lines show it.
-    ChartSeries kinetic{r.scene + " kinetic",
-                        {r.kinetic.ms_per_frame * 0.95, r.kinetic.ms_per_frame * 1.05},
-                        {r.kinetic.rmse, r.kinetic.rmse},
-                        palette[s % 5],
-                        false};
-    chart.series.push_back(kinetic);
-  }
-  write_chart_png(chart, path);
+  std::vector<QualityCurve> curves;
+  for (const MotionBlurResult& r : results) curves.push_back({r.scene, r.kinetic, r.embree});
+  write_quality_chart("Motion blur: error against time per frame", curves, path);
 }
 
 }  // namespace kinray

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "verification/bench_support.h"
+#include "verification/chart.h"
 #include "verification/image_diff.h"
 
 namespace kinray {
@@ -39,6 +40,42 @@ QualityPoint measure_quality(const RenderJob& job,
   point.ms_per_frame = median(later_ms);
   point.rmse = std::sqrt(squared / double(job.frame_times().size()));
   return point;
+}
+
+void write_quality_chart(const std::string& title, const std::vector<QualityCurve>& curves,
+                         const std::string& path) {
+  const Color palette[] = {Color(0.1f, 0.3f, 0.8f), Color(0.8f, 0.3f, 0.1f),
+                           Color(0.1f, 0.6f, 0.2f), Color(0.6f, 0.1f, 0.6f),
+                           Color(0.4f, 0.4f, 0.4f)};
+  Chart chart;
+  chart.title = curves.size() == 1 ? title + ", " + curves.front().scene : title;
+  chart.x_label = "ms per frame";
+  chart.y_label = "RMSE against the reference";
+  chart.log_x = chart.log_y = true;
+  for (size_t s = 0; s < curves.size(); ++s) {
+    const QualityCurve& c = curves[s];
+    std::string counts;
+    if (!c.embree.empty())
+      counts = " " + std::to_string(c.embree.front().samples) + ".." +
+               std::to_string(c.embree.back().samples) + " spp";
+    // One scene: the title names it, and the legend only the methods (a scene's parameters
+    // would not fit).
+    const std::string name = curves.size() > 1 ? c.scene + " " : "";
+    ChartSeries embree{name + "embree" + counts, {}, {}, palette[s % 5], true};
+    for (const QualityPoint& p : c.embree) {
+      embree.x.push_back(p.ms_per_frame);
+      embree.y.push_back(p.rmse);
+    }
+    chart.series.push_back(embree);
+    // A point drawn as a short segment, so the chart's lines show it.
+    ChartSeries kinetic{name + "kinetic",
+                        {c.kinetic.ms_per_frame * 0.95, c.kinetic.ms_per_frame * 1.05},
+                        {c.kinetic.rmse, c.kinetic.rmse},
+                        palette[s % 5],
+                        false};
+    chart.series.push_back(kinetic);
+  }
+  write_chart_png(chart, path);
 }
 
 }  // namespace kinray

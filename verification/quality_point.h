@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "renderer/frame.h"
@@ -27,5 +28,18 @@ struct QualityPoint {
                                            const std::vector<Frame>& reference, int samples,
                                            double* first_ms,
                                            const std::function<void()>& after_first = {});
+
+/// One scene's comparison: the kinetic point and Embree's at each sample count.
+struct QualityCurve {
+  std::string scene;
+  QualityPoint kinetic;
+  std::vector<QualityPoint> embree;
+};
+
+/// A PNG chart of error against time per frame, both axes logarithmic: each scene's Embree
+/// points as a line over its sample counts, its kinetic point as a short segment in the same
+/// colour.
+void write_quality_chart(const std::string& title, const std::vector<QualityCurve>& curves,
+                         const std::string& path);
 
 }  // namespace kinray

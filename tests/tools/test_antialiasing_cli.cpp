@@ -49,9 +49,13 @@ TEST_F(AntialiasingCli, BenchWritesTheAntialiasingJson) {
   const auto run = kinray(
       "bench wavy-sphere:triangles=600 --size 32x24 --aa exact --aa-sample-counts 1,4,16 "
       "--reference-samples 256 --aa-frames 3 --quiet --json " +
-      path("b.json"));
+      path("b.json") + " --charts " + path("charts"));
   ASSERT_EQ(run.status, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("embree/16"), std::string::npos) << run.out;
+  // the chart of error against time per frame: a PNG image
+  const std::string chart = test::read_text(path("charts/antialiasing.png"));
+  ASSERT_GT(chart.size(), 8u) << run.out;
+  EXPECT_EQ(chart.substr(1, 3), "PNG");
   const auto json = nlohmann::json::parse(test::read_text(path("b.json")));
   const auto& aa = json["antialiasing"];
   const auto& kinetic = aa["kinetic"];
