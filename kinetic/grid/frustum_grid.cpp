@@ -1,20 +1,21 @@
 #include "kinetic/grid/frustum_grid.h"
 
+#include <emmintrin.h>
+#include <oneapi/tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <emmintrin.h>
 #include <limits>
 #include <optional>
 #include <stdexcept>
-
-#include <oneapi/tbb/enumerable_thread_specific.h>
 
 #include "kinetic/core/root_finding.h"
 #include "kinetic/grid/frustum_band.h"
 #include "kinetic/grid/plane_pairs.h"
 #include "util/parallel.h"
+#include "util/stopwatch.h"
 
 namespace kinray {
 
@@ -24,10 +25,6 @@ constexpr int kBandsPerThread = 4;
 constexpr size_t kPlaneCache = 2048;  ///< read-out: planes kept per thread (a few rows' runs)
 constexpr int kReadoutBlocksPerThread = 8;  ///< read-out: blocks of rows handed out per thread
 constexpr size_t kReadoutMinBlockRows = 16;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// Where each mesh is on its key grid at t: what a read-out at t interpolates with.
 std::vector<FlightplanMesh::KeyBlend> key_blends(const GridScene& scene, double t) {

@@ -8,19 +8,9 @@
 
 #include "renderer/motion_blur/window_pieces.h"
 #include "util/parallel.h"
+#include "util/stopwatch.h"
 
 namespace kinray {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point& since) {
-  const auto now = std::chrono::steady_clock::now();
-  const double seconds = std::chrono::duration<double>(now - since).count();
-  since = now;
-  return seconds;
-}
-
-}  // namespace
-
 ExactShutter::ExactShutter(const CameraSpaceScene& scene, const Config& config, int threads,
                            MakeSets make_sets)
     : m_scene(scene),
@@ -61,7 +51,7 @@ void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
     std::vector<uint32_t> next(m_change_begin.begin(), m_change_begin.end() - 1);
     for (size_t k = 0; k < log.size(); ++k) m_change_order[next[log[k].pixel]++] = uint32_t(k);
   }
-  m_stats.events_s += seconds_since(clock);
+  m_stats.events_s += lap_seconds(clock);
 
   const std::vector<double> breaks = window_breaks(m_scene, window);
   const auto rule_of = [&](size_t nodes) -> const GaussLegendre& { return m_rules[nodes - 1]; };
@@ -174,7 +164,7 @@ void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
     const std::lock_guard lock(mutex);
     m_readout += pixels.stats();
   });
-  m_stats.readout_s += seconds_since(clock);
+  m_stats.readout_s += lap_seconds(clock);
   ++m_stats.windows;
   m_stats.readouts += readouts.load();
   m_stats.pieces += pieces.load();

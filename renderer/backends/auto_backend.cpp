@@ -12,15 +12,12 @@
 #include "renderer/backends/kinetic_backend.h"
 #include "renderer/job/frame_schedule.h"
 #include "renderer/job/memory_estimate.h"
+#include "util/stopwatch.h"
 
 namespace kinray {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 class AutoBackend final : public Backend {
  public:

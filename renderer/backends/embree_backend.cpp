@@ -24,15 +24,12 @@
 #include "renderer/shadows/lighting.h"
 #include "util/input_error.h"
 #include "util/parallel.h"
+#include "util/stopwatch.h"
 
 namespace kinray {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 const char* error_name(RTCError code) {
   switch (code) {

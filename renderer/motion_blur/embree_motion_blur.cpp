@@ -15,15 +15,12 @@
 #include "renderer/shadows/embree_shadow_tracer.h"
 #include "renderer/shadows/lighting.h"
 #include "util/parallel.h"
+#include "util/stopwatch.h"
 
 namespace kinray {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// The time stratum of each of n spatial strata: a shuffle of 0..n-1 (Fisher-Yates, drawn from
 /// splitmix64 of `seed`), so that the samples are stratified in (x, y) and in t at once.

@@ -9,6 +9,7 @@
 #include "renderer/plane_depth.h"
 #include "renderer/shading.h"
 #include "util/parallel.h"
+#include "util/stopwatch.h"
 
 namespace kinray {
 
@@ -128,17 +129,6 @@ void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int
   }
 }
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point& since) {
-  const auto now = std::chrono::steady_clock::now();
-  const double seconds = std::chrono::duration<double>(now - since).count();
-  since = now;
-  return seconds;
-}
-
-}  // namespace
-
 void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Frame& frame) {
   auto clock = std::chrono::steady_clock::now();
   start_logging(grid);
@@ -147,7 +137,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   grid.advance_to(std::max(window.close, grid.now()));
   roll_to(grid, window.open);
   if (m_shadows) m_shadows->begin_window(window);
-  m_stats.events_s += seconds_since(clock);
+  m_stats.events_s += lap_seconds(clock);
   const GridScene& scene = grid.scene();
   const int w = scene.width(), h = scene.height();
   const size_t n = size_t(w) * size_t(h);
@@ -229,7 +219,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
     }
     add_counts(row_counts);
   });
-  m_stats.integrate_s += seconds_since(clock);
+  m_stats.integrate_s += lap_seconds(clock);
   // The id and depth buffers: the front at the frame time, as the sharp frame has it; with
   // lights, its light mask there too.
   if (m_shadows) frame.lit.assign(n, 0u);
@@ -264,7 +254,7 @@ void KineticShutter::render(FrustumGrid& grid, const ShutterWindow& window, Fram
   m_stats.shading_nodes += nodes.load();
   m_stats.shadow_rays += rays.load();
   m_stats.mask_changes += mask_changes.load();
-  m_stats.readout_s += seconds_since(clock);
+  m_stats.readout_s += lap_seconds(clock);
 }
 
 }  // namespace kinray
