@@ -255,15 +255,23 @@ void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> ou
   }
 }
 
-void ExactPixels::integrate_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c,
-                                     Eigen::Vector3d& sum) {
+double ExactPixels::shade_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c,
+                                   std::array<LitPoint, 7>& nodes) {
   const double area = 0.5 * twice_area(a, b, c);
-  if (!(area > 0)) return;
+  if (!(area > 0)) return 0;
   const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
   std::array<Vec2, 7> at;
   for (size_t k = 0; k < rule.size(); ++k) at[k] = rule[k].l0 * a + rule[k].l1 * b + rule[k].l2 * c;
-  std::array<LitPoint, 7> nodes;
   shade_lit(at, nodes);
+  return area;
+}
+
+void ExactPixels::integrate_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c,
+                                     Eigen::Vector3d& sum) {
+  std::array<LitPoint, 7> nodes;
+  const double area = shade_lit_rule(a, b, c, nodes);
+  if (!(area > 0)) return;
+  const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
   m_stats.nodes += rule.size();
   for (size_t k = 0; k < rule.size(); ++k)
     sum += (rule[k].weight * area) * nodes[k].colour.cast<double>();
@@ -286,13 +294,10 @@ void ExactPixels::integrate_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c
 void ExactPixels::integrate_lit_triangle(const std::array<LitPoint, 3>& corners, int depth,
                                          Eigen::Vector3d& sum) {
   const Vec2 &a = corners[0].p, &b = corners[1].p, &c = corners[2].p;
-  const double area = 0.5 * twice_area(a, b, c);
+  std::array<LitPoint, 7> nodes;
+  const double area = shade_lit_rule(a, b, c, nodes);
   if (!(area > 0)) return;
   const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
-  std::array<Vec2, 7> at;
-  for (size_t k = 0; k < rule.size(); ++k) at[k] = rule[k].l0 * a + rule[k].l1 * b + rule[k].l2 * c;
-  std::array<LitPoint, 7> nodes;
-  shade_lit(at, nodes);
 
   // Light l's shadow boundary crosses where, of the points it faces, some see it and some not;
   // its terminator matters only where it reaches some point (elsewhere it adds nothing).

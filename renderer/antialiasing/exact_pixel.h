@@ -158,6 +158,10 @@ class ExactPixels {
   /// integrate_lit over the triangle of `corners` (shaded), halved `depth` times so far.
   void integrate_lit_triangle(const std::array<LitPoint, 3>& corners, int depth,
                               Eigen::Vector3d& sum);
+  /// The rule's nodes on the triangle (a, b, c), shaded into `nodes`; its area (0: a degenerate
+  /// triangle, nothing shaded).
+  double shade_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c,
+                        std::array<LitPoint, 7>& nodes);
   /// The rule over the triangle (a, b, c) with fresh nodes.
   void integrate_lit_rule(const Vec2& a, const Vec2& b, const Vec2& c, Eigen::Vector3d& sum);
 
