@@ -49,6 +49,11 @@ const std::vector<BuiltinScene>& builtin_scenes() {
        "cloth's chords touch below about gap=0.008 at 2000 triangles)",
        {2000, 2, 24, 0.01},
        &make_cloth_slide},
+      {"swing",
+       "an arm of two links and a hand swinging like a double pendulum, the hand a gap above a "
+       "floor at the bottom of each swing (near misses of an articulated body)",
+       {2000, 2, 24, 0.01},
+       &make_swing},
   };
   return scenes;
 }

@@ -70,5 +70,7 @@ struct BuiltinScene {
 [[nodiscard]] Scene make_glide(const ProceduralParams& params);
 /// A flat cloth sliding over a still sphere that lifts it, its vertices `gap` above it.
 [[nodiscard]] Scene make_cloth_slide(const ProceduralParams& params);
+/// An arm of two links and a hand swinging like a double pendulum, the hand `gap` above a floor.
+[[nodiscard]] Scene make_swing(const ProceduralParams& params);
 
 }  // namespace kinray

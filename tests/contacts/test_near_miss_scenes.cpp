@@ -1,4 +1,4 @@
-// The near-miss scenes (glide, cloth-slide): bodies that pass close and touch rarely. Every
+// The near-miss scenes (glide, cloth-slide, swing): bodies that pass close and touch rarely. Every
 // structure finds brute force's contacts, contact for contact, at positive, zero and negative
 // gaps; a positive gap between the gliding spheres is a proof of no contact, so none is found.
 #include <gtest/gtest.h>
@@ -50,9 +50,19 @@ TEST(NearMissScenes, ClothSlideMatchesBruteForce) {
   EXPECT_GT(expect_brute_force_contacts("cloth-slide", -0.01).size(), 0u);
 }
 
+// The articulated arm: the hand passes a positive gap above the floor without touching, and dips
+// through it, briefly, at a negative one; the links never reach it.
+TEST(NearMissScenes, SwingMatchesBruteForceAndAPositiveGapNeverTouches) {
+  EXPECT_TRUE(expect_brute_force_contacts("swing", 0.01).empty());
+  const size_t touching = expect_brute_force_contacts("swing", -0.02).size();
+  EXPECT_GT(touching, 0u) << "the hand dips through the floor at a negative gap";
+  EXPECT_LT(touching, 1000u) << "briefly";
+}
+
 TEST(NearMissScenes, OnlyTheyTakeAGap) {
   EXPECT_EQ(*builtin_scene_params("glide", {{"gap", -0.5}}).gap, -0.5);
   EXPECT_EQ(*builtin_scene_params("cloth-slide", {{"gap", 0}}).gap, 0.0);
+  EXPECT_EQ(*builtin_scene_params("swing", {{"gap", 0.2}}).gap, 0.2);
   EXPECT_FALSE(builtin_scene_params("crossing", {}).gap.has_value());
   EXPECT_THROW((void)builtin_scene_params("crossing", {{"gap", 0.1}}), InputError);
   EXPECT_THROW((void)builtin_scene_params("glide", {{"gap", kInfinity}}), InputError);
