@@ -137,6 +137,29 @@ double twice_area(const Vec2& a, const Vec2& b, const Vec2& c) {
   return ab.x() * ac.y() - ab.y() * ac.x();
 }
 
+/// Calls fan(a, b, c) on each triangle of the fan of the convex `piece`, and on a textured
+/// triangle (`textured`, else nullptr) on its m x m congruent sub-triangles of the barycentric
+/// grid of step 1 / m instead (textured_subdivision: half-texel pieces).
+template <class Fan>
+void for_each_fan_triangle(std::span<const Vec2> piece, const TriangleAtInstant* textured,
+                           int subdivision, Fan&& fan) {
+  for (size_t k = 1; k + 1 < piece.size(); ++k) {
+    const Vec2 &a = piece[0], &b = piece[k], &c = piece[k + 1];
+    const int m = textured ? textured_subdivision(*textured, a, b, c, subdivision) : 1;
+    if (m == 1) {
+      fan(a, b, c);
+      continue;
+    }
+    const Vec2 u = (b - a) / m, v = (c - a) / m;
+    auto grid = [&](int s, int t) { return Vec2(a + double(s) * u + double(t) * v); };
+    for (int s = 0; s < m; ++s)
+      for (int t = 0; s + t < m; ++t) {
+        fan(grid(s, t), grid(s + 1, t), grid(s, t + 1));
+        if (s + t + 2 <= m) fan(grid(s + 1, t), grid(s + 1, t + 1), grid(s, t + 1));
+      }
+  }
+}
+
 }  // namespace
 
 template <class Shade, class Kink>
@@ -146,8 +169,7 @@ Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
   const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   auto smooth = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
-    const Vec2 ab = b - a, ac = c - a;
-    const double area = 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
+    const double area = 0.5 * twice_area(a, b, c);
     if (!(area > 0)) return;
     m_stats.nodes += rule.size();
     for (const TriangleQuadratureNode& node : rule) {
@@ -187,24 +209,9 @@ Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
         smooth(m_kink_side[0], m_kink_side[k], m_kink_side[k + 1]);
     }
   };
-  for (size_t k = 1; k + 1 < piece.size(); ++k) {
-    const Vec2 &a = piece[0], &b = piece[k], &c = piece[k + 1];
-    const int m =
-        textured ? textured_subdivision(*textured, a, b, c, m_config.textured_subdivision) : 1;
-    if (m == 1) {
-      triangle(triangle, a, b, c, 0);
-      continue;
-    }
-    // m x m congruent sub-triangles on the barycentric grid of step 1 / m.
-    const Vec2 u = (b - a) / m, v = (c - a) / m;
-    auto grid = [&](int s, int t) { return Vec2(a + double(s) * u + double(t) * v); };
-    for (int s = 0; s < m; ++s)
-      for (int t = 0; s + t < m; ++t) {
-        triangle(triangle, grid(s, t), grid(s + 1, t), grid(s, t + 1), 0);
-        if (s + t + 2 <= m)
-          triangle(triangle, grid(s + 1, t), grid(s + 1, t + 1), grid(s, t + 1), 0);
-      }
-  }
+  for_each_fan_triangle(
+      piece, textured, m_config.textured_subdivision,
+      [&](const Vec2& a, const Vec2& b, const Vec2& c) { triangle(triangle, a, b, c, 0); });
   return sum;
 }
 
@@ -399,29 +406,14 @@ Eigen::Vector3d ExactPixels::integrate_lit(std::span<const Vec2> piece) {
   const TriangleAtInstant& triangle = *m_lit_triangle;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   std::array<LitPoint, 3> corners;
-  auto fan_triangle = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
-    if (!(twice_area(a, b, c) > 0)) return;
-    const std::array<Vec2, 3> p = {a, b, c};
-    shade_lit(p, corners);
-    integrate_lit_triangle(corners, 0, sum);
-  };
-  for (size_t k = 1; k + 1 < piece.size(); ++k) {
-    const Vec2 &a = piece[0], &b = piece[k], &c = piece[k + 1];
-    const int m = triangle.texture != nullptr
-                      ? textured_subdivision(triangle, a, b, c, m_config.textured_subdivision)
-                      : 1;
-    if (m == 1) {
-      fan_triangle(a, b, c);
-      continue;
-    }
-    const Vec2 u = (b - a) / m, v = (c - a) / m;
-    auto grid = [&](int s, int t) { return Vec2(a + double(s) * u + double(t) * v); };
-    for (int s = 0; s < m; ++s)
-      for (int t = 0; s + t < m; ++t) {
-        fan_triangle(grid(s, t), grid(s + 1, t), grid(s, t + 1));
-        if (s + t + 2 <= m) fan_triangle(grid(s + 1, t), grid(s + 1, t + 1), grid(s, t + 1));
-      }
-  }
+  for_each_fan_triangle(piece, triangle.texture != nullptr ? &triangle : nullptr,
+                        m_config.textured_subdivision,
+                        [&](const Vec2& a, const Vec2& b, const Vec2& c) {
+                          if (!(twice_area(a, b, c) > 0)) return;
+                          const std::array<Vec2, 3> p = {a, b, c};
+                          shade_lit(p, corners);
+                          integrate_lit_triangle(corners, 0, sum);
+                        });
   return sum;
 }
 

@@ -15,13 +15,12 @@ ExactShutter::ExactShutter(const CameraSpaceScene& scene, const Config& config, 
                            MakeSets make_sets)
     : m_scene(scene),
       m_config(config),
-      m_rule(gauss_legendre(config.order > 0 ? config.order : kDefaultShutterOrder)),
       m_threads(threads),
       m_make_sets(std::move(make_sets)),
       m_fixed_fov(scene.fixed_tan_half_fov().has_value()) {
   for (const CameraSpaceObject& cs : scene.objects) m_moves.push_back(moves(cs));
-  for (size_t nodes = 1; nodes <= m_rule.nodes.size(); ++nodes)
-    m_rules.push_back(gauss_legendre(int(nodes)));
+  const int order = config.order > 0 ? config.order : kDefaultShutterOrder;
+  for (int nodes = 1; nodes <= order; ++nodes) m_rules.push_back(gauss_legendre(nodes));
 }
 
 void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
@@ -121,7 +120,7 @@ void ExactShutter::render(const ShutterWindow& window, Frame& frame) {
         row_readouts += rule.nodes.size();
         ++row_pieces;
       };
-      const size_t order = m_rule.nodes.size();
+      const size_t order = m_rules.size();
       // The nodes of a part of [a, b] that has `nodes` of them: in proportion to its length
       // (rounded up, less the rounding of the lengths: half of four nodes is two), at least
       // `least`.

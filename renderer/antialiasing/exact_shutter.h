@@ -70,13 +70,12 @@ class ExactShutter {
   [[nodiscard]] const PixelSquareSets* sets() const { return m_sets.get(); }
   [[nodiscard]] const ExactShutterStats& stats() const { return m_stats; }
   [[nodiscard]] const ExactPixels::Stats& readout_stats() const { return m_readout; }
-  [[nodiscard]] int order() const { return int(m_rule.nodes.size()); }
+  [[nodiscard]] int order() const { return int(m_rules.size()); }
 
  private:
   const CameraSpaceScene& m_scene;
   Config m_config;
-  GaussLegendre m_rule;
-  std::vector<GaussLegendre> m_rules;  ///< the rules of 1 .. order nodes, for the cut parts
+  std::vector<GaussLegendre> m_rules;  ///< the rules of 1 .. order nodes (the window's is the last)
   int m_threads;
   MakeSets m_make_sets;
   std::unique_ptr<PixelSquareSets> m_sets;

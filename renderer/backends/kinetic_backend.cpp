@@ -100,10 +100,7 @@ class KineticBackend final : public Backend {
     const auto start = std::chrono::steady_clock::now();
     const uint64_t events_before = m_squares ? m_squares->stats().events.total() : 0;
     if (!m_squares) {
-      PixelSquareSets::Config config;
-      config.audit = m_config.audit;
-      m_squares = std::make_unique<PixelSquareSets>(
-          kinetic_grid_input(m_scene, m_config.width, m_config.height), t, config);
+      m_squares = make_square_sets(t);
     } else {
       m_squares->advance_to(t);
     }
@@ -156,21 +153,27 @@ class KineticBackend final : public Backend {
     if (!m_exact_shutter)
       m_exact_shutter = std::make_unique<ExactShutter>(
           m_scene, ExactShutter::Config{.order = m_config.shutter.order}, m_config.threads,
-          [this](double t) {
-            PixelSquareSets::Config config;
-            config.audit = m_config.audit;
-            return std::make_unique<PixelSquareSets>(
-                kinetic_grid_input(m_scene, m_config.width, m_config.height), t, config);
-          });
+          [this](double t) { return make_square_sets(t); });
     const PixelSquareSets* before = m_exact_shutter->sets();
     const uint64_t events_before = before ? before->stats().events.total() : 0;
-    const ExactShutterStats times_before = m_exact_shutter->stats();
+    const ExactShutterStats stats_before = m_exact_shutter->stats();
     m_exact_shutter->render(window, frame);
-    const PixelSquareSets& sets = *m_exact_shutter->sets();
-    // Rebuilt sets count their events from zero.
-    m_square_events.push_back(sets.stats().events.total() - (&sets == before ? events_before : 0));
-    m_square_events_s.push_back(m_exact_shutter->stats().events_s - times_before.events_s);
-    m_exact_readout_s.push_back(m_exact_shutter->stats().readout_s - times_before.readout_s);
+    const ExactShutterStats& stats = m_exact_shutter->stats();
+    // New sets (the first, or built again for a window opening before their time) count their
+    // events from zero.
+    const bool fresh = before == nullptr || stats.rebuilds != stats_before.rebuilds;
+    m_square_events.push_back(m_exact_shutter->sets()->stats().events.total() -
+                              (fresh ? 0 : events_before));
+    m_square_events_s.push_back(stats.events_s - stats_before.events_s);
+    m_exact_readout_s.push_back(stats.readout_s - stats_before.readout_s);
+  }
+
+  /// The per-square sets of exact antialiasing at time t, over the grid's input.
+  [[nodiscard]] std::unique_ptr<PixelSquareSets> make_square_sets(double t) const {
+    PixelSquareSets::Config config;
+    config.audit = m_config.audit;
+    return std::make_unique<PixelSquareSets>(
+        kinetic_grid_input(m_scene, m_config.width, m_config.height), t, config);
   }
 
   void write_stats(nlohmann::json& stats) const override {
