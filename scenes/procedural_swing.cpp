@@ -51,7 +51,7 @@ Scene make_swing(const ProceduralParams& params) {
   // half the triangles the floor, half the arm: a third each to its links and its hand
   const int part = cube_subdivisions_for(params.triangles / 6);
   Mesh arm;
-  const size_t upper_begin = append(arm, ellipsoid(kLinkLength * kUpperArm, part));
+  (void)append(arm, ellipsoid(kLinkLength * kUpperArm, part));  // vertices 0 .. fore_begin
   const size_t fore_begin = append(arm, ellipsoid(kLinkLength * kForearm, part));
   const size_t hand_begin = append(arm, make_sphere(kHand, part));
   const double floor_quads = std::max(2.0, params.triangles / 4);
@@ -61,7 +61,7 @@ Scene make_swing(const ProceduralParams& params) {
   const Vec3 shoulder(0, kUpperArm + kForearm + kHand + params.gap.value_or(0), 0);
   scene.objects.push_back(make_keyframed_object(
       "arm", arm, 0, times,
-      [&arm, shoulder, upper_begin, fore_begin, hand_begin](double t, std::vector<Vec3>& out) {
+      [&arm, shoulder, fore_begin, hand_begin](double t, std::vector<Vec3>& out) {
         const double phase = std::sin(2 * std::numbers::pi * t / kPeriod);
         const Eigen::AngleAxisd upper(kShoulderSwing * phase, Vec3::UnitZ());
         const Eigen::AngleAxisd fore((kShoulderSwing + kElbowSwing) * phase, Vec3::UnitZ());
@@ -75,7 +75,7 @@ Scene make_swing(const ProceduralParams& params) {
             out[v] = hand + fore * p;
           else if (v >= fore_begin)
             out[v] = fore_centre + fore * p;
-          else if (v >= upper_begin)
+          else
             out[v] = upper_centre + upper * p;
         }
       }));
