@@ -73,9 +73,13 @@ nlohmann::json ksl_json(const KslReport& k) {
            section_json([&](auto visit) { k.list.for_each_certificate_counter(visit); })},
           {"list", section_json([&](auto visit) { k.list.for_each_list_counter(visit); })},
           {"quality", quality_json(q)},
-          {"trees", {{"leaf_events", k.trees.events.leaf}, {"tree_events", k.trees.events.tree},
-                     {"flightplan_events", k.trees.events.flightplan},
-                     {"realizer_changes", k.trees.realizer_changes}, {"nodes", k.trees.nodes}}},
+          {"trees",
+           {{"leaf_events", k.trees.events.leaf},
+            {"tree_events", k.trees.events.tree},
+            {"flightplan_events", k.trees.events.flightplan},
+            {"realizer_changes", k.trees.realizer_changes},
+            {"nodes_woken", k.trees.nodes_woken},
+            {"nodes", k.trees.nodes}}},
           {"pad", k.pad}};
 }
 

@@ -24,14 +24,15 @@ double KineticContactFinder::contact_pad(std::span<const FlightplanMesh> meshes,
 
 KineticContactFinder::KineticContactFinder(std::vector<FlightplanMesh> meshes,
                                            std::vector<std::pair<uint32_t, uint32_t>> pairs,
-                                           double t, bool audit)
+                                           double t, bool audit, bool lazy_trees)
     : m_pairs(std::move(pairs)), m_audit(audit) {
   m_pad = contact_pad(meshes, t);
   for (FlightplanMesh& mesh : meshes) {
     mesh.appear = -std::numeric_limits<double>::infinity();
     mesh.disappear = std::numeric_limits<double>::infinity();
-    m_trees.push_back(std::make_unique<KineticBvh>(std::vector<FlightplanMesh>{mesh}, t,
-                                                   KineticBvh::Config{TreeShape::aabb, audit}));
+    m_trees.push_back(
+        std::make_unique<KineticBvh>(std::vector<FlightplanMesh>{mesh}, t,
+                                     KineticBvh::Config{TreeShape::aabb, audit, lazy_trees}));
   }
   for (const auto& [i, j] : m_pairs)
     m_lists.push_back(std::make_unique<KineticSeparationList>(*m_trees[i], *m_trees[j], m_pad));
@@ -101,6 +102,7 @@ TreeStats KineticContactFinder::tree_stats() const {
     s.events_external += t.events_external;
     s.events_internal += t.events_internal;
     s.realizer_changes += t.realizer_changes;
+    s.nodes_woken += t.nodes_woken;
     s.certificates_computed += t.certificates_computed;
     s.certificates_live += t.certificates_live;
     s.certificates_live_max += t.certificates_live_max;

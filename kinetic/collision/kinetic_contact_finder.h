@@ -20,9 +20,12 @@ class KineticContactFinder {
  public:
   /// meshes[i]: object i's flightplans (its presence is ignored: contacts are found at every
   /// time, as brute force does); pairs (i, j), i == j for self-contacts. Built at time t; with
-  /// audit, the trees and the lists audit themselves after every advance.
+  /// audit, the trees and the lists audit themselves after every advance. lazy_trees: the trees
+  /// compute at a key only the nodes the lists read (KineticBvh::Config::lazy); false: every node
+  /// (the same contacts; tests compare the two).
   KineticContactFinder(std::vector<FlightplanMesh> meshes,
-                       std::vector<std::pair<uint32_t, uint32_t>> pairs, double t, bool audit);
+                       std::vector<std::pair<uint32_t, uint32_t>> pairs, double t, bool audit,
+                       bool lazy_trees = true);
 
   /// Advances to `begin`, then begins the segment [begin, end]: segments[i] holds object i's
   /// positions at both ends (kept alive by the caller until the next segment begins).

@@ -15,7 +15,7 @@ constexpr auto later = [](const Contact& x, const Contact& y) { return y < x; };
 }  // namespace
 
 KineticSeparationList::KineticSeparationList(KineticBvh& a, KineticBvh& b, double pad)
-    : m_a(a), m_b(b), m_self(&a == &b), m_pad(pad), m_sim(a.now()) {
+    : m_a(a), m_b(b), m_self(&a == &b), m_lazy(a.lazy() && b.lazy()), m_pad(pad), m_sim(a.now()) {
   KINRAY_CHECK_MSG(a.now() == b.now(), "kinetic separation list: trees at different times");
   m_head[0].assign(a.topology().nodes.size(), kNone);
   m_head[1].assign(b.topology().nodes.size(), kNone);
@@ -89,6 +89,24 @@ int KineticSeparationList::find_witness(const Gaps& gaps, double& failure) const
     }
   }
   return best;
+}
+
+int KineticSeparationList::apart_direction(uint32_t a, uint32_t b) const {
+  // The trees' boxes at t are their realizers' a + b (t - o), within rounding (far below the pad)
+  // of the key positions' hull: segment boxes apart by twice the pad keep every gap above the pad.
+  const Aabb& x = m_a.segment_box(a);
+  const Aabb& y = m_b.segment_box(b);
+  const double margin = 2 * m_pad;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (y.lo[axis] - x.hi[axis] > margin) return 2 * axis;  // a below b
+    if (x.lo[axis] - y.hi[axis] > margin) return 2 * axis + 1;
+  }
+  return -1;
+}
+
+void KineticSeparationList::wake(const Record& r) {
+  m_a.wake(r.a);
+  m_b.wake(r.b);
 }
 
 // ---- records ---------------------------------------------------------------------------------
@@ -198,11 +216,10 @@ void KineticSeparationList::set_state(uint32_t id, State state) {
   Record& r = m_records[id];
   auto count = [&](State s, int sign) {
     const uint64_t delta = uint64_t(int64_t(sign));
-    if (s == State::separated || s == State::leaf) m_stats.list_pairs += delta;
+    if (s == State::separated || s == State::leaf || s == State::apart) m_stats.list_pairs += delta;
     if (s == State::leaf) m_stats.leaf_pairs += delta;
     if (s == State::expanded && !r.permanent) m_stats.watched_pairs += delta;
-    const uint64_t live = s == State::none || r.permanent ? 0 : s == State::separated ? 1 : 6;
-    m_stats.certificates_live += live * delta;
+    m_stats.certificates_live += live_certificates(s, r.permanent) * delta;
   };
   count(r.state, -1);
   r.state = state;
@@ -212,12 +229,34 @@ void KineticSeparationList::set_state(uint32_t id, State state) {
       std::max(m_stats.certificates_live_max, m_stats.certificates_live);
 }
 
+uint64_t KineticSeparationList::live_certificates(State state, bool permanent) {
+  if (permanent) return 0;
+  switch (state) {
+    case State::separated:
+      return 1;
+    case State::leaf:
+    case State::expanded:
+      return 6;
+    default:
+      return 0;
+  }
+}
+
 // ---- state changes ---------------------------------------------------------------------------
 
 void KineticSeparationList::classify_new(uint32_t id) {
   if (m_records[id].permanent) {
     expand(id, nullptr);
     return;
+  }
+  if (m_lazy) {
+    const int d = apart_direction(m_records[id].a, m_records[id].b);
+    if (d >= 0) {
+      m_records[id].witness = uint8_t(d);
+      set_state(id, State::apart);
+      return;
+    }
+    wake(m_records[id]);
   }
   Gaps gaps;
   gap_certificates(m_records[id], gaps);
@@ -284,7 +323,12 @@ KineticSeparationList::Outcome KineticSeparationList::watch(uint32_t id, const G
 
 KineticSeparationList::Outcome KineticSeparationList::certify(uint32_t id) {
   Record& r = m_records[id];
-  if (r.permanent) return Outcome::unchanged;
+  if (r.permanent || r.state == State::apart || r.state == State::unwatched)
+    return Outcome::unchanged;
+  if (m_lazy) {
+    wake(r);
+    r.dirty = false;  // certified now from the realizers the waking set
+  }
   Gaps gaps;
   if (r.state != State::separated) {
     gap_certificates(r, gaps);
@@ -344,9 +388,49 @@ void KineticSeparationList::begin_segment(const MeshSweep& a, const MeshSweep& b
     if (m_a.topology().nodes.empty() || m_b.topology().nodes.empty()) return;
     m_root = create(0, 0, kNone);
     classify_new(m_root);
+  } else if (m_lazy) {
+    recertify_at_key(m_root);
   } else {
     for (uint32_t id = 0; id < m_records.size(); ++id)
       if (m_records[id].alive) count(certify(id), Reason::flightplan);  // tests listed leaves
+  }
+  if (m_lazy) recertify_dirty();  // pairs whose nodes a wake changed
+}
+
+void KineticSeparationList::recertify_at_key(uint32_t id) {
+  if (!m_records[id].permanent) {
+    const int d = apart_direction(m_records[id].a, m_records[id].b);
+    if (d >= 0) {
+      destroy_children(id);
+      m_records[id].witness = uint8_t(d);
+      set_state(id, State::apart);
+      schedule(id, kNever);
+      return;
+    }
+  }
+  switch (m_records[id].state) {
+    case State::expanded:
+    case State::unwatched: {
+      const std::array<uint32_t, 4> children = m_records[id].children;
+      const uint8_t child_count = m_records[id].child_count;
+      for (uint8_t k = 0; k < child_count; ++k) recertify_at_key(children[k]);
+      if (m_records[id].permanent) return;
+      const Record& r = m_records[id];
+      if (m_a.awake(r.a) && m_b.awake(r.b)) {
+        set_state(id, State::expanded);
+        count(certify(id), Reason::flightplan);  // watched: may separate
+      } else {
+        set_state(id, State::unwatched);
+        schedule(id, kNever);
+      }
+      return;
+    }
+    case State::apart:  // no longer apart: certified from its (woken) realizers
+      set_state(id, State::none);
+      classify_new(id);
+      return;
+    default:
+      count(certify(id), Reason::flightplan);  // tests listed leaves
   }
 }
 
@@ -362,7 +446,9 @@ void KineticSeparationList::advance_to(double t) {
 }
 
 bool KineticSeparationList::relevant(const Record& r, int which, int side) const {
-  if (r.permanent || r.state == State::none) return false;
+  if (r.permanent || r.state == State::none || r.state == State::apart ||
+      r.state == State::unwatched)
+    return false;
   if (r.state != State::separated) return true;
   const int axis = r.witness >> 1, lower = r.witness & 1;
   if (side_axis(side) != axis) return false;

@@ -17,6 +17,13 @@
 // (every record is recertified). A listed leaf pair is tested from the time it is listed to its
 // separation event (or the segment's end), and again from there whenever that event moves later.
 //
+// Lazy trees (KineticBvh::Config::lazy, as KineticContactFinder builds them): at each key a pair
+// whose two segment boxes (every key position of the segment below each node) are apart by more
+// than twice the pad is separated through the segment without a certificate (apart), and its nodes
+// are not read; the list reads, and so wakes, only the subtrees of its other pairs. An expanded
+// pair met at a key with a sleeping node is kept expanded to the next key, unwatched (its children
+// pairs hold the front there), rather than waking its subtrees to watch it.
+//
 // Conservative: boxes are closed and padded by `pad`, far above the rounding between the trees'
 // motion a + b (t - o) and the primitive tests' segment motion; a triangle pair in contact at t*
 // is listed at t*, so the contacts are exactly the brute force's on the same segments.
@@ -82,7 +89,9 @@ class KineticSeparationList {
   /// Tests corrupt a list's records through this to see the audit report it.
   friend struct KineticSeparationListTestAccess;
   static constexpr uint32_t kNone = ~0u;
-  enum class State : uint8_t { none, separated, leaf, expanded };
+  /// apart: separated through the segment by the segment boxes (no certificate, no event);
+  /// unwatched: expanded, not watched until the next key (lazy trees).
+  enum class State : uint8_t { none, separated, leaf, expanded, apart, unwatched };
   struct Record {
     uint32_t a = 0, b = 0;
     uint32_t parent = kNone;
@@ -103,6 +112,19 @@ class KineticSeparationList {
   enum class Outcome : uint8_t { unchanged, witness_change, overlap, separation };
 
   [[nodiscard]] const KineticBvh& tree(int which) const { return which == 0 ? m_a : m_b; }
+  /// Live certificates of a record in a state.
+  [[nodiscard]] static uint64_t live_certificates(State state, bool permanent);
+  /// Lazy trees: a direction d (as in gap_certificate) along which the two nodes' segment boxes
+  /// are apart by more than twice the pad, or -1.
+  [[nodiscard]] int apart_direction(uint32_t a, uint32_t b) const;
+  /// Wakes the record's two nodes (lazy trees) before its certificates read their realizers.
+  void wake(const Record& r);
+  /// A record at a key, lazy trees: apart, or recertified (an expanded one after its children,
+  /// watched only when both its nodes are awake by then).
+  void recertify_at_key(uint32_t id);
+  /// Side s of a node of tree `which` at t: its realizer's coordinate when awake, else the extreme
+  /// of its leaves' vertices (the audit, which must not wake what the list left asleep).
+  [[nodiscard]] double side_at(int which, uint32_t node, int s, double t) const;
   [[nodiscard]] static uint32_t node(const Record& r, int which) { return which == 0 ? r.a : r.b; }
   /// gap_d - pad > 0 as a linear certificate: d = 2 axis + lower, the upper box's min minus the
   /// lower box's max (lower 0: a's box is below b's). Its origin is the segment's beginning, so
@@ -156,12 +178,15 @@ class KineticSeparationList {
   };
   [[nodiscard]] Children children_of(uint32_t a, uint32_t b) const;
   [[nodiscard]] bool separated_at(uint32_t a, uint32_t b, double t) const;
+  /// The record of the node pair in state `state`, if there is one (the audit).
+  [[nodiscard]] bool has_record(uint32_t a, uint32_t b, State state) const;
   void traverse(uint32_t a, uint32_t b, double t, std::vector<KslPair>& out) const;
   void audit_record(uint32_t id, double t) const;
 
   KineticBvh& m_a;
   KineticBvh& m_b;
   bool m_self = false;
+  bool m_lazy = false;  ///< both trees lazy
   double m_pad = 0;
   Simulator m_sim;
   std::vector<Record> m_records;

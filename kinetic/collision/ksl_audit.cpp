@@ -2,7 +2,9 @@
 // (docs/design.md, "The audit": "the list equals a fresh traversal's front at a time strictly
 // between events"), and every record's certificates against a recomputation from its current
 // realizers.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -30,21 +32,59 @@ bool near(double x, double y) {
 std::vector<KslPair> KineticSeparationList::front() const {
   std::vector<KslPair> out;
   for (const Record& r : m_records)
-    if (r.alive && (r.state == State::separated || r.state == State::leaf))
+    if (r.alive &&
+        (r.state == State::separated || r.state == State::leaf || r.state == State::apart))
       out.push_back({r.a, r.b, r.state == State::leaf});
   std::sort(out.begin(), out.end());
   return out;
 }
 
+double KineticSeparationList::side_at(int which, uint32_t node, int s, double t) const {
+  const KineticBvh& bvh = tree(which);
+  const TreeMeshes& meshes = bvh.meshes();
+  const int axis = side_axis(s), sign = side_sign(s);
+  if (bvh.awake(node)) return meshes.coordinate(bvh.realizer(node, s), axis, t);
+  double extreme = -sign * std::numeric_limits<double>::infinity();
+  std::vector<uint32_t> stack{node};
+  while (!stack.empty()) {
+    const BvhNode& n = bvh.topology().nodes[stack.back()];
+    stack.pop_back();
+    if (!n.leaf()) {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+      continue;
+    }
+    for (uint32_t v : meshes.triangle(n.triangle)) {
+      const double x = meshes.coordinate(v, axis, t);
+      extreme = sign > 0 ? std::max(extreme, x) : std::min(extreme, x);
+    }
+  }
+  return extreme;
+}
+
 bool KineticSeparationList::separated_at(uint32_t a, uint32_t b, double t) const {
-  for (int d = 0; d < 6; ++d)
-    if (gap_certificate(a, b, d, t).c0 > 0) return true;
+  // gap_certificate(a, b, d, t).c0 > 0, with the same arithmetic, from side_at
+  for (int d = 0; d < 6; ++d) {
+    const int axis = d >> 1, lower = d & 1;
+    const uint32_t below = lower == 0 ? a : b, above = lower == 0 ? b : a;
+    if (side_at(1 - lower, above, side_of(axis, false), t) -
+            side_at(lower, below, side_of(axis, true), t) - m_pad >
+        0)
+      return true;
+  }
+  return false;
+}
+
+bool KineticSeparationList::has_record(uint32_t a, uint32_t b, State state) const {
+  for (uint32_t id = m_head[0][a]; id != kNone; id = m_records[id].next[0])
+    if (m_records[id].b == b && m_records[id].state == state) return true;
   return false;
 }
 
 void KineticSeparationList::traverse(uint32_t a, uint32_t b, double t,
                                      std::vector<KslPair>& out) const {
-  if (!(m_self && a == b)) {
+  // An unwatched pair (lazy trees) stays expanded to its key, separated or not.
+  if (!(m_self && a == b) && !has_record(a, b, State::unwatched)) {
     if (separated_at(a, b, t)) {
       out.push_back({a, b, false});
       return;
@@ -71,10 +111,18 @@ void KineticSeparationList::audit_record(uint32_t id, double t) const {
   for (uint8_t k = 0; k < r.child_count; ++k)
     if (m_records[r.children[k]].parent != id || !m_records[r.children[k]].alive)
       fail("a child record does not name its parent", t, r.a, r.b);
-  if (r.state != State::expanded && r.child_count != 0)
+  if (r.state != State::expanded && r.state != State::unwatched && r.child_count != 0)
     fail("a listed pair has children", t, r.a, r.b);
+  const bool certified = !r.permanent && r.state != State::apart && r.state != State::unwatched;
+  if (certified && !(m_a.awake(r.a) && m_b.awake(r.b)))
+    fail("a certified pair reads a sleeping node", t, r.a, r.b);
   double failure = kInfinityTime;
-  if (r.permanent) {
+  if (r.state == State::apart) {
+    if (apart_direction(r.a, r.b) < 0) fail("an apart pair's segment boxes meet", t, r.a, r.b);
+    if (!separated_at(r.a, r.b, t)) fail("an apart pair is not separated", t, r.a, r.b);
+  } else if (r.state == State::unwatched) {
+    // no certificate: kept expanded to the next key
+  } else if (r.permanent) {
     if (r.state != State::expanded) fail("a node with itself is not expanded", t, r.a, r.b);
   } else if (r.state == State::separated) {
     const LinearCertificate c = gap_certificate(r, r.witness);
@@ -116,7 +164,7 @@ void KineticSeparationList::audit(double t) const {
     const Record& r = m_records[id];
     if (!r.alive) continue;
     ++alive;
-    live += r.permanent ? 0 : r.state == State::separated ? 1 : 6;
+    live += live_certificates(r.state, r.permanent);
     audit_record(id, t);
   }
   if (memberships != 2 * alive) fail("a record is missing from its nodes' lists", t, 0, 0);

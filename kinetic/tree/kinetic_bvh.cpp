@@ -72,10 +72,12 @@ KineticBvh::KineticBvh(std::vector<FlightplanMesh> meshes, double t, const Confi
     m_mesh_node_begin[m + 1] = uint32_t(m_mesh_nodes.size());
   }
 
+  if (config.lazy) m_segment_box.resize(nodes);
   for (uint32_t i = uint32_t(nodes); i-- > 0;) {
     const BvhNode& n = m_topology.nodes[i];
     m_node[i].active = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
                                 : uint8_t(m_node[n.left].active | m_node[n.right].active);
+    if (config.lazy) set_segment_box(i);
     for (int s = 0; s < 6; ++s)
       if ((m_node[i].sides >> s) & 1) update_side(i, s);
   }
@@ -184,8 +186,10 @@ void KineticBvh::handle(const EventKey& key, uint64_t payload) {
   m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
   // Climb while the parents track this side and their realizers change; a parent whose realizer
   // stays has its certificate recomputed all the same (its other competitor changed).
+  // A sleeping parent (lazy trees) is computed when it is woken.
   for (uint32_t p = m_topology.nodes[node].parent;
-       p != kNoNode && ((m_node[p].sides >> s) & 1) != 0; p = m_topology.nodes[p].parent) {
+       p != kNoNode && ((m_node[p].sides >> s) & 1) != 0 && m_node[p].asleep == 0;
+       p = m_topology.nodes[p].parent) {
     if (!update_side(p, s)) break;
     ++m_stats.realizer_changes;
   }
@@ -214,7 +218,7 @@ void KineticBvh::handle_mesh(uint32_t m) {
 uint64_t KineticBvh::live_certificates() const {
   uint64_t live = 0;
   for (uint32_t i = 0; i < m_topology.nodes.size(); ++i) {
-    if (!m_node[i].active) continue;
+    if (!m_node[i].active || m_node[i].asleep != 0) continue;
     const BvhNode& n = m_topology.nodes[i];
     for (int s = 0; s < 6; ++s) {
       if (((m_node[i].sides >> s) & 1) == 0) continue;
@@ -252,6 +256,7 @@ size_t KineticBvh::memory_bytes() const {
          m_node_mesh.capacity() * sizeof(uint32_t) +
          m_leaf_vertices.capacity() * sizeof(m_leaf_vertices[0]) +
          m_mesh_nodes.capacity() * sizeof(uint32_t) + m_sim.queue().memory_bytes() +
+         m_segment_box.capacity() * sizeof(Aabb) +
          size_t(m_meshes.vertex_count()) * 2 * sizeof(Eigen::Vector3d) +
          size_t(m_meshes.triangle_count()) * 4 * sizeof(uint32_t);
 }

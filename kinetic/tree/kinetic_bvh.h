@@ -45,6 +45,11 @@ class KineticBvh {
   struct Config {
     TreeShape shape = TreeShape::aabb;
     bool audit = false;  ///< audit() after every advance_to (tests)
+    /// Lazy key pass (the separation list's trees): at a key of a moving mesh every node above its
+    /// leaves falls asleep (no certificate, no event) and keeps its segment box; a reader wakes the
+    /// nodes it reads (wake), each with its whole subtree, as the eager key pass would have
+    /// computed them. Nodes nobody reads in a segment cost one pass over their boxes.
+    bool lazy = false;
   };
 
   /// Builds the tree at time t over the meshes' triangles (present or not).
@@ -76,6 +81,17 @@ class KineticBvh {
   [[nodiscard]] uint32_t realizer(uint32_t node, int s) const {
     return m_node[node].realizer[size_t(s)];
   }
+  /// Lazy trees: the node's realizers and certificates are current (an awake node's subtree is
+  /// awake). Eager trees: always.
+  [[nodiscard]] bool awake(uint32_t node) const { return m_node[node].asleep == 0; }
+  /// Lazy trees: computes the node and every sleeping node below it now, children first, as the
+  /// key pass computes them (the decision from the two keys' positions where it holds, update_side
+  /// elsewhere); the observers hear of every realizer that changed.
+  void wake(uint32_t node);
+  [[nodiscard]] bool lazy() const { return m_config.lazy; }
+  /// Lazy trees: the box of every key position of the node's leaves on their meshes' current
+  /// segments, which holds the node's box at every time of the segment (the motion is linear).
+  [[nodiscard]] const Aabb& segment_box(uint32_t node) const { return m_segment_box[node]; }
   /// Some triangle below the node is present now.
   [[nodiscard]] bool active(uint32_t node) const { return m_node[node].active != 0; }
   /// How many times some node's presence has changed since the build: a copy of the realizers
@@ -169,6 +185,12 @@ class KineticBvh {
   uint8_t settle_ties(uint32_t node, uint8_t open, std::array<uint8_t, 6>& live) const;
   /// Those sides keep their realizer with `live` certificates each and no event.
   void settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live);
+  /// The key pass's work on one node (settle_at_key where the motion is linear, update_side for
+  /// the rest); returns how many sides the keys settled.
+  uint32_t refresh_node(uint32_t node, bool moving);
+  /// Lazy trees at a key: the node's events cancelled, its certificates dropped.
+  void sleep(uint32_t node);
+  void set_segment_box(uint32_t node);
   void handle(const EventKey& key, uint64_t payload);
   void handle_mesh(uint32_t m);
   void schedule_mesh(uint32_t m);
@@ -203,9 +225,12 @@ class KineticBvh {
     /// and its competitors are the ones it compared. At the next key the segment's start key is
     /// the end key it compared, so the pass compares at the end key only.
     uint8_t verified = 0;
+    uint8_t asleep = 0;  ///< lazy trees: asleep since a key (Config::lazy)
   };
   static_assert(sizeof(NodeState) == 64);
   std::vector<NodeState> m_node;
+  std::vector<Aabb> m_segment_box;  ///< per node, lazy trees only
+  std::vector<uint32_t> m_wake_stack;
   /// per node: the mesh every leaf below it belongs to (kMixedMeshes when there are several): a
   /// key of that mesh finds all the node's realizers and competitors among its own vertices
   std::vector<uint32_t> m_node_mesh;

@@ -57,6 +57,25 @@ void KineticBvh::audit_node(uint32_t i, double t,
     if (!holds) fail(t, node_side(i, side), what);
   };
   require(present == (m_node[i].active != 0), "wrong presence of a node");
+  const bool asleep = m_node[i].asleep != 0;
+  require(!asleep || m_config.lazy, "a node of an eager tree is asleep");
+  require(asleep || n.leaf() || (m_node[n.left].asleep == 0 && m_node[n.right].asleep == 0),
+          "an awake node has a sleeping child");
+  if (m_config.lazy) {
+    // The segment box holds every key position of the node's leaves on the current segments.
+    Aabb keys;
+    if (present && n.leaf()) {
+      for (uint32_t v : m_meshes.triangle(n.triangle)) {
+        keys.extend(m_meshes.key_start(v));
+        keys.extend(m_meshes.key_end(v));
+      }
+    } else if (present) {
+      keys = m_segment_box[n.left];
+      keys.extend(m_segment_box[n.right]);
+    }
+    require(keys.lo == m_segment_box[i].lo && keys.hi == m_segment_box[i].hi,
+            "a segment box differs from its leaves' key positions");
+  }
   // Two coordinates a + b (t - o) of vertices whose exact motions cross within the rounding of
   // that evaluation (about 2 eps scale each: |a| and |b (t - o)| are at most about 2 scale) can
   // come out in the other order: the tree orders vertices by its certificates, c0 + c1 (t - o)
@@ -85,6 +104,11 @@ void KineticBvh::audit_node(uint32_t i, double t,
     const uint32_t r = m_node[i].realizer[size_t(s)];
     const EventHandle h = m_node[i].event[size_t(s)];
     const bool verified = ((m_node[i].verified >> s) & 1) != 0;
+    if (asleep) {
+      require(h == kNoEvent && !verified && m_node[i].live[size_t(s)] == 0,
+              "a sleeping side has a certificate");
+      continue;
+    }
     if (((m_node[i].sides >> s) & 1) == 0 || !present) {
       require(r == kNoVertex && h == kNoEvent && !verified, "an untracked side has a realizer");
       continue;

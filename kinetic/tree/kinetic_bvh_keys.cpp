@@ -1,4 +1,5 @@
-// KineticBvh at a flightplan key: the pass over every node above a mesh's leaves (children first).
+// KineticBvh at a flightplan key: the pass over every node above a mesh's leaves (children first),
+// at once (eager trees) or node by node as the nodes are read (lazy trees: wake).
 // The motion is linear on the new segment, so a certificate "r is beyond q" that holds at both of
 // its keys holds in between: one comparison of key positions per certificate (with a margin far
 // above the rounding of the segment's polynomial, so the decision agrees with the certificate's
@@ -34,15 +35,76 @@ void KineticBvh::refresh_mesh(uint32_t m) {
         n.leaf() ? m_meshes.present(m) : uint8_t(m_node[n.left].active | m_node[n.right].active);
     if (active != m_node[i].active) ++m_presence_changes;
     m_node[i].active = active;
-    const uint8_t settled = moving ? settle_at_key(i) : 0;
-    settled_total += kSidesIn[settled & 63u];
-    const uint8_t rest = uint8_t(m_node[i].sides & ~settled);
-    if (rest == 0) continue;
-    for (int s = 0; s < 6; ++s)
-      if (((rest >> s) & 1) != 0 && update_side(i, s)) ++m_stats.realizer_changes;
+    if (m_config.lazy) {
+      set_segment_box(i);
+      sleep(i);
+      continue;
+    }
+    settled_total += refresh_node(i, moving);
   }
   m_stats.certificates_computed += settled_total;
   m_stats.certificates_by_keys += settled_total;
+}
+
+uint32_t KineticBvh::refresh_node(uint32_t node, bool moving) {
+  const uint8_t settled = moving ? settle_at_key(node) : 0;
+  const uint8_t rest = uint8_t(m_node[node].sides & ~settled);
+  if (rest != 0)
+    for (int s = 0; s < 6; ++s)
+      if (((rest >> s) & 1) != 0 && update_side(node, s)) ++m_stats.realizer_changes;
+  return kSidesIn[settled & 63u];
+}
+
+void KineticBvh::sleep(uint32_t node) {
+  NodeState& state = m_node[node];
+  for (int s = 0; s < 6; ++s) {
+    m_sim.queue().cancel(state.event[size_t(s)]);
+    m_live_total -= state.live[size_t(s)];
+    state.live[size_t(s)] = 0;
+  }
+  state.verified = 0;  // the keys it compared are no longer the segment's
+  state.asleep = 1;
+}
+
+void KineticBvh::wake(uint32_t node) {
+  if (m_node[node].asleep == 0) return;
+  // The sleeping nodes of the subtree in preorder (an awake node's subtree is awake), then
+  // computed in reverse: children before parents.
+  m_wake_stack.assign(1, node);
+  for (size_t k = 0; k < m_wake_stack.size(); ++k) {
+    const BvhNode& n = m_topology.nodes[m_wake_stack[k]];
+    if (n.leaf()) continue;
+    if (m_node[n.left].asleep != 0) m_wake_stack.push_back(n.left);
+    if (m_node[n.right].asleep != 0) m_wake_stack.push_back(n.right);
+  }
+  uint64_t settled_total = 0;
+  for (size_t k = m_wake_stack.size(); k-- > 0;) {
+    const uint32_t i = m_wake_stack[k];
+    m_node[i].asleep = 0;
+    const uint32_t m = m_node_mesh[i];
+    // The key decision is sound at any time of the segment: beyond at both keys, beyond between.
+    settled_total += refresh_node(i, m == kMixedMeshes || !m_meshes.still(m));
+  }
+  m_stats.nodes_woken += m_wake_stack.size();
+  m_stats.certificates_computed += settled_total;
+  m_stats.certificates_by_keys += settled_total;
+  m_stats.certificates_live_max = std::max(m_stats.certificates_live_max, m_live_total);
+}
+
+void KineticBvh::set_segment_box(uint32_t node) {
+  const BvhNode& n = m_topology.nodes[node];
+  Aabb& box = m_segment_box[node];
+  box = Aabb{};
+  if (!m_node[node].active) return;
+  if (n.leaf()) {
+    for (uint32_t v : m_leaf_vertices[node]) {
+      box.extend(m_meshes.key_start(v));
+      box.extend(m_meshes.key_end(v));
+    }
+    return;
+  }
+  box = m_segment_box[n.left];
+  box.extend(m_segment_box[n.right]);
 }
 
 void KineticBvh::settle_sides(uint32_t node, uint8_t sides, const std::array<uint8_t, 6>& live) {

@@ -24,10 +24,12 @@ struct TreeEventCounts {
 
 // X(member, "stats key") of TreeStats, by the section of --stats they are written in
 // (kinetic/core/counters.h): the top level, "certificates", and "tree" (the tree's shape).
-#define KINRAY_TREE_COUNTERS(X)                                                                \
-  X(events_external, "events_external")   /* events that changed some node's realizing vertex */ \
-  X(events_internal, "events_internal")   /* the others (key updates, rounding-level failures) */ \
-  X(realizer_changes, "realizer_changes") /* node sides whose realizer changed (propagation too) */
+#define KINRAY_TREE_COUNTERS(X)                                                                 \
+  X(events_external, "events_external") /* events that changed some node's realizing vertex */  \
+  X(events_internal, "events_internal") /* the others (key updates, rounding-level failures) */ \
+  X(realizer_changes,                                                                           \
+    "realizer_changes")         /* node sides whose realizer changed (propagation too) */       \
+  X(nodes_woken, "nodes_woken") /* lazy trees: nodes computed when read after a key */
 #define KINRAY_TREE_CERTIFICATE_COUNTERS(X)                                                    \
   X(certificates_live, "live")            /* now (leaf sides count two, inner sides one) */     \
   X(certificates_live_max, "live_max")    /* the largest certificates_live seen at a frame */  \

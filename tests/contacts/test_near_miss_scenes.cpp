@@ -59,6 +59,23 @@ TEST(NearMissScenes, SwingMatchesBruteForceAndAPositiveGapNeverTouches) {
   EXPECT_LT(touching, 1000u) << "briefly";
 }
 
+// Where bodies only pass close, the list reads the trees near the passage alone: its lazy trees
+// compute, over the shot, a small share of what an eager key pass computes (every node at every
+// key), and find the same contacts (the test above).
+TEST(NearMissScenes, TheListWakesTheTreesOnlyNearThePassage) {
+  for (const char* name : {"glide", "swing"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = make_builtin_scene(name, {{"triangles", 4000}, {"gap", -0.02}});
+    CollideParams params;
+    const SceneContacts found = find_scene_contacts(scene, params);
+    ASSERT_TRUE(found.ksl.has_value());
+    const double keyed = double(found.ksl->trees.nodes) * double(found.segments);
+    EXPECT_GT(found.ksl->trees.nodes_woken, 0u);
+    EXPECT_LT(double(found.ksl->trees.nodes_woken), 0.15 * keyed)
+        << found.ksl->trees.nodes_woken << " nodes woken of " << keyed;
+  }
+}
+
 TEST(NearMissScenes, OnlyTheyTakeAGap) {
   EXPECT_EQ(*builtin_scene_params("glide", {{"gap", -0.5}}).gap, -0.5);
   EXPECT_EQ(*builtin_scene_params("cloth-slide", {{"gap", 0}}).gap, 0.0);

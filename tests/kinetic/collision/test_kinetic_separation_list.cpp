@@ -111,9 +111,9 @@ struct KslRun {
   KslStats stats;
 };
 
-KslRun ksl(const RandomScene& scene, bool self, int checks, bool audit) {
+KslRun ksl(const RandomScene& scene, bool self, int checks, bool audit, bool lazy = true) {
   const uint32_t n = uint32_t(scene.positions.size());
-  KineticContactFinder finder(scene.meshes(), all_pairs(n, self), scene.times[0], audit);
+  KineticContactFinder finder(scene.meshes(), all_pairs(n, self), scene.times[0], audit, lazy);
   KslRun run;
   for (size_t k = 0; k + 1 < scene.times.size(); ++k) {
     std::vector<MeshSweep> segments;
@@ -128,18 +128,21 @@ KslRun ksl(const RandomScene& scene, bool self, int checks, bool audit) {
   return run;
 }
 
+// With lazy trees (the default: each key wakes only what the list reads) and eager ones.
 TEST(KineticSeparationList, EqualsBruteForceOnRandomMeshesWithAudit) {
   size_t total = 0;
   for (unsigned seed = 1; seed <= 6; ++seed)
-    for (bool self : {false, true}) {
-      SCOPED_TRACE(::testing::Message() << "seed " << seed << (self ? " self" : ""));
-      const RandomScene scene(seed, 2, 3 + int(seed % 4), 4);
-      const std::vector<Contact> expected = brute(scene, self);
-      const KslRun run = ksl(scene, self, 3, true);
-      EXPECT_EQ(run.contacts, expected);
-      total += expected.size();
-    }
-  EXPECT_GT(total, 20u) << "the random scenes touch";
+    for (bool self : {false, true})
+      for (bool lazy : {true, false}) {
+        SCOPED_TRACE(::testing::Message()
+                     << "seed " << seed << (self ? " self" : "") << (lazy ? " lazy" : " eager"));
+        const RandomScene scene(seed, 2, 3 + int(seed % 4), 4);
+        const std::vector<Contact> expected = brute(scene, self);
+        const KslRun run = ksl(scene, self, 3, true, lazy);
+        EXPECT_EQ(run.contacts, expected);
+        total += expected.size();
+      }
+  EXPECT_GT(total, 40u) << "the random scenes touch";
 }
 
 TEST(KineticSeparationList, ContactsComeOutInTimeOrderAndEventsDoNotDependOnQueries) {

@@ -98,6 +98,41 @@ TEST(KineticTree, AuditedWhenRoundedCoordinatesInvertTheCertificateOrder) {
   }
 }
 
+// A lazy tree sleeps at keys and computes a node when woken: whatever it woke, at any time, holds
+// the realizers the eager tree holds then, and the audit (run after every advance) finds every
+// awake node's certificates scheduled and no sleeping node with one.
+TEST(KineticTree, ALazyTreeWokenAnywhereEqualsTheEagerTree) {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    const test::TestScene scene = test::mixed_tree_scene(seed);
+    for (TreeShape shape : {TreeShape::aabb, TreeShape::boxtree}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " shape " << int(shape));
+      KineticBvh eager = make_tree(scene, shape);
+      KineticBvh lazy(scene.input().meshes, 0, KineticBvh::Config{shape, true, true});
+      std::mt19937 rng(seed);
+      const uint32_t nodes = uint32_t(lazy.topology().nodes.size());
+      uint64_t asleep_seen = 0;
+      for (double t = 0.05; t < 3.5; t += 0.05) {
+        eager.advance_to(t);
+        lazy.advance_to(t);
+        for (uint32_t i = 0; i < nodes; ++i) asleep_seen += !lazy.awake(i);
+        const uint32_t node = std::uniform_int_distribution<uint32_t>(0, nodes - 1)(rng);
+        lazy.wake(node);
+        EXPECT_TRUE(lazy.awake(node));
+        lazy.audit();
+        for (uint32_t i = 0; i < nodes; ++i) {
+          if (!lazy.awake(i)) continue;
+          for (int side = 0; side < 6; ++side)
+            ASSERT_EQ(lazy.realizer(i, side), eager.realizer(i, side))
+                << "node " << i << " side " << side << " at t = " << t;
+        }
+      }
+      EXPECT_GT(asleep_seen, 0u) << "keys put nodes to sleep";
+      lazy.wake(0);
+      for (uint32_t i = 0; i < nodes; ++i) EXPECT_TRUE(lazy.awake(i));
+    }
+  }
+}
+
 TEST(KineticTree, EventsIndependentOfFramesQueried) {
   const test::TestScene scene = test::mixed_tree_scene(7);
   for (TreeShape shape : {TreeShape::aabb, TreeShape::boxtree}) {
