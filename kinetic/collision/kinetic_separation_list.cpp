@@ -20,6 +20,13 @@ KineticSeparationList::KineticSeparationList(KineticBvh& a, KineticBvh& b, doubl
   m_head[0].assign(a.topology().nodes.size(), kNone);
   m_head[1].assign(b.topology().nodes.size(), kNone);
   m_stats.triangles = a.meshes().triangle_count() + (m_self ? 0 : b.meshes().triangle_count());
+  for (int w = 0; w < 2; ++w) {  // nodes per subtree: children after parents in the node order
+    const std::vector<BvhNode>& nodes = tree(w).topology().nodes;
+    std::vector<uint32_t>& size = m_subtree_nodes[size_t(w)];
+    size.assign(nodes.size(), 1);
+    for (uint32_t i = uint32_t(nodes.size()); i-- > 0;)
+      if (!nodes[i].leaf()) size[i] += size[nodes[i].left] + size[nodes[i].right];
+  }
   m_a.add_realizer_observer([this](uint32_t node, int side) {
     on_realizer_change(0, node, side);
     if (m_self) on_realizer_change(1, node, side);
@@ -218,6 +225,7 @@ void KineticSeparationList::set_state(uint32_t id, State state) {
     const uint64_t delta = uint64_t(int64_t(sign));
     if (s == State::separated || s == State::leaf || s == State::apart) m_stats.list_pairs += delta;
     if (s == State::leaf) m_stats.leaf_pairs += delta;
+    if (s == State::apart) m_stats.apart_pairs += delta;
     if (s == State::expanded && !r.permanent) m_stats.watched_pairs += delta;
     m_stats.certificates_live += live_certificates(s, r.permanent) * delta;
   };
@@ -387,7 +395,10 @@ void KineticSeparationList::begin_segment(const MeshSweep& a, const MeshSweep& b
   if (m_root == kNone) {  // initialisation: the simultaneous traversal
     if (m_a.topology().nodes.empty() || m_b.topology().nodes.empty()) return;
     m_root = create(0, 0, kNone);
-    classify_new(m_root);
+    if (m_lazy)
+      recertify_at_key(m_root);
+    else
+      classify_new(m_root);
   } else if (m_lazy) {
     recertify_at_key(m_root);
   } else {
@@ -408,7 +419,17 @@ void KineticSeparationList::recertify_at_key(uint32_t id) {
       return;
     }
   }
-  switch (m_records[id].state) {
+  State state = m_records[id].state;
+  if (state != State::expanded && state != State::unwatched && !m_records[id].permanent &&
+      sleeping_nodes(m_records[id]) > kWakeLimit) {
+    // Certifying the pair would wake more than its children pairs cost to visit: open it.
+    set_state(id, State::unwatched);
+    schedule(id, kNever);
+    ++m_stats.opened_at_keys;
+    for (const auto& [x, y] : children_of(m_records[id].a, m_records[id].b)) create(x, y, id);
+    state = State::unwatched;
+  }
+  switch (state) {
     case State::expanded:
     case State::unwatched: {
       const std::array<uint32_t, 4> children = m_records[id].children;
@@ -425,6 +446,7 @@ void KineticSeparationList::recertify_at_key(uint32_t id) {
       }
       return;
     }
+    case State::none:   // new (the root at the first key)
     case State::apart:  // no longer apart: certified from its (woken) realizers
       set_state(id, State::none);
       classify_new(id);
@@ -432,6 +454,11 @@ void KineticSeparationList::recertify_at_key(uint32_t id) {
     default:
       count(certify(id), Reason::flightplan);  // tests listed leaves
   }
+}
+
+uint64_t KineticSeparationList::sleeping_nodes(const Record& r) const {
+  return (m_a.awake(r.a) ? 0 : m_subtree_nodes[0][r.a]) +
+         (m_b.awake(r.b) ? 0 : m_subtree_nodes[1][r.b]);
 }
 
 void KineticSeparationList::advance_to(double t) {

@@ -119,6 +119,11 @@ class KineticSeparationList {
   [[nodiscard]] int apart_direction(uint32_t a, uint32_t b) const;
   /// Wakes the record's two nodes (lazy trees) before its certificates read their realizers.
   void wake(const Record& r);
+  /// Lazy trees: the nodes certifying the pair would wake (its sleeping subtrees).
+  [[nodiscard]] uint64_t sleeping_nodes(const Record& r) const;
+  /// A pair at a key that would wake more nodes than this is opened instead (unwatched, its
+  /// children pairs visited): waking costs each node, opening only the pairs near the passage.
+  static constexpr uint64_t kWakeLimit = 1024;
   /// A record at a key, lazy trees: apart, or recertified (an expanded one after its children,
   /// watched only when both its nodes are awake by then).
   void recertify_at_key(uint32_t id);
@@ -193,6 +198,7 @@ class KineticSeparationList {
   std::vector<uint32_t> m_free;
   uint32_t m_root = kNone;
   std::array<std::vector<uint32_t>, 2> m_head;  ///< per node of tree a / b: its first record
+  std::array<std::vector<uint32_t>, 2> m_subtree_nodes;  ///< per node of tree a / b
   std::vector<uint32_t> m_dirty;
 
   const MeshSweep* m_mesh_a = nullptr;

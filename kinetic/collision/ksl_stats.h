@@ -29,12 +29,14 @@ struct KslEventCounts {
   X(certificates_computed, "computed") /* every linear certificate (re)computation */       \
   X(certificates_live, "live")         /* now: 1 per separated pair, 6 per watched pair */  \
   X(certificates_live_max, "live_max") /* the most live at once */
-#define KINRAY_KSL_LIST_COUNTERS(X)                                                           \
-  X(list_pairs, "pairs")             /* the front now: separated and overlapping leaf pairs */ \
-  X(list_pairs_max, "pairs_max")                                                             \
-  X(leaf_pairs, "leaf_pairs")        /* overlapping triangle pairs listed now */             \
-  X(watched_pairs, "watched_pairs")  /* overlapping inner pairs (watched for separation) */  \
-  X(leaf_tests, "leaf_tests")        /* (triangle pair, segment) primitive test runs */
+#define KINRAY_KSL_LIST_COUNTERS(X)                                                             \
+  X(list_pairs, "pairs") /* the front now: separated and overlapping leaf pairs */              \
+  X(list_pairs_max, "pairs_max")                                                                \
+  X(leaf_pairs, "leaf_pairs")       /* overlapping triangle pairs listed now */                 \
+  X(watched_pairs, "watched_pairs") /* overlapping inner pairs (watched for separation) */      \
+  X(leaf_tests, "leaf_tests")       /* (triangle pair, segment) primitive test runs */          \
+  X(apart_pairs, "apart_pairs") /* lazy trees: separated through the segment, no certificate */ \
+  X(opened_at_keys, "opened_at_keys") /* lazy trees: pairs opened at a key rather than woken */
 #define KINRAY_KSL_COUNTERS(X)         \
   KINRAY_KSL_CERTIFICATE_COUNTERS(X)   \
   KINRAY_KSL_LIST_COUNTERS(X)          \

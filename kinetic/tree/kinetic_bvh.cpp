@@ -77,7 +77,11 @@ KineticBvh::KineticBvh(std::vector<FlightplanMesh> meshes, double t, const Confi
     const BvhNode& n = m_topology.nodes[i];
     m_node[i].active = n.leaf() ? m_meshes.present(m_meshes.mesh_of_triangle(n.triangle))
                                 : uint8_t(m_node[n.left].active | m_node[n.right].active);
-    if (config.lazy) set_segment_box(i);
+    if (config.lazy) {  // asleep from the start: the first reader wakes what it reads
+      set_segment_box(i);
+      m_node[i].asleep = 1;
+      continue;
+    }
     for (int s = 0; s < 6; ++s)
       if ((m_node[i].sides >> s) & 1) update_side(i, s);
   }

@@ -73,6 +73,7 @@ TEST(NearMissScenes, TheListWakesTheTreesOnlyNearThePassage) {
     EXPECT_GT(found.ksl->trees.nodes_woken, 0u);
     EXPECT_LT(double(found.ksl->trees.nodes_woken), 0.15 * keyed)
         << found.ksl->trees.nodes_woken << " nodes woken of " << keyed;
+    EXPECT_GT(found.ksl->list.opened_at_keys, 0u) << "large sleeping pairs opened, not woken";
   }
 }
 
