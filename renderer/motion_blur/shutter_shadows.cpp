@@ -47,8 +47,12 @@ ShutterShadows::Probe ShutterShadows::probe(uint32_t object, uint32_t prim, cons
   Probe p;
   p.t = t;
   p.hit = lit_hit(m_scene, object, prim, d, t);
-  p.mask = light_mask(p.hit, lights_at(t, scratch), object, prim,
-                      [&](const ShadowRay& ray) { return blocked(ray, t, counts); });
+  const std::vector<CameraSpaceLight>& lights = lights_at(t, scratch);
+  // Only lights whose Lambert term is positive: their shadow rays, and the shading's kink where
+  // the term turns, are the mask's changes.
+  p.mask = light_mask(
+      p.hit, lights, object, prim, [&](const ShadowRay& ray) { return blocked(ray, t, counts); },
+      lit_side_mask(p.hit, lights));
   return p;
 }
 
@@ -62,14 +66,17 @@ bool ShutterShadows::reaches(uint32_t object, uint32_t prim, const Vec3& d, doub
                              ShutterShadowCounts& counts,
                              std::vector<CameraSpaceLight>& scratch) const {
   const LitHit hit = lit_hit(m_scene, object, prim, d, t);
-  const auto ray = shadow_ray(hit, lights_at(t, scratch)[l], object, prim);
+  const std::vector<CameraSpaceLight>& lights = lights_at(t, scratch);
+  if ((lit_side_mask(hit, lights) >> l & 1u) == 0) return false;
+  const auto ray = shadow_ray(hit, lights[l], object, prim);
   return ray && !blocked(*ray, t, counts);
 }
 
 uint32_t ShutterShadows::mask_at(uint32_t object, uint32_t prim, const Vec3& d, double t) const {
   ShutterShadowCounts counts;
   std::vector<CameraSpaceLight> scratch;
-  return probe(object, prim, d, t, counts, scratch).mask;
+  return light_mask(lit_hit(m_scene, object, prim, d, t), lights_at(t, scratch), object, prim,
+                    [&](const ShadowRay& ray) { return blocked(ray, t, counts); });
 }
 
 void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, double t0, double t1,

@@ -3,8 +3,10 @@
 // its shading still changes where a shadow boundary sweeps over the hit point, and there the
 // shading jumps. A quadrature across the jump would smear it by the weight of a node, so each
 // front interval is cut where its light mask changes and integrated piecewise:
-//   1. the mask (bit l: light l faces the hit and its shadow ray is free) is probed at the
-//      interval's ends and at its Gauss-Legendre nodes;
+//   1. the mask (bit l: light l faces the hit, its Lambert term on the smooth normal is
+//      positive, and its shadow ray is free) is probed at the interval's ends and at its
+//      Gauss-Legendre nodes; the Lambert term's clamp at zero is a kink in the shading that a
+//      rule across it integrates slowly, and a bit cleared there changes no colour;
 //   2. between two probes whose masks differ, each light that differs is bisected until the
 //      change time is bracketed to kChangeTimePrecision of the window's length;
 //   3. the interval, cut at those times and at its object's keys, is integrated with a

@@ -44,15 +44,30 @@ struct LitHit {
   return shadow_ray(hit.origin, s.ray, s.p0, s.p1, s.p2, light, object, prim);
 }
 
-/// Bit l set when light l faces `hit` and its shadow ray is not blocked: blocked(ray) answers.
+/// Bit l set when light l (among `candidates`) faces `hit` and its shadow ray is not blocked:
+/// blocked(ray) answers.
 template <class Blocked>
 [[nodiscard]] uint32_t light_mask(const LitHit& hit, const std::vector<CameraSpaceLight>& lights,
-                                  uint32_t object, uint32_t prim, Blocked&& blocked) {
+                                  uint32_t object, uint32_t prim, Blocked&& blocked,
+                                  uint32_t candidates = ~0u) {
   uint32_t mask = 0;
   for (size_t l = 0; l < lights.size(); ++l)
-    if (const auto ray = shadow_ray(hit, lights[l], object, prim); ray && !blocked(*ray))
+    if (const auto ray =
+            (candidates >> l & 1u) != 0 ? shadow_ray(hit, lights[l], object, prim) : std::nullopt;
+        ray && !blocked(*ray))
       mask |= 1u << l;
   return mask;
+}
+
+/// Bit l set when light l's Lambert term at the surface point is positive: the interpolated
+/// normal, turned towards the eye, against the direction to the light, with lit_color's own
+/// arithmetic. Where it is not, lit_color adds nothing for the light, so a mask that also
+/// clears those bits shades the same; its change is the shading's kink at the smooth terminator.
+[[nodiscard]] uint32_t lit_side_mask(const SurfacePoint& surface, const Vec3& origin,
+                                     const std::vector<CameraSpaceLight>& lights);
+[[nodiscard]] inline uint32_t lit_side_mask(const LitHit& hit,
+                                            const std::vector<CameraSpaceLight>& lights) {
+  return lit_side_mask(hit.surface, hit.origin, lights);
 }
 
 /// The Lambert colour of a surface point lit by the lights of `mask` (bit l: light l reaches
