@@ -155,15 +155,9 @@ TEST(MotionBlur, OverlappingWindowsGiveTheFramesOfFreshGrids) {
 TEST(MotionBlur, KineticIsAsCloseToTheReferenceAsManySamples) {
   const Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 2000}});
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
-  const ShutterWindow window{0.95, 1.0, 1.05};
-  auto kinetic = make_backend("kinetic", cs, blur_config(48, 48));  // audited
-  auto reference = make_backend("embree", cs, blur_config(48, 48, 1024, false));
-  auto sampled = make_backend("embree", cs, blur_config(48, 48, 16, false));
-  Frame k, r, s;
-  kinetic->render_shutter(window, k);
-  reference->render_shutter(window, r);
-  sampled->render_shutter(window, s);
-  const ColorError kinetic_error = compare_colors(k, r), sampled_error = compare_colors(s, r);
+  const test::BlurErrors errors = test::blur_errors(cs, {0.95, 1.0, 1.05}, 48, 16);
+  const ColorError &kinetic_error = errors.kinetic, &sampled_error = errors.sampled;
+  const Frame& k = errors.kinetic_frame;
   EXPECT_TRUE(ShutterTolerance{}.met(kinetic_error)) << std::sqrt(kinetic_error.mse);
   EXPECT_LT(kinetic_error.mse * 4, sampled_error.mse);
   // The blur is real: the blurred frame is not the sharp one.

@@ -170,15 +170,8 @@ TEST(ShutterShadows, TheLightMaskIsTheSharpFramesAtTheFrameTime) {
 TEST(ShutterShadows, KineticIsAsCloseToTheReferenceAsManySamples) {
   const Scene scene = wavy_sphere_with_two_lights();
   const CameraSpaceScene cs = CameraSpaceScene::build(scene);
-  const ShutterWindow window{0.9, 1.0, 1.1};
-  auto kinetic = make_backend("kinetic", cs, blur_config(48, 48));  // audited
-  auto reference = make_backend("embree", cs, blur_config(48, 48, 1024, false));
-  auto sampled = make_backend("embree", cs, blur_config(48, 48, 16, false));
-  Frame k, r, s;
-  kinetic->render_shutter(window, k);
-  reference->render_shutter(window, r);
-  sampled->render_shutter(window, s);
-  const ColorError kinetic_error = compare_colors(k, r), sampled_error = compare_colors(s, r);
+  const test::BlurErrors errors = test::blur_errors(cs, {0.9, 1.0, 1.1}, 48, 16);
+  const ColorError &kinetic_error = errors.kinetic, &sampled_error = errors.sampled;
   EXPECT_TRUE(ShutterTolerance{}.met(kinetic_error)) << std::sqrt(kinetic_error.mse);
   EXPECT_LT(kinetic_error.mse * 4, sampled_error.mse);
 }
@@ -200,14 +193,8 @@ TEST(ShutterShadows, TheShadingTerminatorOfSmoothNormalsIsIntegratedAsSharply) {
   // the light's terminator.
   const double end = scene.key_times().back();
   const ShutterWindow window{end - end / 8, end, end + end / 8};
-  auto kinetic = make_backend("kinetic", cs, blur_config(96, 96));
-  auto reference = make_backend("embree", cs, blur_config(96, 96, 1024, false));
-  auto sampled = make_backend("embree", cs, blur_config(96, 96, 256, false));
-  Frame k, r, s;
-  kinetic->render_shutter(window, k);
-  reference->render_shutter(window, r);
-  sampled->render_shutter(window, s);
-  const ColorError kinetic_error = compare_colors(k, r), sampled_error = compare_colors(s, r);
+  const test::BlurErrors errors = test::blur_errors(cs, window, 96, 256);
+  const ColorError &kinetic_error = errors.kinetic, &sampled_error = errors.sampled;
   EXPECT_LE(kinetic_error.mse, sampled_error.mse)
       << "kinetic RMSE " << std::sqrt(kinetic_error.mse) << ", Embree-256 "
       << std::sqrt(sampled_error.mse);
