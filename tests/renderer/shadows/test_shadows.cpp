@@ -11,6 +11,7 @@
 #include "renderer/shadows/lighting.h"
 #include "renderer/shadows/shadow_rays.h"
 #include "scenes/camera_space_lights.h"
+#include "scenes/procedural.h"
 #include "tests/address_sanitizer.h"
 #include "tools/cli/light_flag.h"
 #include "verification/image_diff.h"
@@ -152,6 +153,39 @@ TEST(Shadows, LightBehindTheSurfaceDoesNotReachIt) {
     EXPECT_EQ(frame.lit[p], 0u);
     EXPECT_TRUE(frame.color[p].isApprox(base * 0.15f)) << frame.color[p].transpose();
   }
+}
+
+// Motion blur with lights cuts its intervals where a light's Lambert term turns (lit_side_mask):
+// clearing a light whose term is not positive must shade exactly as before, and on a curved
+// surface with smooth normals some lights face the triangle but not its normal.
+TEST(Shadows, ALightWhoseLambertTermIsNotPositiveAddsNothing) {
+  Scene scene = make_builtin_scene("wavy-sphere", {{"triangles", 2000}});
+  Light point, sun;
+  point.position = Vec3(2, 3, 4);
+  sun.kind = Light::Kind::directional;
+  sun.direction = Vec3(1, -1, -1).normalized();
+  scene.lights = {point, sun};
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const Frame frame = render_lit(scene, cs, "embree");
+  const std::vector<CameraSpaceLight> lights = CameraSpaceLights(scene).at(0.0);
+  const PixelRays image{kSize, kSize};
+  int facing_only = 0, seen = 0;
+  for (int j = 0; j < kSize; ++j)
+    for (int i = 0; i < kSize; ++i) {
+      const size_t p = frame.index(i, j);
+      if (frame.object[p] == kNoHit) continue;
+      ++seen;
+      const LitHit hit = lit_hit(cs, frame.object[p], frame.prim[p], image.direction(i, j), 0.0);
+      const uint32_t side = lit_side_mask(hit, lights);
+      for (uint32_t mask = 0; mask < 4; ++mask)
+        ASSERT_EQ(lit_color(hit, lights, mask), lit_color(hit, lights, mask & side))
+            << "pixel " << i << ", " << j << " mask " << mask;
+      for (size_t l = 0; l < lights.size(); ++l)
+        facing_only += shadow_ray(hit, lights[l], frame.object[p], frame.prim[p]).has_value() &&
+                       (side >> l & 1u) == 0;
+    }
+  EXPECT_GT(seen, 500);
+  EXPECT_GT(facing_only, 0) << "a light faces a triangle beyond its smooth normal's terminator";
 }
 
 TEST(Shadows, TwoLightsAreRecordedBitByBit) {
