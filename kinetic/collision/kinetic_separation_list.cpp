@@ -422,7 +422,8 @@ void KineticSeparationList::recertify_at_key(uint32_t id) {
   State state = m_records[id].state;
   if (state != State::expanded && state != State::unwatched && !m_records[id].permanent &&
       sleeping_nodes(m_records[id]) > kWakeLimit) {
-    // Certifying the pair would wake more than its children pairs cost to visit: open it.
+    // Certifying the pair would wake more than kWakeLimit nodes: visit its children pairs instead,
+    // which near a passage wake far fewer (the segment boxes set most of them apart).
     set_state(id, State::unwatched);
     schedule(id, kNever);
     ++m_stats.opened_at_keys;
