@@ -22,6 +22,13 @@ std::span<const TriangleQuadratureNode, 7> degree5_triangle_rule() {
   return rule;
 }
 
+std::span<const TriangleQuadratureNode, 3> degree2_triangle_rule() {
+  static const std::array<TriangleQuadratureNode, 3> rule{{{2.0 / 3, 1.0 / 6, 1.0 / 6, 1.0 / 3},
+                                                           {1.0 / 6, 2.0 / 3, 1.0 / 6, 1.0 / 3},
+                                                           {1.0 / 6, 1.0 / 6, 2.0 / 3, 1.0 / 3}}};
+  return rule;
+}
+
 ExactPixels::ExactPixels(const CameraSpaceScene& scene, const PixelRays& image, double t)
     : ExactPixels(scene, image, t, Config{}) {}
 
@@ -166,11 +173,17 @@ template <class Shade, class Kink>
 Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
                                        const TriangleAtInstant* textured, Shade&& shade,
                                        Kink&& kink) {
-  const std::span<const TriangleQuadratureNode, 7> rule = degree5_triangle_rule();
+  const std::span<const TriangleQuadratureNode> high = degree5_triangle_rule(),
+                                                low = degree2_triangle_rule();
+  // Textured pieces keep degree 5: their half-texel sub-triangles straddle the texels' kinks.
+  const double low_order_area = textured ? 0.0 : m_config.low_order_area * m_pixel_area;
+  // The rule of a triangle of this area (the kink test reads the same nodes).
+  auto rule_for = [&](double area) { return area > low_order_area ? high : low; };
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   auto smooth = [&](const Vec2& a, const Vec2& b, const Vec2& c) {
     const double area = 0.5 * twice_area(a, b, c);
     if (!(area > 0)) return;
+    const std::span<const TriangleQuadratureNode> rule = rule_for(area);
     m_stats.nodes += rule.size();
     for (const TriangleQuadratureNode& node : rule) {
       const Vec2 p = node.l0 * a + node.l1 * b + node.l2 * c;
@@ -189,7 +202,7 @@ Eigen::Vector3d ExactPixels::integrate(std::span<const Vec2> piece,
     bool positive = f[0] > 0 || f[1] > 0 || f[2] > 0;
     bool negative = f[0] < 0 || f[1] < 0 || f[2] < 0;
     if (depth < m_config.kink_depth)
-      for (const TriangleQuadratureNode& node : rule) {
+      for (const TriangleQuadratureNode& node : rule_for(0.5 * std::fabs(twice_area(a, b, c)))) {
         const double g = kink_at(node.l0 * a + node.l1 * b + node.l2 * c);
         positive = positive || g > 0;
         negative = negative || g < 0;

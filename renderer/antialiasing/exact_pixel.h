@@ -39,6 +39,9 @@ struct TriangleQuadratureNode {
 /// smooth (rational barycentrics, a normalised normal): its error is the sixth derivatives times
 /// the pixel's size to the sixth, far below a float colour's rounding.
 [[nodiscard]] std::span<const TriangleQuadratureNode, 7> degree5_triangle_rule();
+/// The 3-point rule of degree 2 (Strang and Fix 1973): nodes at (2/3, 1/6, 1/6) and its
+/// permutations, weights 1/3. Its error is the third derivatives times the size cubed.
+[[nodiscard]] std::span<const TriangleQuadratureNode, 3> degree2_triangle_rule();
 
 /// What a lit read-out shades with: the lights at the read-out's time and the tracer of their
 /// shadow rays, advanced to that time (its occluded() is called concurrently from the rows).
@@ -61,6 +64,12 @@ class ExactPixels {
     /// kink's chord: the error falls about 20-fold per halving (flythrough at 32 x 24, worst
     /// pixel against 9 halvings: 4e-4 at 0, 5e-7 at 2, the cost 79 -> 165 nodes per pixel).
     int kink_depth = 2;
+    /// An untextured fan triangle at most this share of the pixel's area takes the degree-2 rule
+    /// instead of the degree-5 one. Its error is the shading's third derivatives times the
+    /// triangle's size cubed: the shading varies over many pixels, the triangle spans a fraction of
+    /// one, so the error is some 1e-7 of the colour, below the 4096-sample reference's noise
+    /// (1e-5).
+    double low_order_area = 1.0 / 16;
     /// Lit read-out: a fan triangle whose corners or nodes see different light masks (a shadow
     /// boundary crosses it) is halved until its sub-triangles are at most this share of the
     /// pixel's area (a fan triangle is at most half the pixel: at 1/64, three halvings at most).
@@ -167,7 +176,7 @@ class ExactPixels {
 
   const CameraSpaceScene& m_scene;
   const ExactLights* m_lights = nullptr;
-  double m_pixel_area = 0;  ///< the square's, for Config::shadow_area
+  double m_pixel_area = 0;  ///< the square's, for Config::shadow_area and low_order_area
   // The lit piece being integrated, and the buffers of its shading.
   const TriangleAtInstant* m_lit_triangle = nullptr;
   TriangleRef m_lit_ref;
