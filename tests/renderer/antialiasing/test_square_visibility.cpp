@@ -236,25 +236,32 @@ TEST(SquareVisibility, MeshPatchSharedEdgesTileTheSquare) {
 }
 
 // The 7-point rule integrates every monomial x^a y^b of degree <= 5 exactly on a triangle, and
-// not all of degree 6.
-TEST(ExactPixel, QuadratureRuleHasDegreeFive) {
+// not all of degree 6; the 3-point rule (small fan triangles) every one of degree <= 2, and not
+// all of degree 3.
+template <size_t N>
+void expect_rule_degree(std::span<const TriangleQuadratureNode, N> rule, int exact_degree) {
   auto integral = [](int a, int b) {  // over the unit right triangle: a! b! / (a + b + 2)!
     auto factorial = [](int n) { return std::tgamma(n + 1.0); };
     return factorial(a) * factorial(b) / factorial(a + b + 2);
   };
-  double worst6 = 0;
-  for (int degree = 0; degree <= 6; ++degree)
+  double worst_above = 0;
+  for (int degree = 0; degree <= exact_degree + 1; ++degree)
     for (int a = 0; a <= degree; ++a) {
       const int b = degree - a;
       double sum = 0;
-      for (const TriangleQuadratureNode& node : degree5_triangle_rule())
+      for (const TriangleQuadratureNode& node : rule)
         sum += 0.5 * node.weight * std::pow(node.l1, a) * std::pow(node.l2, b);
-      if (degree <= 5)
+      if (degree <= exact_degree)
         EXPECT_NEAR(sum, integral(a, b), 1e-15) << a << " " << b;
       else
-        worst6 = std::max(worst6, std::abs(sum - integral(a, b)));
+        worst_above = std::max(worst_above, std::abs(sum - integral(a, b)));
     }
-  EXPECT_GT(worst6, 1e-6);
+  EXPECT_GT(worst_above, 1e-6);
+}
+
+TEST(ExactPixel, QuadratureRulesHaveDegreesFiveAndTwo) {
+  expect_rule_degree(degree5_triangle_rule(), 5);
+  expect_rule_degree(degree2_triangle_rule(), 2);
 }
 
 }  // namespace
