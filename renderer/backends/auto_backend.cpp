@@ -194,12 +194,15 @@ class AutoBackend final : public Backend {
     const auto next = std::upper_bound(m_plan.begin(), m_plan.end(), t);
     if (next == m_plan.end()) return;  // the shot's last frame: nothing to hand on
     if (*next <= m_check_end) return;  // the interval goes on
-    if (grid_lost_interval(m_check_s, m_check_frames, m_embree_frame_s)) {
+    m_lost_in_a_row =
+        grid_lost_interval(m_check_s, m_check_frames, m_embree_frame_s) ? m_lost_in_a_row + 1 : 0;
+    if (m_lost_in_a_row >= kGridLostIntervals) {
       char text[240];
       std::snprintf(text, sizeof text,
-                    "Embree: a later keyframe interval cost the grid %.1f ms for %zu frames, "
-                    "Embree's frame %.3f ms, more than %.1f times as much",
-                    1e3 * m_check_s, m_check_frames, 1e3 * m_embree_frame_s, kGridCheckMargin);
+                    "Embree: %d keyframe intervals in a row cost the grid more than %.1f times "
+                    "Embree's frames (the last %.1f ms for %zu frames, Embree's frame %.3f ms)",
+                    kGridLostIntervals, kGridCheckMargin, 1e3 * m_check_s, m_check_frames,
+                    1e3 * m_embree_frame_s);
       decide(Phase::embree, text);
       return;
     }
@@ -229,6 +232,7 @@ class AutoBackend final : public Backend {
   /// time and frames in it so far.
   double m_check_end = 0, m_check_s = 0;
   size_t m_check_frames = 0;
+  int m_lost_in_a_row = 0;  ///< keyframe intervals just checked that the grid lost
   std::vector<std::string> m_decisions;
 };
 

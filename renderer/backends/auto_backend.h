@@ -17,8 +17,9 @@
 //      finding out.
 //   4. The choice of the grid is checked at the end of every keyframe interval it renders: a
 //      shot's events per interval vary along it (flythrough's camera meets denser geometry), and
-//      one interval is a small sample. When an interval cost the grid more than
-//      kGridCheckMargin times E per frame it rendered, Embree renders the rest.
+//      one interval is a small sample. When kGridLostIntervals intervals in a row cost the grid
+//      more than kGridCheckMargin times E per frame it rendered, Embree renders the rest (one
+//      slow interval may be another process's moment on a shared machine).
 // Every frame is its backend's exact frame: the grid built at any frame renders what a grid
 // built at the first would (docs/render_farm.md), and Embree refits to any time, so a frame of an
 // auto render equals the same frame of whichever backend rendered it. Flags that only one backend
@@ -42,6 +43,9 @@ inline constexpr double kMinFramesPerInterval = 8;
 /// Embree's measured frame would have cost for the same frames: wide enough that the noise of a
 /// shared machine does not hand a shot back and forth, narrow enough to catch a wrong choice.
 inline constexpr double kGridCheckMargin = 1.5;
+/// How many keyframe intervals in a row must lose by that margin before Embree takes the rest:
+/// a shot that turns against the grid for good loses every interval, a moment of load one.
+inline constexpr int kGridLostIntervals = 2;
 
 /// Whether the grid, having spent `grid_seconds` on `frames` frames of one keyframe interval, lost
 /// to Embree at `embree_frame_seconds` a frame by more than kGridCheckMargin.
