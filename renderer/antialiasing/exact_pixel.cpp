@@ -245,12 +245,10 @@ void ExactPixels::shade_lit(std::span<const Vec2> points, std::span<LitPoint> ou
     // lit_color's own terms: the normal turned to the eye where facing > 0, and its cosine with
     // each light (max(0, cos) kinks at the terminator).
     const SurfacePoint& s = hit.surface;
-    const float facing = s.normal.dot(s.view);
-    point.kinks[0] = facing;
-    const Eigen::Vector3f n = facing > 0 ? Eigen::Vector3f(-s.normal) : s.normal;
+    point.kinks[0] = s.normal.dot(s.view);
+    const Eigen::Vector3f n = visible_normal(s);
     for (size_t l = 0; l < lights.size(); ++l) {
-      const float cosine = n.dot(
-          unfold(lights[l].vector_from(hit.origin), s.tan_half_fov).normalized().cast<float>());
+      const float cosine = lambert_term(n, s, hit.origin, lights[l]);
       point.kinks[1 + l] = cosine;
       if (!(cosine > 0) || !(traced >> l & 1u)) continue;
       if (const auto ray = shadow_ray(hit, lights[l], m_lit_ref.object, m_lit_ref.prim)) {

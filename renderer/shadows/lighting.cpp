@@ -62,20 +62,14 @@ class LitRow {
 
 }  // namespace
 
-namespace {
-
-/// The interpolated normal turned towards the eye (the visible side).
 Eigen::Vector3f visible_normal(const SurfacePoint& surface) {
   return surface.normal.dot(surface.view) > 0 ? Eigen::Vector3f(-surface.normal) : surface.normal;
 }
 
-/// n . (unit direction to the light), the Lambert term before its clamp.
-float lambert(const Eigen::Vector3f& n, const SurfacePoint& surface, const Vec3& origin,
-              const CameraSpaceLight& light) {
+float lambert_term(const Eigen::Vector3f& n, const SurfacePoint& surface, const Vec3& origin,
+                   const CameraSpaceLight& light) {
   return n.dot(unfold(light.vector_from(origin), surface.tan_half_fov).normalized().cast<float>());
 }
-
-}  // namespace
 
 Color lit_color(const SurfacePoint& surface, const Vec3& origin,
                 const std::vector<CameraSpaceLight>& lights, uint32_t mask) {
@@ -83,7 +77,7 @@ Color lit_color(const SurfacePoint& surface, const Vec3& origin,
   Color irradiance = Color::Zero();
   for (size_t l = 0; l < lights.size(); ++l) {
     if (!(mask >> l & 1u)) continue;
-    irradiance += lights[l].color * std::max(0.0f, lambert(n, surface, origin, lights[l]));
+    irradiance += lights[l].color * std::max(0.0f, lambert_term(n, surface, origin, lights[l]));
   }
   return surface.base.cwiseProduct(Color::Constant(kAmbient) + kDiffuse * irradiance);
 }
@@ -93,7 +87,7 @@ uint32_t lit_side_mask(const SurfacePoint& surface, const Vec3& origin,
   const Eigen::Vector3f n = visible_normal(surface);
   uint32_t mask = 0;
   for (size_t l = 0; l < lights.size(); ++l)
-    if (lambert(n, surface, origin, lights[l]) > 0.0f) mask |= 1u << l;
+    if (lambert_term(n, surface, origin, lights[l]) > 0.0f) mask |= 1u << l;
   return mask;
 }
 

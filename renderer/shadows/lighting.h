@@ -59,6 +59,13 @@ template <class Blocked>
   return mask;
 }
 
+/// The interpolated normal turned towards the eye (the visible side), as lit_color shades it.
+[[nodiscard]] Eigen::Vector3f visible_normal(const SurfacePoint& surface);
+/// n . (unit direction from `origin` to the light): the light's Lambert term at the surface point
+/// before lit_color clamps it at zero, n the visible normal.
+[[nodiscard]] float lambert_term(const Eigen::Vector3f& n, const SurfacePoint& surface,
+                                 const Vec3& origin, const CameraSpaceLight& light);
+
 /// Bit l set when light l's Lambert term at the surface point is positive: the interpolated
 /// normal, turned towards the eye, against the direction to the light, with lit_color's own
 /// arithmetic. Where it is not, lit_color adds nothing for the light, so a mask that also
