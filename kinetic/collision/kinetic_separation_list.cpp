@@ -20,7 +20,7 @@ KineticSeparationList::KineticSeparationList(KineticBvh& a, KineticBvh& b, doubl
   m_head[0].assign(a.topology().nodes.size(), kNone);
   m_head[1].assign(b.topology().nodes.size(), kNone);
   m_stats.triangles = a.meshes().triangle_count() + (m_self ? 0 : b.meshes().triangle_count());
-  for (int w = 0; w < 2; ++w) {  // nodes per subtree: children after parents in the node order
+  for (int w = 0; m_lazy && w < 2; ++w) {  // nodes per subtree (children after parents)
     const std::vector<BvhNode>& nodes = tree(w).topology().nodes;
     std::vector<uint32_t>& size = m_subtree_nodes[size_t(w)];
     size.assign(nodes.size(), 1);

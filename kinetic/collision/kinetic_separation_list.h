@@ -198,7 +198,7 @@ class KineticSeparationList {
   std::vector<uint32_t> m_free;
   uint32_t m_root = kNone;
   std::array<std::vector<uint32_t>, 2> m_head;  ///< per node of tree a / b: its first record
-  std::array<std::vector<uint32_t>, 2> m_subtree_nodes;  ///< per node of tree a / b
+  std::array<std::vector<uint32_t>, 2> m_subtree_nodes;  ///< per node of tree a / b (lazy trees)
   std::vector<uint32_t> m_dirty;
 
   const MeshSweep* m_mesh_a = nullptr;
