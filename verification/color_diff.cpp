@@ -27,7 +27,7 @@ bool ColorTolerance::met(const ColorError& e) const {
 ColorDiffFrames diff_frames_by_color(RenderJob& job, Backend& tested,
                                      const std::function<void(size_t, Frame&)>& reference,
                                      const ColorTolerance& tolerance, const std::string& report,
-                                     bool quiet) {
+                                     bool quiet, const TiePixels& ties) {
   const std::filesystem::path folder(report);
   const size_t count = job.frame_times().size();
   Progress progress(count, !quiet && Progress::stderr_is_terminal());
@@ -37,7 +37,10 @@ ColorDiffFrames diff_frames_by_color(RenderJob& job, Backend& tested,
   for (size_t index = 0; index < count; ++index) {
     job.render_frame(tested, index, a);
     reference(index, b);
-    const ColorError error = compare_colors(a, b);
+    const std::vector<uint8_t> aside = ties ? ties(index, a, b) : std::vector<uint8_t>{};
+    const size_t tie_count = size_t(std::count(aside.begin(), aside.end(), uint8_t(1)));
+    out.ties += tie_count;
+    const ColorError error = compare_colors(a, b, ties ? &aside : nullptr);
     const double rmse = std::sqrt(error.mse);
     squared += error.mse;
     out.worst_rmse = std::max(out.worst_rmse, rmse);
@@ -47,22 +50,27 @@ ColorDiffFrames diff_frames_by_color(RenderJob& job, Backend& tested,
     if (!report.empty()) {
       write_color_png((folder / numbered("tested", index)).string(), a);
       write_color_png((folder / numbered("reference", index)).string(), b);
-      write_error_png(a, b, (folder / numbered("error", index)).string());
+      write_error_png(a, b, (folder / numbered("error", index)).string(), 10,
+                      ties ? &aside : nullptr);
     }
     out.per_frame.push_back({{"frame", index},
                              {"time", job.frame_times()[index]},
                              {"rmse", rmse},
                              {"max_error", error.max_error},
+                             {"ties", tie_count},
                              {"within_tolerance", met}});
     if (!quiet) {
-      std::printf("frame %5zu  t=%-10g rmse %.3g  max %.3g%s\n", index, job.frame_times()[index],
-                  rmse, error.max_error, met ? "" : "  OUTSIDE TOLERANCE");
+      const std::string tie_note =
+          tie_count > 0 ? "  (" + std::to_string(tie_count) + " ties aside)" : "";
+      std::printf("frame %5zu  t=%-10g rmse %.3g  max %.3g%s%s\n", index, job.frame_times()[index],
+                  rmse, error.max_error, tie_note.c_str(), met ? "" : "  OUTSIDE TOLERANCE");
       std::fflush(stdout);
     }
     progress.update(index + 1);
   }
   progress.finish();
-  // Every frame has the same size, so the pooled mean square is the frames' mean.
+  // Every frame has the same size, so the pooled mean square is the frames' mean (near enough
+  // where a few ties are set aside).
   out.rmse = count ? std::sqrt(squared / double(count)) : 0;
   return out;
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "renderer/backends/backend.h"
 #include "renderer/job/render_job.h"
@@ -26,14 +27,21 @@ struct ColorDiffFrames {
   size_t outside = 0;                                  ///< frames outside the tolerance
   double rmse = 0;  ///< pooled over every channel of every pixel of every frame
   double worst_rmse = 0, worst_max_error = 0;
+  size_t ties = 0;  ///< pixels set aside, over every frame
 };
 
+/// The pixels of frame `index` to set aside as ties, given the tested and the reference frame:
+/// a mask of the frames' size.
+using TiePixels = std::function<std::vector<uint8_t>(size_t, const Frame&, const Frame&)>;
+
 /// Renders every frame of `job` with `tested` (through the job, as `render` would) and with
-/// `reference(index, frame)`, compares them by colour, prints a line per frame unless `quiet`,
-/// and writes tested_NNNNN.png, reference_NNNNN.png and error_NNNNN.png into `report` when it is
-/// not empty (a folder that must exist).
+/// `reference(index, frame)`, compares them by colour (but for the pixels `ties` sets aside, when
+/// given), prints a line per frame unless `quiet`, and writes tested_NNNNN.png,
+/// reference_NNNNN.png and error_NNNNN.png into `report` when it is not empty (a folder that must
+/// exist).
 [[nodiscard]] ColorDiffFrames diff_frames_by_color(
     RenderJob& job, Backend& tested, const std::function<void(size_t, Frame&)>& reference,
-    const ColorTolerance& tolerance, const std::string& report, bool quiet);
+    const ColorTolerance& tolerance, const std::string& report, bool quiet,
+    const TiePixels& ties = {});
 
 }  // namespace kinray

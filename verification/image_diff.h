@@ -12,7 +12,7 @@
 //    one covers the ray robustly, a backend reported a triangle the ray does not pierce, or the
 //    surface is closed across the edge the ray passes near (a crack).
 //
-// Tolerances are scale-free, sized to the float arithmetic of Embree and GL (see image_diff.cpp
+// Tolerances are scale-free, sized to the float arithmetic of Embree and GL (see exact_hit.cpp
 // and docs/verification.md). The shaded colours are compared separately (PSNR, maximum error).
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +24,7 @@
 
 #include "renderer/frame.h"
 #include "scenes/camera_space.h"
+#include "verification/exact_hit.h"
 #include "verification/shadow_diff.h"
 
 namespace kinray {
@@ -34,12 +35,6 @@ enum class PixelClass : uint8_t {
   kEqual,       ///< same object and prim
   kTie,         ///< different, within the precision of the backends
   kReal,        ///< different beyond it
-};
-
-/// Tolerances of the tie classification (defaults justified in image_diff.cpp).
-struct TieTolerance {
-  double depth = 1e-6;  ///< relative depth difference, per unit of 1 / cos(incidence)
-  double edge = 1e-5;   ///< |E_pq(d)| / (|p| |q| |d|): distance of the ray from edge pq
 };
 
 /// Classified differences of one frame.
@@ -94,8 +89,10 @@ class FrameComparator {
   std::vector<std::unique_ptr<Adjacency>> m_adjacency;  ///< per object, built on first need
 };
 
-/// Colour comparison of two frames of the same size (throws std::invalid_argument otherwise).
-[[nodiscard]] ColorError compare_colors(const Frame& a, const Frame& b);
+/// Colour comparison of two frames of the same size (throws std::invalid_argument otherwise),
+/// over every pixel but those `aside` marks (a mask of the frames' size, or nullptr: none).
+[[nodiscard]] ColorError compare_colors(const Frame& a, const Frame& b,
+                                        const std::vector<uint8_t>* aside = nullptr);
 
 /// Writes the heat map of `diff` as an 8-bit RGB PNG: yellow = tie, red = real mismatch; equal
 /// pixels black and background dark grey, or, with a `context` frame of the same size, both as

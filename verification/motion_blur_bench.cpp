@@ -1,10 +1,12 @@
 #include "verification/motion_blur_bench.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "util/input_error.h"
 #include "verification/bench_support.h"
+#include "verification/coincident_fronts.h"
 #include "verification/image_diff.h"
 
 namespace kinray {
@@ -41,7 +43,9 @@ nlohmann::json MotionBlurResult::to_json() const {
             {"events_ms", kinetic_events_ms},
             {"integrate_ms", kinetic_integrate_ms},
             {"readout_ms", kinetic_readout_ms},
-            {"order", order}}},
+            {"order", order},
+            {"rmse_with_ties", kinetic_rmse_with_ties}}},
+          {"tie_pixels", tie_pixels},
           {"embree", embree_points},
           {"meets_targets", meets_targets()}};
 }
@@ -76,6 +80,7 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
   result.frames = job.frame_times().size();
   result.triangles = job.scene().triangle_count();
   char line[512];
+  TieMasks ties;  // per frame, found from the kinetic frames
 
   // The reference frames first, kept for every method.
   std::vector<Frame> reference(job.frame_times().size());
@@ -95,9 +100,23 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
     std::unique_ptr<Backend> kinetic = job.make_backend("kinetic");
     double first_ms = 0;
     ShutterSeconds split;
+    std::vector<Frame> frames(reference.size());
     result.kinetic = measure_quality(
-        job, [&](size_t index, Frame& frame) { job.render_frame(*kinetic, index, frame); },
+        job,
+        [&](size_t index, Frame& frame) {
+          job.render_frame(*kinetic, index, frame);
+          frames[index] = frame;
+        },
         reference, 0, &first_ms, [&] { split = shutter_seconds(*kinetic); });
+    // Coincident surfaces flicker in every renderer, so their pixels are ties: every method's
+    // error is measured without them (coincident_fronts.h), the kinetic error with them kept too.
+    result.kinetic_rmse_with_ties = result.kinetic.rmse;
+    for (size_t index = 0; index < frames.size(); ++index) {
+      ties.push_back(coincident_fronts(job.camera_space(), job.shutter_windows()[index],
+                                       frames[index], reference[index]));
+      result.tie_pixels += size_t(std::count(ties.back().begin(), ties.back().end(), uint8_t(1)));
+    }
+    measure_error(frames, reference, ties, result.kinetic);
     if (job.frame_times().size() > 1) {
       // The frames after the first: the whole run's seconds less the first frame's.
       const ShutterSeconds all = shutter_seconds(*kinetic);
@@ -117,6 +136,13 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
                   result.kinetic_events_ms, result.kinetic_integrate_ms, result.kinetic_readout_ms,
                   result.kinetic.rmse, result.kinetic.max_error);
     log(line);
+    if (result.tie_pixels > 0) {
+      std::snprintf(line, sizeof line,
+                    "%s: %zu pixels of coincident surfaces set aside as ties in every error "
+                    "(the kinetic rmse with them: %.3g)",
+                    params.scene.c_str(), result.tie_pixels, result.kinetic_rmse_with_ties);
+      log(line);
+    }
   }
   for (int n : bench.samples) {
     BackendConfig config = backend_config(params);
@@ -124,7 +150,7 @@ MotionBlurResult run_motion_blur_bench(const RenderParams& params,
     std::unique_ptr<Backend> embree = make_backend("embree", job.camera_space(), config);
     result.embree.push_back(measure_quality(
         job, [&](size_t index, Frame& frame) { job.render_frame(*embree, index, frame); },
-        reference, n, nullptr));
+        reference, n, nullptr, {}, ties));
     const MotionBlurPoint& p = result.embree.back();
     std::snprintf(line, sizeof line,
                   "%s: embree %4d samples: %.2f ms per frame, rmse %.3g, max %.3g",

@@ -3,9 +3,9 @@
 // shutter, the kinetic backend's exact blur and Embree's stratified time sampling at several sample
 // counts, each timed per frame and measured against a reference frame (Embree with very many
 // samples). Error is the RMSE (and max) over every channel of every pixel, in linear RGB, pooled
-// over the frames; time per frame is the median wall time of the frames after the first (the first
-// holds the kinetic grid's scan conversion and each backend's warm-up; the kinetic init is reported
-// apart).
+// over the frames, but for the pixels of coincident surfaces, which are ties (coincident_fronts.h);
+// time per frame is the median wall time of the frames after the first (the first holds the kinetic
+// grid's scan conversion and each backend's warm-up; the kinetic init is reported apart).
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -34,6 +34,10 @@ struct MotionBlurResult {
   /// read-out (KineticShutterStats).
   double kinetic_events_ms = 0, kinetic_integrate_ms = 0, kinetic_readout_ms = 0;
   std::vector<MotionBlurPoint> embree;
+  /// Pixels of coincident surfaces (coincident_fronts.h), over every frame: set aside as ties
+  /// from every method's rmse and max; the kinetic rmse with them kept.
+  size_t tie_pixels = 0;
+  double kinetic_rmse_with_ties = 0;
   /// {"kinetic": {"ms_per_frame", "rmse", ...}, "embree": [{"samples", "ms_per_frame", "rmse"}...]}
   [[nodiscard]] nlohmann::json to_json() const;
   /// Kinetic error <= Embree's at 256 samples and >= 10x faster than Embree at 64 (when measured).

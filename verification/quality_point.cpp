@@ -18,7 +18,7 @@ nlohmann::json QualityPoint::to_json() const {
 QualityPoint measure_quality(const RenderJob& job,
                              const std::function<void(size_t, Frame&)>& render,
                              const std::vector<Frame>& reference, int samples, double* first_ms,
-                             const std::function<void()>& after_first) {
+                             const std::function<void()>& after_first, const TieMasks& ties) {
   QualityPoint point;
   point.samples = samples;
   Frame frame;
@@ -31,7 +31,8 @@ QualityPoint measure_quality(const RenderJob& job,
     if (index == 0 && first_ms) *first_ms = ms;
     if (index == 0 && after_first) after_first();
     if (index > 0 || job.frame_times().size() == 1) later_ms.push_back(ms);
-    const ColorError error = compare_colors(frame, reference[index]);
+    const ColorError error =
+        compare_colors(frame, reference[index], index < ties.size() ? &ties[index] : nullptr);
     squared += error.mse;
     point.max_error = std::max(point.max_error, error.max_error);
   }
@@ -40,6 +41,19 @@ QualityPoint measure_quality(const RenderJob& job,
   point.ms_per_frame = median(later_ms);
   point.rmse = std::sqrt(squared / double(job.frame_times().size()));
   return point;
+}
+
+void measure_error(const std::vector<Frame>& frames, const std::vector<Frame>& reference,
+                   const TieMasks& ties, QualityPoint& point) {
+  double squared = 0;
+  point.max_error = 0;
+  for (size_t index = 0; index < frames.size(); ++index) {
+    const ColorError error = compare_colors(frames[index], reference.at(index),
+                                            index < ties.size() ? &ties[index] : nullptr);
+    squared += error.mse;
+    point.max_error = std::max(point.max_error, error.max_error);
+  }
+  point.rmse = frames.empty() ? 0.0 : std::sqrt(squared / double(frames.size()));
 }
 
 void write_quality_chart(const std::string& title, const std::vector<QualityCurve>& curves,

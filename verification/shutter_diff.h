@@ -1,7 +1,8 @@
 #pragma once
 // `kinray diff --shutter S`: motion-blurred frames have no single id per pixel to compare, so the
 // tested backend's frames are compared by colour with the Embree reference at very many time
-// samples (verification/shutter_error.h), frame by frame, within a stated tolerance.
+// samples (verification/shutter_error.h), frame by frame, within a stated tolerance. Pixels
+// where coincident surfaces flicker (coincident_fronts.h) are ties, set aside and drawn yellow.
 #include <string>
 
 #include "renderer/job/render_job.h"

@@ -3,7 +3,9 @@
 // blur with very many stratified time samples per pixel (kShutterReferenceSamples), whose own
 // visibility error at a pixel is at most (front changes in the window) x (contrast) / samples.
 // Errors are in linear RGB in [0, 1], over every channel of every pixel.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "renderer/frame.h"
 #include "verification/color_diff.h"
@@ -21,7 +23,9 @@ struct ShutterTolerance : ColorTolerance {
 };
 
 /// Writes |a - b| (largest channel per pixel), times `gain`, as a grey-to-red 8-bit PNG: black
-/// where equal. Throws InputError when the file cannot be written.
-void write_error_png(const Frame& a, const Frame& b, const std::string& path, double gain = 10);
+/// where equal, yellow where `aside` (a mask of the frames' size, or nullptr) sets a pixel aside
+/// as a tie. Throws InputError when the file cannot be written.
+void write_error_png(const Frame& a, const Frame& b, const std::string& path, double gain = 10,
+                     const std::vector<uint8_t>* aside = nullptr);
 
 }  // namespace kinray
