@@ -82,10 +82,10 @@ Eigen::Vector3f view_direction(const Vec3& d, double tan_half_fov) {
 namespace {
 
 /// The interpolated unit normal and the base colour of the ray d's hit on `triangle`.
-void normal_and_base(const TriangleAtInstant& triangle, const Vec3& d, Eigen::Vector3f& normal,
-                     Color& base) {
-  // Barycentrics of the ray's hit on the triangle's plane (Moller-Trumbore without the bounds
-  // test: the backend has decided the hit; the fov folding is linear so they equal the true ones).
+/// The barycentric weights of the ray's hit on the triangle's plane (Moller-Trumbore without the
+/// bounds test: the backend has decided the hit; the fov folding is linear so they equal the true
+/// ones), clamped into the triangle.
+std::array<float, 3> hit_weights(const TriangleAtInstant& triangle, const Vec3& d) {
   const Vec3 pvec = d.cross(triangle.e2);
   const double det = triangle.e1.dot(pvec);
   double u = 1.0 / 3.0, v = 1.0 / 3.0;
@@ -94,18 +94,25 @@ void normal_and_base(const TriangleAtInstant& triangle, const Vec3& d, Eigen::Ve
     u = std::clamp(tvec.dot(pvec) / det, 0.0, 1.0);
     v = std::clamp(d.dot(triangle.qvec) / det, 0.0, 1.0 - u);
   }
-  const float w0 = float(1.0 - u - v), w1 = float(u), w2 = float(v);
+  return {float(1.0 - u - v), float(u), float(v)};
+}
+
+Vec2f weighted_uv(const TriangleAtInstant& triangle, const std::array<float, 3>& w) {
+  const std::vector<Vec2f>& uvs = triangle.source->uvs;
+  return w[0] * uvs[triangle.vertices[0]] + w[1] * uvs[triangle.vertices[1]] +
+         w[2] * uvs[triangle.vertices[2]];
+}
+
+void normal_and_base(const TriangleAtInstant& triangle, const Vec3& d, Eigen::Vector3f& normal,
+                     Color& base) {
+  const std::array<float, 3> w = hit_weights(triangle, d);
   Eigen::Vector3f n =
-      w0 * triangle.normals[0] + w1 * triangle.normals[1] + w2 * triangle.normals[2];
+      w[0] * triangle.normals[0] + w[1] * triangle.normals[1] + w[2] * triangle.normals[2];
   const float length = n.norm();
   normal = length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f(0, 0, -1);
   base = triangle.base;
-  if (triangle.texture != nullptr) {
-    const std::vector<Vec2f>& uvs = triangle.source->uvs;
-    const Vec2f uv = w0 * uvs[triangle.vertices[0]] + w1 * uvs[triangle.vertices[1]] +
-                     w2 * uvs[triangle.vertices[2]];
-    base = base.cwiseProduct(triangle.texture->sample(uv));
-  }
+  if (triangle.texture != nullptr)
+    base = base.cwiseProduct(triangle.texture->sample(weighted_uv(triangle, w)));
 }
 
 Color headlight(const Eigen::Vector3f& normal, const Eigen::Vector3f& view, const Color& base) {
@@ -126,6 +133,11 @@ SurfacePoint surface_point(const TriangleAtInstant& triangle, const Vec3& d,
   surface.tan_half_fov = triangle.tan_half_fov;
   surface.view = view;
   return surface;
+}
+
+Vec2f surface_uv(const TriangleAtInstant& triangle, const Vec3& d) {
+  return triangle.texture != nullptr ? weighted_uv(triangle, hit_weights(triangle, d))
+                                     : Vec2f::Zero();
 }
 
 Color headlight_color(const TriangleAtInstant& triangle, const Vec3& d,

@@ -131,6 +131,9 @@ class RowTriangles {
 [[nodiscard]] SurfacePoint surface_point(const TriangleAtInstant& triangle, const Vec3& d,
                                          const Eigen::Vector3f& view);
 
+/// The texture coordinates of ray d's hit on `triangle`, as surface_point samples its texture
+/// (zero when it has none).
+[[nodiscard]] Vec2f surface_uv(const TriangleAtInstant& triangle, const Vec3& d);
 /// The headlight Lambert colour of a surface point (shade_hit's).
 [[nodiscard]] Color headlight_color(const SurfacePoint& surface);
 

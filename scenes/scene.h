@@ -44,6 +44,10 @@ struct Texture {
   int width = 0, height = 0;
   std::vector<Color> texels;  // row-major, row 0 at the top (v = 1)
   [[nodiscard]] Color sample(Vec2f uv) const;
+  /// The mean of sample() along the straight segment from `from` to `to` in uv, exactly up to
+  /// rounding (texture_path.cpp); sample(from) when they are equal. Motion blur averages a
+  /// texture sliding under a pixel with it, as antialiasing filters one over a region.
+  [[nodiscard]] Color path_average(Vec2f from, Vec2f to) const;
 };
 
 struct Material {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
 
 #include "util/pixel_rays.h"
 
@@ -33,27 +32,40 @@ bool ray_meets_box(const Vec3& d, const Vec3& lo, const Vec3& hi) {
   return true;
 }
 
-/// Whether the two nearest triangles that ray d pierces are both pierced robustly and at one depth.
+/// A margin beyond double rounding: a ray this far inside every edge of two triangles is inside
+/// both (the margins of exact_hit are relative, and rounded by about 1e-16).
+constexpr double kInside = 1e-12;
+
+bool strictly_inside(const ExactHit& hit) {
+  return std::all_of(hit.margin.begin(), hit.margin.end(), [](double m) { return m > kInside; });
+}
+
+/// Whether ray d is strictly inside two triangles at the depth of the nearest triangle it pierces
+/// (inside or on its edges: a triangle the ray misses by less than the edge tolerance, a sliver
+/// seen edge-on say, is no front). Two triangles of a mesh that share an edge or a vertex never
+/// hold one ray strictly inside both, whatever their size; overlapping ones do, however thin (the
+/// edge tolerance would miss slivers narrower than itself, which BART's car panels are when seen
+/// from afar).
 bool nearest_coincide(const std::vector<ObjectAt>& objects, const CameraSpaceScene& scene,
-                      const Vec3& d, const TieTolerance& tolerance) {
-  ExactHit first, second;
-  first.z = second.z = std::numeric_limits<double>::infinity();
+                      const Vec3& d, const TieTolerance& tolerance, std::vector<ExactHit>& hits) {
+  hits.clear();
   for (const ObjectAt& o : objects) {
     if (!ray_meets_box(d, o.lo, o.hi)) continue;
     for (const Triangle& tri : scene.triangles(o.index)) {
       const ExactHit hit = exact_hit(
           {o.positions[tri[0]], o.positions[tri[1]], o.positions[tri[2]]}, d, tolerance.edge);
-      if (!hit.valid) continue;
-      if (hit.z < first.z) {
-        second = first;
-        first = hit;
-      } else if (hit.z < second.z) {
-        second = hit;
-      }
+      if (hit.valid &&
+          std::all_of(hit.margin.begin(), hit.margin.end(), [](double m) { return m >= 0; }))
+        hits.push_back(hit);
     }
   }
-  return second.valid && first.near_edges == 0 && second.near_edges == 0 &&
-         same_depth(first, second, tolerance);
+  if (hits.size() < 2) return false;
+  const ExactHit& nearest = *std::min_element(
+      hits.begin(), hits.end(), [](const ExactHit& a, const ExactHit& b) { return a.z < b.z; });
+  int inside = 0;
+  for (const ExactHit& hit : hits)
+    if (strictly_inside(hit) && same_depth(hit, nearest, tolerance)) ++inside;
+  return inside >= 2;
 }
 
 }  // namespace
@@ -64,6 +76,7 @@ std::vector<uint8_t> coincident_fronts(const CameraSpaceScene& scene, const Shut
   std::vector<uint8_t> mask(size_t(width) * size_t(height), 0);
   const PixelRays image{width, height};
   std::vector<ObjectAt> objects;
+  std::vector<ExactHit> hits;
   for (int k = 0; k < instants; ++k) {
     const double t = window.open + window.length() * (k + 0.5) / instants;
     objects.clear();
@@ -83,7 +96,7 @@ std::vector<uint8_t> coincident_fronts(const CameraSpaceScene& scene, const Shut
       if (!mask[p] &&
           nearest_coincide(objects, scene,
                            image.direction(int(p % size_t(width)), int(p / size_t(width))),
-                           tolerance))
+                           tolerance, hits))
         mask[p] = 1;
   }
   return mask;

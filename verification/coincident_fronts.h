@@ -5,11 +5,11 @@
 // a sharp frame's diff calls such a pixel a tie (image_diff.h), and a blurred frame's colour there
 // is the average of a flicker that the scene does not define. The diffs and benchmarks of blurred
 // frames set such pixels aside, as the sharp diff does, once this check has found them: a pixel is
-// a *coincident front* when, at one of a few instants spread over its window, the two nearest
-// triangles its centre ray pierces (each inside its edges by more than the edge tolerance) lie at
-// the same depth within the tie tolerance. The check is brute force over the triangles of every
-// object whose box the ray meets, in double from the camera-space positions: independent of the
-// backends it judges.
+// a *coincident front* when, at one of a few instants spread over its window, its centre ray is
+// strictly inside two triangles at the depth of the nearest one it pierces (within the tie
+// tolerance): two triangles of a mesh that only share an edge or a vertex never are. The check is
+// brute force over the triangles of every object whose box the ray meets, in double from the
+// camera-space positions: independent of the backends it judges.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "renderer/motion_blur/texture_path.h"
 #include "renderer/plane_depth.h"
 #include "renderer/shading.h"
 #include "util/parallel.h"
@@ -62,6 +63,7 @@ void KineticShutter::for_each_node(uint32_t object, double t0, double t1, double
 }
 
 void KineticShutter::place_window_nodes(const ShutterWindow& window) {
+  m_window = window;
   m_window_nodes.resize(m_scene.objects.size());
   for (uint32_t object = 0; object < m_window_nodes.size(); ++object) {
     std::vector<WindowNode>& nodes = m_window_nodes[object];
@@ -95,6 +97,21 @@ void KineticShutter::integrate(const GridScene& grid, uint32_t front, int i, int
     return;
   }
   ViewCache view;
+  if (m_textured[object]) {
+    // Each node shows its texture's mean over its cell (texture_path.h).
+    TexturePath texture(m_scene, object, prim, d);
+    for_each_quadrature_cell(
+        m_scene.objects[object].key_times, rule(object), t0, t1, length,
+        [&](double t, double w, size_t next, double lo, double hi) {
+          const ShadingInstant at = instant(object, t, next);
+          const TriangleAtInstant triangle = cache.get(m_scene, object, prim, at.segment.k).at(at);
+          SurfacePoint surface = surface_point(triangle, d, view.at(d, triangle.tan_half_fov));
+          surface.base = texture.base(lo, hi);
+          ++counts.shading_nodes;
+          average.add(headlight_color(surface), w);
+        });
+    return;
+  }
   for_each_node(object, t0, t1, length, [&](double t, double w, size_t next) {
     const ShadingInstant at = instant(object, t, next);
     const TriangleAtInstant triangle = cache.get(m_scene, object, prim, at.segment.k).at(at);
@@ -112,6 +129,12 @@ void KineticShutter::integrate_window(const GridScene& grid, uint32_t front, int
   }
   const uint32_t m = grid.mesh_of_triangle(front);
   const uint32_t object = grid.mesh(m).id, prim = front - grid.triangle_begin(m);
+  if (m_textured[object]) {
+    // Its nodes' textures are averaged over cells of the pixel's own path: nothing to share.
+    integrate(grid, front, i, j, m_window.open, m_window.close, m_window.length(), cache, counts,
+              average);
+    return;
+  }
   const std::vector<WindowNode>& nodes = m_window_nodes[object];
   if (memo.front != front) {
     memo.front = front;

@@ -132,7 +132,8 @@ class KineticShutter {
   const CameraSpaceScene& m_scene;
   GaussLegendre m_rule;
   /// A textured front's shading varies at the scale of its texels, which slide under the pixel
-  /// as it moves: it gets at least kTexturedShutterOrder nodes per interval.
+  /// as it moves: it gets at least kTexturedShutterOrder nodes per interval, each showing its
+  /// texture's mean over the node's cell (texture_path.h).
   GaussLegendre m_textured_rule;
   std::vector<uint8_t> m_textured;            ///< per object
   std::unique_ptr<ShutterShadows> m_shadows;  ///< with lights
@@ -146,6 +147,7 @@ class KineticShutter {
     double weight = 0;
   };
   std::vector<std::vector<WindowNode>> m_window_nodes;  ///< per object, for the current window
+  ShutterWindow m_window;                               ///< the current window
   /// A pixel whose front changes inside the window: its open interval (the front since `since`),
   /// the average of the intervals closed so far, and its front at the frame time.
   struct alignas(64) SplitPixel {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "util/input_error.h"
@@ -71,6 +72,18 @@ GaussLegendre gauss_legendre(int order) {
     }
     rule.nodes[size_t(k)] = x;
     rule.weights[size_t(k)] = 2 / ((1 - x * x) * derivative * derivative);
+  }
+  std::vector<size_t> ascending(static_cast<size_t>(n));
+  std::iota(ascending.begin(), ascending.end(), size_t(0));
+  std::sort(ascending.begin(), ascending.end(),
+            [&](size_t a, size_t b) { return rule.nodes[a] < rule.nodes[b]; });
+  rule.cell_lo.resize(size_t(n));
+  rule.cell_hi.resize(size_t(n));
+  double lo = -1;
+  for (size_t k : ascending) {
+    rule.cell_lo[k] = lo;
+    lo = ascending.back() == k ? 1.0 : lo + rule.weights[k];
+    rule.cell_hi[k] = lo;
   }
   return rule;
 }

@@ -49,6 +49,11 @@ struct ShutterWindow {
 /// Gauss-Legendre nodes and weights on [-1, 1] (weights sum to 2), by Newton's method on P_n.
 struct GaussLegendre {
   std::vector<double> nodes, weights;
+  /// Node k's cell [cell_lo[k], cell_hi[k]] of [-1, 1]: the cells tile it in the nodes' order,
+  /// each as long as its node's weight, and each holds its node (the separation theorem of
+  /// Chebyshev, Markov and Stieltjes). A textured front's node averages its texture over its
+  /// cell (for_each_quadrature_cell).
+  std::vector<double> cell_lo, cell_hi;
 };
 [[nodiscard]] GaussLegendre gauss_legendre(int order);
 
@@ -57,8 +62,10 @@ struct GaussLegendre {
 /// object, not across them (its vertices and normals turn there): each piece between the `keys`
 /// (sorted) inside [t0, t1] gets its own rule, and the node's piece lies in
 /// [keys[next - 1], keys[next]] (next = 0 or keys.size(): before or after the keys).
+/// for_each_quadrature_node, visit(t, weight, next, lo, hi) given the node's cell [lo, hi] too
+/// (GaussLegendre::cell_lo, cell_hi, on the node's piece).
 template <class Visit>
-void for_each_quadrature_node(std::span<const double> keys, const GaussLegendre& rule, double t0,
+void for_each_quadrature_cell(std::span<const double> keys, const GaussLegendre& rule, double t0,
                               double t1, double length, Visit&& visit) {
   const double share = (t1 - t0) / length;
   auto key = std::upper_bound(keys.begin(), keys.end(), t0);
@@ -67,9 +74,19 @@ void for_each_quadrature_node(std::span<const double> keys, const GaussLegendre&
     const double b = key != keys.end() && *key < t1 ? *key++ : t1;
     const double middle = (a + b) / 2, half = (b - a) / 2;
     for (size_t k = 0; k < rule.nodes.size(); ++k)
-      visit(middle + half * rule.nodes[k], share * (half / (t1 - t0)) * rule.weights[k], next);
+      visit(middle + half * rule.nodes[k], share * (half / (t1 - t0)) * rule.weights[k], next,
+            std::max(a, middle + half * rule.cell_lo[k]),
+            std::min(b, middle + half * rule.cell_hi[k]));
     a = b;
   }
+}
+
+template <class Visit>
+void for_each_quadrature_node(std::span<const double> keys, const GaussLegendre& rule, double t0,
+                              double t1, double length, Visit&& visit) {
+  for_each_quadrature_cell(
+      keys, rule, t0, t1, length,
+      [&](double t, double w, size_t next, double, double) { visit(t, w, next); });
 }
 
 /// Time of stratified sample k of n in `window` for `pixel`: stratum k, jittered by a hash of

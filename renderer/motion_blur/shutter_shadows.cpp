@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "renderer/backends/grid_meshes.h"
+#include "renderer/motion_blur/texture_path.h"
 #include "renderer/shadows/lighting.h"
 
 namespace kinray {
@@ -132,14 +133,17 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   // the keys inside them).
   uint32_t mask = probes.front().mask;
   double a = t0;
+  TexturePath texture(m_scene, object, prim, d);
   for (size_t f = 0; f <= flips.size(); ++f) {
     const double b = f < flips.size() ? flips[f].first : t1;
     if (b > a) {
-      for_each_quadrature_node(keys, shading, a, b, length, [&](double t, double w, size_t) {
-        average.add(lit_color(lit_hit(m_scene, object, prim, d, t), lights_at(t, scratch), mask),
-                    w);
-        ++counts.shading_nodes;
-      });
+      for_each_quadrature_cell(keys, shading, a, b, length,
+                               [&](double t, double w, size_t, double lo, double hi) {
+                                 LitHit hit = lit_hit(m_scene, object, prim, d, t);
+                                 if (texture.textured()) hit.surface.base = texture.base(lo, hi);
+                                 average.add(lit_color(hit, lights_at(t, scratch), mask), w);
+                                 ++counts.shading_nodes;
+                               });
       a = b;
     }
     if (f < flips.size()) mask ^= flips[f].second;

@@ -10,8 +10,9 @@
 //   2. between two probes whose masks differ, each light that differs is bisected until the
 //      change time is bracketed to kChangeTimePrecision of the window's length;
 //   3. the interval, cut at those times and at its object's keys, is integrated with a
-//      Gauss-Legendre rule on every piece (the front's: a textured one's has more nodes), each
-//      piece under its own constant mask.
+//      Gauss-Legendre rule on every piece (the front's: a textured one's has more nodes, each
+//      showing its texture's mean over the node's cell, texture_path.h), each piece under its
+//      own constant mask.
 // A mask that changes and changes back between two adjacent probes (an occluder narrower than
 // the node spacing crossing the light's path) is missed; every other change is found, to the
 // precision stated. Shadow rays go through a tree whose boxes bound the window (WindowBvh), so

@@ -67,6 +67,23 @@ TEST(CoincidentFronts, PixelsWhereTwoTrianglesOverlapInOnePlaneAreTies) {
   EXPECT_LT(count, size_t(kSize) * kSize / 2);
 }
 
+TEST(CoincidentFronts, OverlappingSliversNarrowerThanTheEdgeToleranceAreTies) {
+  // Seen from afar, BART's car panels are fans of slivers whose every edge passes within the
+  // edge tolerance of the ray: two of them overlap around the centre ray of pixel (16, 16), in a
+  // plane at depth 5, each about 4e-5 across (margins about 5e-6).
+  const Vec3 c = 5 * Vec3(1.0 / 32, -1.0 / 32, 1.0);
+  const double a = 2e-5;
+  const std::vector<Vec3> slivers = {c + Vec3(-2 * a, -a, 0), c + Vec3(a, -a, 0),
+                                     c + Vec3(a, 2 * a, 0),   c + Vec3(-a, -2 * a, 0),
+                                     c + Vec3(2 * a, a, 0),   c + Vec3(-a, a, 0)};
+  const Scene scene = test::analytic_scene(
+      {wall(), test::camera_space_object("slivers", {{0, 1, 2}, {3, 4, 5}}, {slivers})});
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const std::vector<uint8_t> ties = coincident_fronts(cs, kWindow, kSize, kSize, every_pixel());
+  EXPECT_EQ(ties[at(16, 16)], 1);
+  EXPECT_EQ(std::count(ties.begin(), ties.end(), uint8_t(1)), 1);
+}
+
 TEST(CoincidentFronts, ParallelSurfacesApartByMoreThanRoundingAreNotTies) {
   // 1e-4 of the depth apart: every renderer resolves which is in front.
   const Scene scene = test::analytic_scene({wall(), overlapping_panel(5e-4)});

@@ -4,6 +4,7 @@
 // frames of a built-in scene, audited, against an Embree reference with many time samples.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -38,6 +39,26 @@ TEST(GaussLegendre, IntegratesPolynomialsOfDegree2nMinus1Exactly) {
   // And not degree 2n: the order is what it claims.
   const GaussLegendre two = gauss_legendre(2);
   EXPECT_GT(std::abs(two.weights[0] * std::pow(two.nodes[0], 4) * 2 - 0.4), 1e-3);
+}
+
+TEST(GaussLegendre, CellsTileTheIntervalInNodeOrderEachAsLongAsItsWeight) {
+  for (int n = 1; n <= 16; ++n) {
+    const GaussLegendre rule = gauss_legendre(n);
+    ASSERT_EQ(rule.cell_lo.size(), size_t(n));
+    double covered = 0;
+    for (int k = 0; k < n; ++k) {
+      const size_t i = size_t(k);
+      EXPECT_NEAR(rule.cell_hi[i] - rule.cell_lo[i], rule.weights[i], 1e-13);
+      EXPECT_LT(rule.cell_lo[i], rule.nodes[i]);  // each cell holds its node
+      EXPECT_GT(rule.cell_hi[i], rule.nodes[i]);
+      covered += rule.cell_hi[i] - rule.cell_lo[i];
+      // Cells meet: every inner end is another cell's start.
+      if (rule.cell_hi[i] < 1)
+        EXPECT_NE(std::find(rule.cell_lo.begin(), rule.cell_lo.end(), rule.cell_hi[i]),
+                  rule.cell_lo.end());
+    }
+    EXPECT_NEAR(covered, 2, 1e-13);
+  }
 }
 
 TEST(ShutterWindows, CentredOnEachFrameAndClippedToTheShot) {
@@ -117,6 +138,60 @@ TEST(MotionBlur, KineticMatchesTheExactAverageOfASlidingQuad) {
     const bool front_at_time = t_c <= 0.4;
     EXPECT_EQ(blurred.object[p], front_at_time ? 0u : kNoHit) << "column " << i;
   }
+}
+
+TEST(MotionBlur, ATextureSlidingManyTexelsAWindowIsAveragedAlongItsPath) {
+  // A white quad at depth 2, seen face on, 60 wide with u from 0 to 1 across it, slides by 40
+  // along x over the shot; its 256 x 4 texture of random texels crosses about 17 texels under a
+  // pixel in the window [0.45, 0.55]. Face on and translating, the headlight term is constant
+  // in time and u linear in it, so the exact blurred colour is the headlight times the texture's
+  // mean along the path (Texture::path_average, itself checked against dense sampling).
+  constexpr int kSize = 32;
+  Scene scene = test::analytic_scene(
+      {test::camera_space_object("quad", {{0, 1, 2}, {0, 2, 3}},
+                                 {{{-30, -3, 2}, {30, -3, 2}, {30, 3, 2}, {-30, 3, 2}},
+                                  {{10, -3, 2}, {70, -3, 2}, {70, 3, 2}, {10, 3, 2}}},
+                                 {0.0, 1.0})});
+  Texture texture;
+  texture.width = 256;
+  texture.height = 4;
+  uint64_t state = 12345;
+  for (int k = 0; k < texture.width * texture.height; ++k) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const auto level = float(0.2 + 0.8 * double(state >> 40) / double(1ull << 24));
+    texture.texels.push_back(Color(level, 1.0f - level / 2, 0.5f));
+  }
+  scene.textures.push_back(texture);
+  scene.materials.push_back(Material{"textured", Color(1, 1, 1), 0});
+  scene.objects[0].material = 1;
+  scene.objects[0].uvs = {Vec2f(0, 0), Vec2f(1, 0), Vec2f(1, 1), Vec2f(0, 1)};
+  scene.validate("textured quad");
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene);
+  const ShutterWindow window{0.45, 0.5, 0.55};
+  auto kinetic = make_backend("kinetic", cs, blur_config(kSize, kSize));
+  auto sampled = make_backend("embree", cs, blur_config(kSize, kSize, 16, false));
+  Frame blurred, samples;
+  kinetic->render_shutter(window, blurred);
+  sampled->render_shutter(window, samples);
+  const PixelRays image{kSize, kSize};
+  double worst = 0, sampled_worst = 0;
+  for (int j = 0; j < kSize; ++j)
+    for (int i = 0; i < kSize; ++i) {
+      const Vec3 d = image.direction(i, j);
+      const auto uv = [&](double t) {
+        return Vec2f(float((2 * d.x() - (-30 + 40 * t)) / 60), float((2 * d.y() + 3) / 6));
+      };
+      const float lambert = std::abs(view_direction(d, cs.tan_half_fov(0.5)).z());
+      const Color expected =
+          texture.path_average(uv(window.open), uv(window.close)) * (kAmbient + kDiffuse * lambert);
+      const size_t p = blurred.index(i, j);
+      worst = std::max(worst, double((blurred.color[p] - expected).cwiseAbs().maxCoeff()));
+      sampled_worst =
+          std::max(sampled_worst, double((samples.color[p] - expected).cwiseAbs().maxCoeff()));
+    }
+  EXPECT_LT(worst, 2e-5);
+  // Sixteen time samples of 17 texels are far off: the texture is really crossed.
+  EXPECT_GT(sampled_worst, 100 * worst);
 }
 
 TEST(MotionBlur, StillFramesAreIdenticalToTheSharpFrames) {

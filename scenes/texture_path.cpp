@@ -1,0 +1,73 @@
+// Texture::path_average. In texel coordinates X = u W - 1/2, Y = (1 - v) H - 1/2 (those of
+// Texture::sample, without the wrap: texel indices wrap instead, so the bilinear function is
+// continuous and periodic), sample() is bilinear inside each cell [i, i + 1] x [j, j + 1]. Along
+// a straight segment the cell coordinates are linear in the segment's parameter, so the bilinear
+// function is a quadratic there and Simpson's rule integrates it exactly. The segment is cut
+// where it crosses a cell's side (an integer X or Y) and each cut piece weighted by its length.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace kinray {
+namespace {
+
+/// Cells walked at most: a segment crossing more (a texture minified thousands of times under a
+/// pixel) is averaged over this many equal pieces by the midpoint rule instead.
+constexpr int kMaxCells = 4096;
+
+}  // namespace
+
+Color Texture::path_average(Vec2f from, Vec2f to) const {
+  if (from == to || width <= 0 || height <= 0) return sample(from);
+  const auto texel = [&](long long i, long long j) -> const Color& {
+    i = ((i % width) + width) % width;
+    j = ((j % height) + height) % height;
+    return texels[size_t(j) * size_t(width) + size_t(i)];
+  };
+  const double x0 = double(from.x()) * width - 0.5, y0 = (1.0 - double(from.y())) * height - 0.5;
+  const double dx = double(to.x() - from.x()) * width, dy = -double(to.y() - from.y()) * height;
+  const auto bilinear = [&](double x, double y, long long i, long long j) -> Color {
+    const auto ax = float(std::clamp(x - double(i), 0.0, 1.0));
+    const auto ay = float(std::clamp(y - double(j), 0.0, 1.0));
+    return (1 - ay) * ((1 - ax) * texel(i, j) + ax * texel(i + 1, j)) +
+           ay * ((1 - ax) * texel(i, j + 1) + ax * texel(i + 1, j + 1));
+  };
+  const double crossings = std::abs(std::floor(x0 + dx) - std::floor(x0)) +
+                           std::abs(std::floor(y0 + dy) - std::floor(y0));
+  if (!(crossings < kMaxCells)) {
+    Color sum = Color::Zero();
+    for (int k = 0; k < kMaxCells; ++k) {
+      const double s = (k + 0.5) / kMaxCells, x = x0 + s * dx, y = y0 + s * dy;
+      sum += bilinear(x, y, (long long)std::floor(x), (long long)std::floor(y));
+    }
+    return sum / float(kMaxCells);
+  }
+  // The parameters where the segment crosses an integer X or Y, in order.
+  std::vector<double> cuts = {0.0, 1.0};
+  const auto add_cuts = [&](double start, double step) {
+    if (step == 0) return;
+    const double end = start + step;
+    for (double c = std::floor(std::min(start, end)) + 1; c < std::max(start, end); c += 1)
+      cuts.push_back((c - start) / step);
+  };
+  add_cuts(x0, dx);
+  add_cuts(y0, dy);
+  std::sort(cuts.begin(), cuts.end());
+  Color sum = Color::Zero();
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double a = cuts[k], b = cuts[k + 1];
+    if (!(b > a)) continue;
+    const double m = (a + b) / 2;
+    // The cell of the piece's middle holds the whole piece.
+    const auto i = (long long)std::floor(x0 + m * dx), j = (long long)std::floor(y0 + m * dy);
+    const Color fa = bilinear(x0 + a * dx, y0 + a * dy, i, j);
+    const Color fm = bilinear(x0 + m * dx, y0 + m * dy, i, j);
+    const Color fb = bilinear(x0 + b * dx, y0 + b * dy, i, j);
+    sum += float((b - a) / 6) * (fa + 4 * fm + fb);
+  }
+  return sum;
+}
+
+}  // namespace kinray
