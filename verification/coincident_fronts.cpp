@@ -74,6 +74,7 @@ std::vector<uint8_t> coincident_fronts(const CameraSpaceScene& scene, const Shut
                                        int width, int height, const std::vector<size_t>& candidates,
                                        int instants, const TieTolerance& tolerance) {
   std::vector<uint8_t> mask(size_t(width) * size_t(height), 0);
+  if (candidates.empty()) return mask;
   const PixelRays image{width, height};
   std::vector<ObjectAt> objects;
   std::vector<ExactHit> hits;
