@@ -127,6 +127,20 @@ void check_configurations(const BenchParams& params) {
 
 /// `bench --suite`: bench's own flags resolved as for SCENE (the first suite scene), with the
 /// suite's size and in-betweens unless given.
+/// The sweeps across in-betweens read none of the motion blur comparison's flags: set without
+/// --shutter, they would be ignored without a word.
+void refuse_blur_flags(const MotionBlurBenchOptions& blur) {
+  const MotionBlurBenchOptions unset;
+  const auto refuse = [](const char* flag) {
+    throw InputError(flag, "applies to bench --shutter only");
+  };
+  if (blur.order != unset.order) refuse("--shutter-order");
+  if (blur.samples != unset.samples) refuse("--blur-samples");
+  if (!blur.scenes.empty()) refuse("--blur-scenes");
+  if (blur.fps != unset.fps) refuse("--blur-fps");
+  if (blur.frames != unset.frames) refuse("--blur-frames");
+}
+
 void run_suite_bench(const BenchOptions& options, const CLI::App& command) {
   std::vector<SuiteScene> scenes = resolve_suite_scenes(options.suite);
   BenchOptions suite = options;
@@ -166,6 +180,7 @@ void run_bench(const BenchOptions& options, const CLI::App& command) {
     // With --shutter every frame is its window's: the space-time box filter.
     RenderParams base = options.render.resolve();
     base.shutter.shutter = options.motion_blur.shutter;
+    base.shutter.order = options.motion_blur.order;
     return run_antialiasing_bench_command(base, options.antialiasing,
                                           options.motion_blur.reference_samples, options.json,
                                           options.charts, options.quiet);
@@ -175,6 +190,7 @@ void run_bench(const BenchOptions& options, const CLI::App& command) {
     return run_motion_blur_bench_command(base, options.motion_blur, options.json, options.charts,
                                          options.quiet);
   }
+  refuse_blur_flags(options.motion_blur);
   const BenchParams params = resolve(options);
   check_options_apply(params.base, std::array<std::string, 2>{"kinetic", "embree"});
   check_configurations(params);

@@ -22,6 +22,12 @@ void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& op
                   "Compare motion blur at this shutter (fraction of the frame interval) instead of "
                   "the sweeps")
       ->group(group);
+  command
+      .add_option("--shutter-order", options.order,
+                  "Kinetic: Gauss-Legendre nodes (and light-mask probes) per front interval "
+                  "(0: default 4)")
+      ->capture_default_str()
+      ->group(group);
   command.add_option("--blur-samples", options.samples, "Embree time samples per pixel, a list")
       ->capture_default_str()
       ->group(group);
@@ -72,6 +78,7 @@ namespace {
 RenderParams scene_params(RenderParams params, const MotionBlurBenchOptions& options) {
   params = centred_frames(params, options.fps, options.frames, "--blur-fps", "--blur-frames");
   params.shutter.shutter = options.shutter;
+  params.shutter.order = options.order;
   return params;
 }
 

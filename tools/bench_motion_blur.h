@@ -16,9 +16,11 @@ struct MotionBlurBenchOptions {
   std::string scenes;  ///< more scenes, comma-separated
   double fps = 24;
   int frames = 4;
+  int order = 0;  ///< the kinetic frames' Gauss-Legendre nodes per interval (0: the default)
 };
 
-/// --shutter, --blur-samples, --reference-samples, --blur-scenes, --blur-fps, --blur-frames.
+/// --shutter, --shutter-order, --blur-samples, --reference-samples, --blur-scenes, --blur-fps,
+/// --blur-frames.
 void add_motion_blur_bench_options(CLI::App& command, MotionBlurBenchOptions& options);
 
 /// `params` restricted to `frames` frames at multiples of 1/fps, from --time's start (rounded up

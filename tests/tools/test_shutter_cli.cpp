@@ -99,6 +99,31 @@ TEST_F(ShutterCli, BenchWritesTheMotionBlurJson) {
   EXPECT_LE(events + integrate + readout, kinetic["ms_per_frame"].get<double>());
   ASSERT_EQ(scene["embree"].size(), 2u);
   EXPECT_EQ(scene["embree"][1]["samples"], 16);
+  EXPECT_EQ(kinetic["order"], 4);  // the default
+  EXPECT_EQ(scene["lights"], 0);
+  EXPECT_EQ(scene["tie_pixels"], 0);
+}
+
+TEST_F(ShutterCli, BenchTakesTheKineticOrderAndRefusesABadOne) {
+  const std::string bench =
+      "bench wavy-sphere:triangles=600 --size 24x24 --shutter 0.5 --blur-samples 4 "
+      "--reference-samples 16 --blur-frames 2 --quiet --json " +
+      path("o.json");
+  const auto run = kinray(bench + " --shutter-order 2");
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  const auto json = nlohmann::json::parse(test::read_text(path("o.json")));
+  EXPECT_EQ(json["motion_blur"]["wavy-sphere:triangles=600"]["kinetic"]["order"], 2);
+  const auto bad = kinray(bench + " --shutter-order 99");
+  EXPECT_EQ(bad.status, 2) << bad.err;
+  EXPECT_EQ(bad.err.find("kinray: error: --shutter-order"), 0u) << bad.err;
+  // Without --shutter the sweeps read no blur flag: refused rather than ignored.
+  for (const char* flag : {"--shutter-order 8", "--blur-samples 4", "--blur-frames 3"}) {
+    const auto ignored = kinray("bench wavy-sphere:triangles=600 --size 24x24 --inbetweens 1 " +
+                                std::string(flag) + " --quiet");
+    EXPECT_EQ(ignored.status, 2) << flag << ": " << ignored.err;
+    EXPECT_NE(ignored.err.find("applies to bench --shutter only"), std::string::npos)
+        << ignored.err;
+  }
 }
 
 }  // namespace
