@@ -6,7 +6,8 @@
 // sample of it aliases. Instead each node shows the mean of the texture over its cell of the
 // interval (GaussLegendre::cell_lo, cell_hi): the path's chord over the cell, averaged exactly
 // (Texture::path_average). The node's lighting multiplies it: exact where the lighting is constant
-// over the cell, and the error is the product of the two variations over one cell.
+// over the cell and the path straight, and the error is the product of the two variations over
+// one cell and the path's bend away from its chord.
 #include <cstdint>
 
 #include "renderer/shading.h"
