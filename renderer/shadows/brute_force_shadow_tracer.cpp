@@ -43,38 +43,11 @@ BruteForceShadowTracer::BruteForceShadowTracer(const CameraSpaceScene& scene) : 
 void BruteForceShadowTracer::advance_to(double t) {
   if (t < m_time) throw std::logic_error("BruteForceShadowTracer: frame times must not decrease");
   m_time = t;
-  m_present.clear();
-  for (size_t o = 0; o < m_scene.objects.size(); ++o) {
-    const CameraSpaceObject& cs = m_scene.objects[o];
-    if (!cs.visible(t) || m_scene.triangles(o).empty()) continue;
-    PresentObject& present = m_present.emplace_back();
-    present.object = uint32_t(o);
-    cs.positions_at(t, present.positions);
-    present.lo = present.hi = present.positions.front();
-    for (const Vec3& p : present.positions) {
-      present.lo = present.lo.cwiseMin(p);
-      present.hi = present.hi.cwiseMax(p);
-    }
-  }
+  place_present_objects(m_scene, t, m_present);
 }
 
 bool BruteForceShadowTracer::blocks(const PresentObject& object, const ShadowRay& ray) const {
-  // Slab test of the segment against the object's box, widened by a relative 1e-9 so that
-  // rounding never culls a triangle the exact test would hit.
-  double s_lo = 0, s_hi = ray.s_max;
-  for (int a = 0; a < 3; ++a) {
-    const double pad = 1e-9 * (std::abs(object.lo[a]) + std::abs(object.hi[a]) + 1e-300);
-    const double lo = object.lo[a] - pad - ray.origin[a], hi = object.hi[a] + pad - ray.origin[a];
-    const double w = ray.direction[a];
-    if (w == 0) {
-      if (lo > 0 || hi < 0) return false;
-      continue;
-    }
-    const double a0 = lo / w, a1 = hi / w;
-    s_lo = std::max(s_lo, std::min(a0, a1));
-    s_hi = std::min(s_hi, std::max(a0, a1));
-    if (s_lo > s_hi * (1 + 1e-12) + 1e-300) return false;
-  }
+  if (!segment_may_meet_box(object, ray.origin, ray.direction, ray.s_max)) return false;
   const std::vector<Triangle>& triangles = m_scene.triangles(object.object);
   m_triangle_tests.fetch_add(triangles.size(), std::memory_order_relaxed);
   for (uint32_t f = 0; f < triangles.size(); ++f) {

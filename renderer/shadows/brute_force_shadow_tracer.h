@@ -8,6 +8,7 @@
 
 #include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
+#include "scenes/present_objects.h"
 
 namespace kinray {
 
@@ -42,16 +43,11 @@ class BruteForceShadowTracer final : public ShadowTracer {
   void write_stats(nlohmann::json& stats) const override;
 
  private:
-  struct PresentObject {
-    uint32_t object = 0;
-    std::vector<Vec3> positions;                ///< camera-space positions at the current time
-    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< their bounding box
-  };
   [[nodiscard]] bool blocks(const PresentObject& object, const ShadowRay& ray) const;
 
   const CameraSpaceScene& m_scene;
   double m_time = -kInfinity;
-  std::vector<PresentObject> m_present;
+  std::vector<PresentObject> m_present;  ///< at m_time
   mutable std::atomic<uint64_t> m_rays{0}, m_blocked{0}, m_triangle_tests{0};
 };
 
