@@ -12,6 +12,12 @@ ShadingInstant shading_instant(const CameraSpaceScene& scene, uint32_t object, d
   return {locate(scene.objects[object].key_times, t), scene.tan_half_fov(t)};
 }
 
+const Texture* shading_texture(const Scene& scene, const Object& object) {
+  const Material& material = scene.materials[object.material];
+  return material.texture >= 0 && !object.uvs.empty() ? &scene.textures[size_t(material.texture)]
+                                                      : nullptr;
+}
+
 TriangleOverSegment::TriangleOverSegment(const CameraSpaceScene& scene, uint32_t object,
                                          uint32_t prim, size_t k)
     : m_object(object), m_prim(prim), m_k(k) {
@@ -39,8 +45,7 @@ TriangleOverSegment::TriangleOverSegment(const CameraSpaceScene& scene, uint32_t
   m_source = &source;
   const Material& material = scene.scene->materials[source.material];
   m_base = material.base_color;
-  if (material.texture >= 0 && !source.uvs.empty())
-    m_texture = &scene.scene->textures[size_t(material.texture)];
+  m_texture = shading_texture(*scene.scene, source);
 }
 
 TriangleAtInstant TriangleOverSegment::at(const ShadingInstant& instant) const {

@@ -27,6 +27,10 @@ struct SurfacePoint {
   Color base = Color::Zero();                       ///< base colour times texture
 };
 
+/// The texture `object` of `scene` is shaded with: its material's, when the object has texture
+/// coordinates; nullptr otherwise.
+[[nodiscard]] const Texture* shading_texture(const Scene& scene, const Object& object);
+
 /// What every pixel's shading on one object at one time shares: where the time falls on the
 /// object's keys and the camera's field of view. Motion blur shades many pixels at the same
 /// quadrature nodes and computes this once per node.

@@ -6,7 +6,6 @@
 // where it crosses a cell's side (an integer X or Y) and each cut piece weighted by its length.
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "scenes/scene.h"
 
@@ -16,6 +15,31 @@ namespace {
 /// Cells walked at most: a segment crossing more (a texture minified thousands of times under a
 /// pixel) is averaged over this many equal pieces by the midpoint rule instead.
 constexpr int kMaxCells = 4096;
+
+/// The parameters s in (0, 1) where start + s step crosses an integer, in increasing order.
+class LineCrossings {
+ public:
+  LineCrossings(double start, double step) : m_start(start), m_step(step) {
+    if (step > 0) {
+      m_c = std::floor(start) + 1;
+      m_count = std::max(0.0, std::ceil(start + step) - m_c);
+    } else if (step < 0) {
+      m_c = std::ceil(start) - 1;
+      m_count = std::max(0.0, m_c - std::floor(start + step));
+    }
+  }
+  /// The next crossing's parameter (infinity when there is none left).
+  [[nodiscard]] double next() const { return m_count > 0 ? (m_c - m_start) / m_step : kInfinity; }
+  void pass() {
+    m_c += m_step > 0 ? 1 : -1;
+    --m_count;
+  }
+
+ private:
+  double m_start, m_step;
+  double m_c = 0;      ///< the integer crossed next
+  double m_count = 0;  ///< crossings left
+};
 
 }  // namespace
 
@@ -44,20 +68,13 @@ Color Texture::path_average(Vec2f from, Vec2f to) const {
     }
     return sum / float(kMaxCells);
   }
-  // The parameters where the segment crosses an integer X or Y, in order.
-  std::vector<double> cuts = {0.0, 1.0};
-  const auto add_cuts = [&](double start, double step) {
-    if (step == 0) return;
-    const double end = start + step;
-    for (double c = std::floor(std::min(start, end)) + 1; c < std::max(start, end); c += 1)
-      cuts.push_back((c - start) / step);
-  };
-  add_cuts(x0, dx);
-  add_cuts(y0, dy);
-  std::sort(cuts.begin(), cuts.end());
+  // Walk the cells: the next crossing of an integer X and of an integer Y, the nearer first.
+  LineCrossings across_x(x0, dx), across_y(y0, dy);
   Color sum = Color::Zero();
-  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double a = cuts[k], b = cuts[k + 1];
+  for (double a = 0; a < 1;) {
+    const double b = std::min({across_x.next(), across_y.next(), 1.0});
+    if (across_x.next() == b) across_x.pass();
+    if (across_y.next() == b) across_y.pass();
     if (!(b > a)) continue;
     const double m = (a + b) / 2;
     // The cell of the piece's middle holds the whole piece.
@@ -66,6 +83,7 @@ Color Texture::path_average(Vec2f from, Vec2f to) const {
     const Color fm = bilinear(x0 + m * dx, y0 + m * dy, i, j);
     const Color fb = bilinear(x0 + b * dx, y0 + b * dy, i, j);
     sum += float((b - a) / 6) * (fa + 4 * fm + fb);
+    a = b;
   }
   return sum;
 }

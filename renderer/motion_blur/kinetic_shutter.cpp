@@ -22,11 +22,8 @@ KineticShutter::KineticShutter(const CameraSpaceScene& scene, int order, int thr
       m_fixed_tan_half_fov(scene.fixed_tan_half_fov()) {
   const int base = int(m_rule.nodes.size());
   m_textured_rule = base >= kTexturedShutterOrder ? m_rule : gauss_legendre(kTexturedShutterOrder);
-  for (const CameraSpaceObject& cs : scene.objects) {
-    const Object& source = scene.scene->objects[cs.object];
-    const Material& material = scene.scene->materials[source.material];
-    m_textured.push_back(material.texture >= 0 && !source.uvs.empty());
-  }
+  for (const CameraSpaceObject& cs : scene.objects)
+    m_textured.push_back(shading_texture(*scene.scene, scene.scene->objects[cs.object]) != nullptr);
   if (lights != nullptr && !lights->empty())
     m_shadows = std::make_unique<ShutterShadows>(scene, *lights, m_rule);
 }

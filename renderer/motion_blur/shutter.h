@@ -57,13 +57,12 @@ struct GaussLegendre {
 };
 [[nodiscard]] GaussLegendre gauss_legendre(int order);
 
-/// Calls visit(t, weight, next) for each node of `rule` over [t0, t1] (t0 < t1), the weights
-/// shares of a window of length `length`. The shading is smooth between the keys of the front's
+/// Calls visit(t, weight, next, lo, hi) for each node of `rule` over [t0, t1] (t0 < t1), the
+/// weights shares of a window of length `length`, [lo, hi] the node's cell on its piece
+/// (GaussLegendre::cell_lo, cell_hi). The shading is smooth between the keys of the front's
 /// object, not across them (its vertices and normals turn there): each piece between the `keys`
 /// (sorted) inside [t0, t1] gets its own rule, and the node's piece lies in
 /// [keys[next - 1], keys[next]] (next = 0 or keys.size(): before or after the keys).
-/// for_each_quadrature_node, visit(t, weight, next, lo, hi) given the node's cell [lo, hi] too
-/// (GaussLegendre::cell_lo, cell_hi, on the node's piece).
 template <class Visit>
 void for_each_quadrature_cell(std::span<const double> keys, const GaussLegendre& rule, double t0,
                               double t1, double length, Visit&& visit) {
@@ -81,6 +80,7 @@ void for_each_quadrature_cell(std::span<const double> keys, const GaussLegendre&
   }
 }
 
+/// for_each_quadrature_cell without the cells: visit(t, weight, next).
 template <class Visit>
 void for_each_quadrature_node(std::span<const double> keys, const GaussLegendre& rule, double t0,
                               double t1, double length, Visit&& visit) {

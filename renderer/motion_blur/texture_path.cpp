@@ -6,11 +6,8 @@ TexturePath::TexturePath(const CameraSpaceScene& scene, uint32_t object, uint32_
                          const Vec3& d)
     : m_scene(scene), m_object(object), m_prim(prim), m_d(d) {
   const Object& source = scene.scene->objects[scene.objects[object].object];
-  const Material& material = scene.scene->materials[source.material];
-  if (material.texture >= 0 && !source.uvs.empty()) {
-    m_texture = &scene.scene->textures[size_t(material.texture)];
-    m_material = material.base_color;
-  }
+  m_texture = shading_texture(*scene.scene, source);
+  m_material = scene.scene->materials[source.material].base_color;
 }
 
 Vec2f TexturePath::uv_at(double t) {

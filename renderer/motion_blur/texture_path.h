@@ -32,7 +32,7 @@ class TexturePath {
   uint32_t m_object, m_prim;
   Vec3 m_d;
   const Texture* m_texture = nullptr;
-  Color m_material = Color::Ones();
+  Color m_material;  ///< the material's base colour
   /// The last two uvs computed: adjacent cells share an end.
   double m_t[2] = {kInfinity, kInfinity};
   Vec2f m_uv[2] = {Vec2f::Zero(), Vec2f::Zero()};
