@@ -15,13 +15,15 @@ Color Texture::sample(Vec2f uv) const {
   const float x = (uv.x() - std::floor(uv.x())) * float(width) - 0.5f;
   const float y = (1.0f - (uv.y() - std::floor(uv.y()))) * float(height) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
-  const float ax = x - fx, ay = y - fy;
-  auto texel = [&](int i, int j) {
-    i = ((i % width) + width) % width;
-    j = ((j % height) + height) % height;
-    return texels[size_t(j) * size_t(width) + size_t(i)];
+  return blend((long long)fx, (long long)fy, x - fx, y - fy);
+}
+
+Color Texture::blend(long long i, long long j, float ax, float ay) const {
+  auto texel = [&](long long a, long long b) -> const Color& {
+    a = ((a % width) + width) % width;
+    b = ((b % height) + height) % height;
+    return texels[size_t(b) * size_t(width) + size_t(a)];
   };
-  const int i = int(fx), j = int(fy);
   return (1 - ay) * ((1 - ax) * texel(i, j) + ax * texel(i + 1, j)) +
          ay * ((1 - ax) * texel(i, j + 1) + ax * texel(i + 1, j + 1));
 }

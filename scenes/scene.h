@@ -44,6 +44,9 @@ struct Texture {
   int width = 0, height = 0;
   std::vector<Color> texels;  // row-major, row 0 at the top (v = 1)
   [[nodiscard]] Color sample(Vec2f uv) const;
+  /// The bilinear blend of texels (i, j) to (i + 1, j + 1), their indices wrapped around, at
+  /// fractions ax along i and ay along j: sample() inside one cell.
+  [[nodiscard]] Color blend(long long i, long long j, float ax, float ay) const;
   /// The mean of sample() along the straight segment from `from` to `to` in uv, exactly up to
   /// rounding (texture_path.cpp); sample(from) when they are equal. Motion blur averages a
   /// texture sliding under a pixel with it, as antialiasing filters one over a region.

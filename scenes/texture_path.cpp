@@ -45,18 +45,12 @@ class LineCrossings {
 
 Color Texture::path_average(Vec2f from, Vec2f to) const {
   if (from == to || width <= 0 || height <= 0) return sample(from);
-  const auto texel = [&](long long i, long long j) -> const Color& {
-    i = ((i % width) + width) % width;
-    j = ((j % height) + height) % height;
-    return texels[size_t(j) * size_t(width) + size_t(i)];
-  };
   const double x0 = double(from.x()) * width - 0.5, y0 = (1.0 - double(from.y())) * height - 0.5;
   const double dx = double(to.x() - from.x()) * width, dy = -double(to.y() - from.y()) * height;
-  const auto bilinear = [&](double x, double y, long long i, long long j) -> Color {
-    const auto ax = float(std::clamp(x - double(i), 0.0, 1.0));
-    const auto ay = float(std::clamp(y - double(j), 0.0, 1.0));
-    return (1 - ay) * ((1 - ax) * texel(i, j) + ax * texel(i + 1, j)) +
-           ay * ((1 - ax) * texel(i, j + 1) + ax * texel(i + 1, j + 1));
+  // sample() at (x, y) of cell (i, j), which holds it up to rounding.
+  const auto bilinear = [&](double x, double y, long long i, long long j) {
+    return blend(i, j, float(std::clamp(x - double(i), 0.0, 1.0)),
+                 float(std::clamp(y - double(j), 0.0, 1.0)));
   };
   const double crossings = std::abs(std::floor(x0 + dx) - std::floor(x0)) +
                            std::abs(std::floor(y0 + dy) - std::floor(y0));
