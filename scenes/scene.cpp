@@ -195,6 +195,10 @@ void Scene::validate(const std::string& source) const {
     if (!object.uvs.empty() && object.uvs.size() != nv)
       throw InputError(where, "has " + std::to_string(object.uvs.size()) + " uvs for " +
                                   std::to_string(nv) + " vertices");
+    for (size_t v = 0; v < object.uvs.size(); ++v)
+      if (!object.uvs[v].allFinite())
+        throw InputError(where, "the texture coordinates of vertex " + std::to_string(v) +
+                                    " are NaN or infinite");
     if (object.material >= materials.size())
       throw InputError(where, "material index " + std::to_string(object.material) + " out of range");
     if (std::isnan(object.appear) || std::isnan(object.disappear) || !(object.disappear > object.appear))

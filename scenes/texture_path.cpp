@@ -45,8 +45,13 @@ class LineCrossings {
 
 Color Texture::path_average(Vec2f from, Vec2f to) const {
   if (from == to || width <= 0 || height <= 0) return sample(from);
-  const double x0 = double(from.x()) * width - 0.5, y0 = (1.0 - double(from.y())) * height - 0.5;
-  const double dx = double(to.x() - from.x()) * width, dy = -double(to.y() - from.y()) * height;
+  // Whole periods of the texture change nothing: the segment starts in the period of [0, 1)^2,
+  // so the texel coordinates stay small whatever the uvs.
+  const double u0 = double(from.x()), v0 = double(from.y());
+  const double x0 = (u0 - std::floor(u0)) * width - 0.5,
+               y0 = (1.0 - (v0 - std::floor(v0))) * height - 0.5;
+  const double du = double(to.x()) - u0, dv = double(to.y()) - v0;
+  const double dx = du * width, dy = -dv * height;
   // sample() at (x, y) of cell (i, j), which holds it up to rounding.
   const auto bilinear = [&](double x, double y, long long i, long long j) {
     return blend(i, j, float(std::clamp(x - double(i), 0.0, 1.0)),
@@ -57,8 +62,8 @@ Color Texture::path_average(Vec2f from, Vec2f to) const {
   if (!(crossings < kMaxCells)) {
     Color sum = Color::Zero();
     for (int k = 0; k < kMaxCells; ++k) {
-      const double s = (k + 0.5) / kMaxCells, x = x0 + s * dx, y = y0 + s * dy;
-      sum += bilinear(x, y, (long long)std::floor(x), (long long)std::floor(y));
+      const double s = (k + 0.5) / kMaxCells;
+      sum += sample(Vec2f(float(u0 + s * du), float(v0 + s * dv)));
     }
     return sum / float(kMaxCells);
   }

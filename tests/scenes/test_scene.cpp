@@ -140,6 +140,12 @@ TEST(Scene, ValidationNamesTheProblem) {
       {"vertex count mismatch", [](Scene& s) { s.objects[0].key_positions[2].pop_back(); },
        "key 2 has 2 vertices, key 0 has 3"},
       {"uv count", [](Scene& s) { s.objects[0].uvs = {Vec2f(0, 0)}; }, "has 1 uvs for 3 vertices"},
+      {"NaN uv",
+       [](Scene& s) {
+         s.objects[0].uvs = {Vec2f(0, 0), Vec2f(1, std::numeric_limits<float>::quiet_NaN()),
+                             Vec2f(0, 1)};
+       },
+       "the texture coordinates of vertex 1 are NaN or infinite"},
       {"material index", [](Scene& s) { s.objects[0].material = 4; },
        "material index 4 out of range"},
       {"appear after disappear",
@@ -236,6 +242,15 @@ TEST(Scene, TexturePathAverageIsTheMeanOfTheSamplesAlongTheSegment) {
     EXPECT_NEAR((average.cast<double>() - mean).cwiseAbs().maxCoeff(), 0, 2e-6)
         << from.transpose() << " -> " << to.transpose();
   }
+  // Far from [0, 1) the texture repeats: a segment 2^20 periods away (its uvs exact in float)
+  // averages as the one in the first period, and one across 1e30 of them (a malformed model) is
+  // a finite colour.
+  EXPECT_NEAR((texture.path_average(Vec2f(1048576.125f, 0.25f), Vec2f(1048576.875f, 0.75f)) -
+               texture.path_average(Vec2f(0.125f, 0.25f), Vec2f(0.875f, 0.75f)))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              0, 1e-6);
+  EXPECT_TRUE(texture.path_average(Vec2f(-1e30f, 0.5f), Vec2f(1e30f, 0.5f)).allFinite());
   // A segment of no length is the sample, bit for bit (a pixel nothing moves over stays sharp).
   EXPECT_EQ(texture.path_average(Vec2f(0.3f, 0.6f), Vec2f(0.3f, 0.6f)),
             texture.sample(Vec2f(0.3f, 0.6f)));
