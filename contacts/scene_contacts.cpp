@@ -50,8 +50,10 @@ struct FlightplanMeshes {
     triangles.resize(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i) {
       const Object& o = scene.objects[objects[i]];
-      for (const std::vector<Vec3>& key : o.key_positions)
-        positions[i].insert(positions[i].end(), key.begin(), key.end());
+      positions[i].reserve(o.key_position_sets() * o.vertex_count());
+      for (size_t k = 0; k < o.key_position_sets(); ++k)
+        for (uint32_t v = 0; v < o.vertex_count(); ++v)
+          positions[i].push_back(o.key_position(k, v));
       FlightplanMesh m;
       m.id = objects[i];
       m.key_times = o.key_times;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 
 #include "scenes/aff_parser.h"
 #include "util/input_error.h"
@@ -32,7 +33,8 @@ class SceneBuilder {
     } else {
       chain.push_back({node.transform, nullptr});
     }
-    for (const AffShape& shape : node.shapes) add_object(shape, chain);
+    std::shared_ptr<const std::vector<Eigen::Affine3d>> transforms;  // the chain's, once per node
+    for (const AffShape& shape : node.shapes) add_object(shape, chain, transforms);
     for (const auto& child : node.children) visit(*child, chain);
   }
 
@@ -72,7 +74,9 @@ class SceneBuilder {
     return positions;
   }
 
-  void add_object(const AffShape& shape, const std::vector<Link>& chain) {
+  /// `transforms` caches the chain's transform at every key, shared by the objects of one node.
+  void add_object(const AffShape& shape, const std::vector<Link>& chain,
+                  std::shared_ptr<const std::vector<Eigen::Affine3d>>& transforms) {
     Object object;
     object.name = shape.where;
     object.triangles = shape.triangles;
@@ -81,7 +85,7 @@ class SceneBuilder {
     const bool animated =
         std::any_of(chain.begin(), chain.end(), [](const Link& l) { return l.animated; });
     auto transformed = [](const Eigen::Affine3d& m, std::vector<Vec3> positions) {
-      for (Vec3& p : positions) p = m * p;
+      for (Vec3& p : positions) p = RigidKeys::transform(m, p);
       return positions;
     };
     if (!animated) {
@@ -90,6 +94,16 @@ class SceneBuilder {
       object.key_times = shape.key_times;
       for (const auto& positions : shape.key_positions)
         object.key_positions.push_back(transformed(m, positions));
+    } else if (shape.key_times.size() == 1) {
+      // A still shape under animated transforms moves rigidly: its positions and the chain's
+      // transform at each key (the robots' parts, which explicit keys would hold 800 times).
+      if (!transforms) {
+        auto matrices = std::make_shared<std::vector<Eigen::Affine3d>>(m_times.size());
+        for (size_t k = 0; k < m_times.size(); ++k) (*matrices)[k] = product(chain, k);
+        transforms = std::move(matrices);
+      }
+      object.key_times = m_times;
+      object.rigid = RigidKeys{shape.key_positions.front(), transforms};
     } else {
       object.key_times = m_times;
       for (size_t k = 0; k < m_times.size(); ++k)

@@ -75,14 +75,15 @@ std::vector<FramedKey> framed_keys(const Scene& scene, double begin, double end)
     for (const Object& object : scene.objects) {
       if (!(object.appear <= after && object.disappear > before)) continue;
       const KeySegment s = locate(object.key_times, times[k]);
-      const std::vector<Vec3>& a = object.key_positions[s.k];
+      const uint32_t nv = uint32_t(object.vertex_count());
       if (object.key_count() < 2 || s.alpha == 0) {
-        for (const Vec3& p : a) keys[k].bounds.extend(p);
+        for (uint32_t v = 0; v < nv; ++v) keys[k].bounds.extend(object.key_position(s.k, v));
         continue;
       }
-      const std::vector<Vec3>& b = object.key_positions[s.k + 1];
-      for (size_t v = 0; v < a.size(); ++v)
-        keys[k].bounds.extend(Vec3(a[v] + s.alpha * (b[v] - a[v])));
+      for (uint32_t v = 0; v < nv; ++v) {
+        const Vec3 a = object.key_position(s.k, v), b = object.key_position(s.k + 1, v);
+        keys[k].bounds.extend(Vec3(a + s.alpha * (b - a)));
+      }
     }
   });
   return keys;

@@ -116,7 +116,8 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene) {
       const CameraTransform camera(scene.camera.at(t));
       std::vector<Vec3> true_positions(nv);
       for (uint32_t v = 0; v < nv; ++v)
-        true_positions[v] = camera.to_camera(object_moves ? object.position(v, t) : object.key_positions[0][v]);
+        true_positions[v] =
+            camera.to_camera(object_moves ? object.position(v, t) : object.key_position(0, v));
       vertex_normals(true_positions, object.triangles, cs.normals.data() + k * nv);
       for (size_t v = 0; v < nv; ++v) {
         const Vec3& p = true_positions[v];

@@ -28,7 +28,36 @@ Color Texture::blend(long long i, long long j, float ax, float ay) const {
          ay * ((1 - ax) * texel(i, j + 1) + ax * texel(i + 1, j + 1));
 }
 
+Vec3 RigidKeys::transform(const Eigen::Affine3d& m, const Vec3& p) {
+  return m * p;
+}
+
+std::vector<Vec3> Object::key_vertices(size_t k) const {
+  if (!rigid) return key_positions[k];
+  std::vector<Vec3> out(vertex_count());
+  for (uint32_t v = 0; v < out.size(); ++v) out[v] = key_position(k, v);
+  return out;
+}
+
+void Object::make_keys_explicit() {
+  if (!rigid) return;
+  key_positions.resize(key_position_sets());
+  for (size_t k = 0; k < key_positions.size(); ++k) key_positions[k] = key_vertices(k);
+  rigid.reset();
+}
+
 bool Object::is_static() const {
+  if (rigid) {
+    // Equal transforms place every vertex alike; different ones may still (a spin about an axis
+    // through every vertex), so only then are the positions compared.
+    const std::vector<Eigen::Affine3d>& transforms = *rigid->transforms;
+    for (size_t k = 1; k < transforms.size(); ++k) {
+      if (transforms[k].matrix() == transforms[0].matrix()) continue;
+      for (uint32_t v = 0; v < vertex_count(); ++v)
+        if (key_position(k, v) != key_position(0, v)) return false;
+    }
+    return true;
+  }
   for (size_t k = 1; k < key_positions.size(); ++k)
     if (key_positions[k] != key_positions[0]) return false;
   return true;
@@ -38,6 +67,7 @@ void Object::set_flightplans(std::vector<double> times, std::vector<std::vector<
   Object candidate = *this;
   candidate.key_times = std::move(times);
   candidate.key_positions = std::move(positions);
+  candidate.rigid.reset();
   Scene probe;
   probe.objects.push_back(candidate);
   probe.materials.resize(candidate.material + 1);
@@ -47,9 +77,9 @@ void Object::set_flightplans(std::vector<double> times, std::vector<std::vector<
 
 Vec3 Object::position(uint32_t v, double t) const {
   const KeySegment s = locate(key_times, t);
-  if (key_times.size() < 2) return key_positions[0][v];
-  const Vec3& a = key_positions[s.k][v];
-  const Vec3& b = key_positions[s.k + 1][v];
+  if (key_times.size() < 2) return key_position(0, v);
+  const Vec3 a = key_position(s.k, v);
+  const Vec3 b = key_position(s.k + 1, v);
   return a + s.alpha * (b - a);
 }
 
@@ -166,23 +196,24 @@ void Scene::validate(const std::string& source) const {
     const std::string where = source + ": object " + std::to_string(o) +
                               (object.name.empty() ? "" : " '" + object.name + "'");
     check_times(object.key_times, where);
-    if (object.key_positions.size() != object.key_times.size())
+    if (object.key_position_sets() != object.key_times.size())
       throw InputError(where, std::to_string(object.key_times.size()) + " key times but " +
-                                  std::to_string(object.key_positions.size()) + " key position sets");
+                                  std::to_string(object.key_position_sets()) +
+                                  " key position sets");
     const size_t nv = object.vertex_count();
-    for (size_t k = 0; k < object.key_positions.size(); ++k) {
-      if (object.key_positions[k].size() != nv)
+    for (size_t k = 0; k < object.key_position_sets(); ++k) {
+      if (!object.rigid && object.key_positions[k].size() != nv)
         throw InputError(where, "key " + std::to_string(k) + " has " +
                                     std::to_string(object.key_positions[k].size()) +
                                     " vertices, key 0 has " + std::to_string(nv));
-      for (size_t v = 0; v < nv; ++v) {
-        if (!object.key_positions[k][v].allFinite())
+      for (uint32_t v = 0; v < nv; ++v) {
+        const Vec3 p = object.key_position(k, v);
+        if (!p.allFinite())
           throw InputError(where, "vertex " + std::to_string(v) + " at key " + std::to_string(k) +
                                       " is NaN or infinite");
-        if (object.key_positions[k][v].cwiseAbs().maxCoeff() > kMaxCoordinate)
+        if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
           throw InputError(where, "vertex " + std::to_string(v) + " at key " + std::to_string(k) +
-                                      " has a coordinate beyond +-1e15 (" +
-                                      describe_far(object.key_positions[k][v]) +
+                                      " has a coordinate beyond +-1e15 (" + describe_far(p) +
                                       "), which the float references cannot trace");
       }
     }
@@ -254,8 +285,8 @@ size_t Scene::vertex_count() const {
 Eigen::AlignedBox3d Scene::bounds() const {
   Eigen::AlignedBox3d box;
   for (const Object& object : objects)
-    for (const auto& key : object.key_positions)
-      for (const Vec3& p : key) box.extend(p);
+    for (size_t k = 0; k < object.key_position_sets(); ++k)
+      for (uint32_t v = 0; v < object.vertex_count(); ++v) box.extend(object.key_position(k, v));
   return box;
 }
 

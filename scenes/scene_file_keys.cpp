@@ -115,6 +115,7 @@ Placement parse_placement(const JsonNode& object, bool keys_are_transforms) {
 /// Moves `object` by `placement`: the static transform applies to every key; TRS keys combine with
 /// the object's own keys on the union of both key grids.
 void apply_placement(Object& object, const Placement& placement) {
+  object.make_keys_explicit();
   if (placement.rest)
     for (auto& key : object.key_positions)
       for (Vec3& p : key) p = *placement.rest * p;

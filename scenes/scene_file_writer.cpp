@@ -94,7 +94,8 @@ void save_scene_file(const Scene& scene, const std::string& path) {
     json keys = json::array();
     for (size_t k = 0; k < object.key_count(); ++k) {
       json vertices = json::array();
-      for (const Vec3& p : object.key_positions[k]) vertices.push_back(vec3_json(p));
+      for (uint32_t v = 0; v < object.vertex_count(); ++v)
+        vertices.push_back(vec3_json(object.key_position(k, v)));
       keys.push_back({{"time", object.key_times[k]}, {"vertices", std::move(vertices)}});
     }
     o["keys"] = std::move(keys);

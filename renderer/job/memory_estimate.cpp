@@ -50,9 +50,7 @@ SceneSize size_of(const Scene& scene) {
   SceneSize size;
   for (const Object& object : scene.objects) {
     size.triangles += double(object.triangles.size());
-    if (!object.key_positions.empty())
-      size.vertex_keys +=
-          double(object.key_positions.size()) * double(object.key_positions.front().size());
+    size.vertex_keys += double(object.key_position_sets()) * double(object.vertex_count());
   }
   return size;
 }

@@ -78,7 +78,7 @@ TEST(AffParser, MeshIncludesTransformsAndAnimation) {
   ASSERT_EQ(sliding.key_times, (std::vector<double>{0, 0.5, 1, 1.5, 2}));
   for (size_t k = 0; k < sliding.key_count(); ++k)
     for (size_t v = 0; v < sliding.vertex_count(); ++v)
-      EXPECT_NEAR((sliding.key_positions[k][v] - sliding.key_positions[0][v] -
+      EXPECT_NEAR((sliding.key_position(k, uint32_t(v)) - sliding.key_position(0, uint32_t(v)) -
                    Vec3(sliding.key_times[k], 0, 0))
                       .norm(),
                   0, 1e-12)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 
 #include "scenes/scene.h"
 #include "util/input_error.h"
@@ -62,6 +63,62 @@ TEST(Scene, FlightplansArePiecewiseLinearAndStandStillOutside) {
   single.key_positions = {object.key_positions[1]};
   EXPECT_TRUE(single.is_static());
   EXPECT_EQ(single.position(0, -1), Vec3(3, 0, 0));
+}
+
+/// The sliding triangle's first key moved rigidly: at key k (time k), turned by degrees[k]
+/// about z and shifted by k along x.
+Object rigid_triangle(const std::vector<double>& degrees) {
+  Object object = sliding_triangle();
+  auto transforms = std::make_shared<std::vector<Eigen::Affine3d>>();
+  object.key_times.clear();
+  for (size_t k = 0; k < degrees.size(); ++k) {
+    object.key_times.push_back(double(k));
+    transforms->push_back(Eigen::Translation3d(double(k), 0, 0) *
+                          Eigen::AngleAxisd(degrees[k] * M_PI / 180, Vec3::UnitZ()));
+  }
+  object.rigid = RigidKeys{object.key_positions[0], transforms};
+  object.key_positions.clear();
+  return object;
+}
+
+TEST(Scene, RigidKeysMoveTheVerticesAsTheSameExplicitKeysWould) {
+  const Object rigid = rigid_triangle({0, 90, 180});
+  Object explicit_keys = rigid;
+  explicit_keys.make_keys_explicit();
+  ASSERT_FALSE(explicit_keys.rigid);
+  ASSERT_EQ(explicit_keys.key_positions.size(), 3u);
+  EXPECT_EQ(rigid.vertex_count(), 3u);
+  EXPECT_EQ(rigid.key_position_sets(), 3u);
+  // (1, 0, 0) turned a quarter about z, then shifted by 1 along x.
+  EXPECT_NEAR((rigid.key_position(1, 0) - Vec3(1, 1, 0)).norm(), 0, 1e-15);
+  for (double t : {-1.0, 0.0, 0.3, 1.0, 1.7, 9.0})
+    for (uint32_t v = 0; v < 3; ++v) EXPECT_EQ(rigid.position(v, t), explicit_keys.position(v, t));
+  EXPECT_FALSE(rigid.is_static());
+  EXPECT_NO_THROW(one_object_scene(rigid).validate("scene.json"));
+  EXPECT_EQ(one_object_scene(rigid).bounds().min(), one_object_scene(explicit_keys).bounds().min());
+  EXPECT_EQ(one_object_scene(rigid).bounds().max(), one_object_scene(explicit_keys).bounds().max());
+
+  // Equal transforms leave it still; so does a turn about an axis through every vertex.
+  Object still = rigid_triangle({30, 30, 30});
+  still.rigid->transforms =
+      std::make_shared<std::vector<Eigen::Affine3d>>(3, (*still.rigid->transforms)[0]);
+  EXPECT_TRUE(still.is_static());
+  Object spun = rigid_triangle({0, 0});
+  spun.rigid->positions = {Vec3(0, 0, 1), Vec3(0, 0, 2), Vec3(0, 0, 3)};
+  spun.rigid->transforms =
+      std::make_shared<std::vector<Eigen::Affine3d>>(std::vector<Eigen::Affine3d>{
+          Eigen::Affine3d::Identity(), Eigen::Affine3d(Eigen::AngleAxisd(1.0, Vec3::UnitZ()))});
+  EXPECT_TRUE(spun.is_static());
+}
+
+TEST(Scene, ARigidKeyBeyondTheLargestCoordinateIsRefusedWithItsVertexAndKey) {
+  Object far = rigid_triangle({0, 0, 0});
+  auto transforms = std::make_shared<std::vector<Eigen::Affine3d>>(*far.rigid->transforms);
+  (*transforms)[2] = Eigen::Translation3d(0, 2e15, 0) * (*transforms)[2];
+  far.rigid->transforms = transforms;
+  const std::string message = validation_error(one_object_scene(far));
+  EXPECT_NE(message.find("vertex 0 at key 2 has a coordinate beyond +-1e15"), std::string::npos)
+      << message;
 }
 
 TEST(Scene, FlightplanUpdatesAreValidated) {
