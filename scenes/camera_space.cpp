@@ -88,7 +88,24 @@ void vertex_normals(std::span<const Vec3> true_positions, const std::vector<Tria
 
 }  // namespace
 
-CameraSpaceScene CameraSpaceScene::build(const Scene& scene) {
+namespace {
+
+/// Drops the keys outside what `span` needs: the last key at or before its start and the first at
+/// or after its end bound it; locate() finds the same segment and alpha inside it.
+void keep_keys_of(std::vector<double>& key_times, const std::pair<double, double>& span) {
+  const auto first = std::upper_bound(key_times.begin(), key_times.end(), span.first);
+  const auto last = std::lower_bound(key_times.begin(), key_times.end(), span.second);
+  const size_t begin = first == key_times.begin() ? 0 : size_t(first - key_times.begin()) - 1;
+  const size_t end =
+      last == key_times.end() ? key_times.size() : size_t(last - key_times.begin()) + 1;
+  key_times = std::vector<double>(key_times.begin() + std::ptrdiff_t(begin),
+                                  key_times.begin() + std::ptrdiff_t(end));
+}
+
+}  // namespace
+
+CameraSpaceScene CameraSpaceScene::build(const Scene& scene,
+                                         std::optional<std::pair<double, double>> span) {
   CameraSpaceScene result;
   result.scene = &scene;
   result.objects.resize(scene.objects.size());
@@ -107,6 +124,7 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene) {
     if (cs.key_times.empty()) cs.key_times.push_back(object.key_times.front());
     std::sort(cs.key_times.begin(), cs.key_times.end());
     cs.key_times.erase(std::unique(cs.key_times.begin(), cs.key_times.end()), cs.key_times.end());
+    if (span) keep_keys_of(cs.key_times, *span);
 
     const size_t nk = cs.key_times.size(), nv = cs.vertex_count;
     cs.positions.resize(nk * nv);

@@ -59,8 +59,12 @@ struct CameraSpaceScene {
   std::vector<double> camera_key_times;  ///< the camera's key times, for tan_half_fov
   std::vector<double> camera_fov_y;      ///< the camera's fov_y_degrees at its keys
 
-  /// Builds camera-space flightplans from `scene`, which must outlive the result.
-  static CameraSpaceScene build(const Scene& scene);
+  /// Builds camera-space flightplans from `scene`, which must outlive the result. With a
+  /// `span` [a, b], each object keeps only the keys that positions inside it need (from the last
+  /// key at or before a to the first at or after b), the same bits there as with every key: a
+  /// short shot of a long animation (BART robots, 800 keys) holds a few keys, not all.
+  static CameraSpaceScene build(const Scene& scene,
+                                std::optional<std::pair<double, double>> span = std::nullopt);
   /// tan(fov_y / 2) of the camera at t: undoes the fov folding for shading (the fov of
   /// Camera::at(t), bit for bit, without its allocation and slerp: shading calls it per sample).
   [[nodiscard]] double tan_half_fov(double t) const;

@@ -165,13 +165,19 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
   if (!m_params.frames && !m_params.fps && !m_params.inbetweens && m_scene.frame_count > 0)
     m_params.frames = m_scene.frame_count;
   check_render_memory(m_params, &m_scene);
-  m_camera_space = CameraSpaceScene::build(m_scene);
-  m_lights = CameraSpaceLights(m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
   for (size_t index = m_slice.begin; index < m_slice.end; ++index) m_to_render.push_back(index);
   if (m_params.shutter.enabled())
     m_windows = kinray::shutter_windows(m_frame_times, m_scene.key_times(), m_params.shutter.shutter);
+  // Camera space holds the keys of the shot (--time) and its shutter windows only. Every chunk
+  // of a farm render keeps the same keys, so that its frames are the single render's.
+  std::pair<double, double> span =
+      m_params.time.value_or(std::pair(m_scene.time_begin, m_scene.time_end));
+  for (const ShutterWindow& window : m_windows)
+    span = {std::min(span.first, window.open), std::max(span.second, window.close)};
+  m_camera_space = CameraSpaceScene::build(m_scene, span);
+  m_lights = CameraSpaceLights(m_scene);
   m_timings.load = now_s() - m_started;
 }
 

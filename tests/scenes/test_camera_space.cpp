@@ -183,6 +183,38 @@ TEST(CameraSpace, KeyGridIsTheUnionOfObjectAndCameraKeys) {
   EXPECT_TRUE(fixed_camera.objects[1].is_static);
 }
 
+TEST(CameraSpace, AShortSpanKeepsTheKeysItNeedsAndTheSamePositionsInside) {
+  Scene scene;
+  Object moving;
+  moving.triangles = {{0, 1, 2}};
+  for (int k = 0; k <= 10; ++k) {
+    moving.key_times.push_back(0.1 * k);
+    const double z = 1 + 0.3 * k + 0.01 * k * k;  // a different speed on every segment
+    moving.key_positions.push_back({Vec3(0, 0, z), Vec3(1, 0.1 * k, z), Vec3(0, 1, z)});
+  }
+  scene.objects = {moving};
+  scene.camera.keys = {Camera::look_at(0, Vec3(0, 0, -5), Vec3::Zero(), Vec3::UnitY(), 45),
+                       Camera::look_at(1, Vec3(1, 0, -5), Vec3::Zero(), Vec3::UnitY(), 45)};
+  scene.validate("test");
+  const CameraSpaceScene all = CameraSpaceScene::build(scene);
+  const CameraSpaceScene part = CameraSpaceScene::build(scene, std::pair(0.25, 0.5));
+  // 0.2 is the last key before the span, 0.5 the first at its end.
+  EXPECT_EQ(part.objects[0].key_times, (std::vector<double>{0.1 * 2, 0.1 * 3, 0.1 * 4, 0.1 * 5}));
+  EXPECT_EQ(part.objects[0].positions.size(), 4u * 3u);
+  for (double t : {0.25, 0.3, 0.31, 0.4, 0.499, 0.5})
+    for (uint32_t v = 0; v < 3; ++v) {
+      EXPECT_EQ(part.objects[0].position(v, t), all.objects[0].position(v, t)) << t;
+      EXPECT_EQ(part.objects[0].normal(v, t), all.objects[0].normal(v, t)) << t;
+    }
+  // A span on keys keeps them; one beyond every key keeps the last, where the object stands.
+  EXPECT_EQ(CameraSpaceScene::build(scene, std::pair(0.1 * 3, 0.1 * 4)).objects[0].key_times,
+            (std::vector<double>{0.1 * 3, 0.1 * 4}));
+  const CameraSpaceScene after = CameraSpaceScene::build(scene, std::pair(2.0, 3.0));
+  EXPECT_EQ(after.objects[0].key_times, (std::vector<double>{1}));
+  EXPECT_TRUE(after.objects[0].is_static);
+  EXPECT_EQ(after.objects[0].position(1, 2.5), all.objects[0].position(1, 2.5));
+}
+
 TEST(CameraSpace, NormalsAreUnitAndPerpendicular) {
   const Scene scene =
       triangle_scene(Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), fixed(Vec3(3, 4, 5)));
