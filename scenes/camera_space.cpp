@@ -104,12 +104,25 @@ void keep_keys_of(std::vector<double>& key_times, const std::pair<double, double
 
 }  // namespace
 
+std::vector<double> camera_space_key_times(const Scene& scene, size_t o,
+                                           std::optional<std::pair<double, double>> span) {
+  const Object& object = scene.objects[o];
+  std::vector<double> key_times;
+  if (!object.is_static()) key_times = object.key_times;
+  if (scene.camera.keys.size() > 1)
+    for (const CameraKey& key : scene.camera.keys) key_times.push_back(key.time);
+  if (key_times.empty()) key_times.push_back(object.key_times.front());
+  std::sort(key_times.begin(), key_times.end());
+  key_times.erase(std::unique(key_times.begin(), key_times.end()), key_times.end());
+  if (span) keep_keys_of(key_times, *span);
+  return key_times;
+}
+
 CameraSpaceScene CameraSpaceScene::build(const Scene& scene,
                                          std::optional<std::pair<double, double>> span) {
   CameraSpaceScene result;
   result.scene = &scene;
   result.objects.resize(scene.objects.size());
-  const bool camera_moves = scene.camera.keys.size() > 1;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const Object& object = scene.objects[o];
     CameraSpaceObject& cs = result.objects[o];
@@ -118,13 +131,7 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene,
     cs.appear = object.appear;
     cs.disappear = object.disappear;
     const bool object_moves = !object.is_static();
-    if (object_moves) cs.key_times = object.key_times;
-    if (camera_moves)
-      for (const CameraKey& key : scene.camera.keys) cs.key_times.push_back(key.time);
-    if (cs.key_times.empty()) cs.key_times.push_back(object.key_times.front());
-    std::sort(cs.key_times.begin(), cs.key_times.end());
-    cs.key_times.erase(std::unique(cs.key_times.begin(), cs.key_times.end()), cs.key_times.end());
-    if (span) keep_keys_of(cs.key_times, *span);
+    cs.key_times = camera_space_key_times(scene, o, span);
 
     const size_t nk = cs.key_times.size(), nv = cs.vertex_count;
     cs.positions.resize(nk * nv);

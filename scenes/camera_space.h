@@ -27,6 +27,11 @@ struct KeySegment {
 /// inside, else by the search. The same segment and alpha, bit for bit.
 [[nodiscard]] KeySegment locate(std::span<const double> key_times, double t, size_t next);
 
+/// The key times of object o's camera-space flightplans (CameraSpaceScene::build): its own if it
+/// moves and the camera's if that moves (else its first), only those that `span` needs.
+[[nodiscard]] std::vector<double> camera_space_key_times(
+    const Scene& scene, size_t o, std::optional<std::pair<double, double>> span = std::nullopt);
+
 /// One object's camera-space flightplans.
 struct CameraSpaceObject {
   uint32_t object = 0;              ///< index into Scene::objects; the id in ID buffers

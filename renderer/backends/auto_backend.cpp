@@ -119,9 +119,9 @@ class AutoBackend final : public Backend {
       return;
     }
     const std::optional<double> available = available_memory_bytes();
-    if (available && estimate_render_memory(size_of(*m_scene.scene), m_config.width,
-                                            m_config.height, "kinetic")
-                             .total() > *available) {
+    if (available &&
+        estimate_render_memory(size_of(m_scene), m_config.width, m_config.height, "kinetic")
+                .total() > *available) {
       decide(Phase::embree, "Embree: the kinetic grid would not fit in memory");
       return;
     }

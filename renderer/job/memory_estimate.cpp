@@ -13,9 +13,10 @@
 namespace kinray {
 namespace {
 
-// Per vertex and key: world (Vec3, 24 bytes) and camera-space (24) positions and a float normal
-// (12). Per triangle: the scene's and camera space's index triples.
-constexpr double kBytesPerVertexKey = 60;
+// Per vertex and key: a world position (Vec3, 24 bytes); in camera space a position (24) and a
+// float normal (12). Per triangle: the scene's and camera space's index triples.
+constexpr double kWorldBytesPerVertexKey = 24;
+constexpr double kCameraBytesPerVertexKey = 36;
 constexpr double kSceneBytesPerTriangle = 24;
 // Measured with --stats (memory_bytes, pixel_memory_bytes) on wavy-sphere at 256x256: the kinetic
 // grid takes 113 bytes per pixel and 530-680 bytes per triangle (records and certificates).
@@ -41,17 +42,30 @@ std::optional<SceneSize> size_of_builtin(const std::string& spec) {
   const std::optional<ProceduralParams> params = builtin_scene_params(spec);
   if (!params) return std::nullopt;
   const double keys = std::ceil(params->duration * params->keyrate - 1e-9) + 1;
-  return SceneSize{params->triangles, params->triangles / 2 * keys};
+  const double vertex_keys = params->triangles / 2 * keys;
+  return SceneSize{params->triangles, vertex_keys, vertex_keys};
 }
 
 }  // namespace
 
-SceneSize size_of(const Scene& scene) {
+SceneSize size_of(const Scene& scene, std::optional<std::pair<double, double>> span) {
   SceneSize size;
-  for (const Object& object : scene.objects) {
+  for (size_t o = 0; o < scene.objects.size(); ++o) {
+    const Object& object = scene.objects[o];
+    const double vertices = double(object.vertex_count());
     size.triangles += double(object.triangles.size());
-    size.vertex_keys += double(object.key_position_sets()) * double(object.vertex_count());
+    size.world_vertex_keys +=
+        object.rigid ? vertices : double(object.key_position_sets()) * vertices;
+    size.camera_vertex_keys += double(camera_space_key_times(scene, o, span).size()) * vertices;
   }
+  return size;
+}
+
+SceneSize size_of(const CameraSpaceScene& scene) {
+  SceneSize size = size_of(*scene.scene);
+  size.camera_vertex_keys = 0;
+  for (const CameraSpaceObject& object : scene.objects)
+    size.camera_vertex_keys += double(object.key_times.size()) * double(object.vertex_count);
   return size;
 }
 
@@ -59,7 +73,9 @@ MemoryEstimate estimate_render_memory(const SceneSize& size, int width, int heig
                                       const std::string& backend) {
   const double pixels = double(width) * double(height);
   MemoryEstimate estimate;
-  estimate.scene = size.vertex_keys * kBytesPerVertexKey + size.triangles * kSceneBytesPerTriangle;
+  estimate.scene = size.world_vertex_keys * kWorldBytesPerVertexKey +
+                   size.camera_vertex_keys * kCameraBytesPerVertexKey +
+                   size.triangles * kSceneBytesPerTriangle;
   estimate.frames = pixels * kFrameBytesPerPixel;
   // auto tries the kinetic grid only when it fits (renderer/auto_backend.h)
   if (backend == "kinetic") {
@@ -94,9 +110,10 @@ std::optional<double> available_memory_bytes() {
   return available;
 }
 
-void check_render_memory(const RenderParams& params, const Scene* scene) {
+void check_render_memory(const RenderParams& params, const Scene* scene,
+                         std::optional<std::pair<double, double>> span) {
   const std::optional<SceneSize> size =
-      scene ? std::optional<SceneSize>(size_of(*scene)) : size_of_builtin(params.scene);
+      scene ? std::optional<SceneSize>(size_of(*scene, span)) : size_of_builtin(params.scene);
   const std::optional<double> available = available_memory_bytes();
   if (!size || !available) return;
   const MemoryEstimate estimate =

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "renderer/job/render_job.h"
+#include "scenes/camera_space.h"
 #include "scenes/scene.h"
 
 namespace kinray {
@@ -19,13 +20,17 @@ struct MemoryEstimate {
   [[nodiscard]] double total() const { return scene + backend_scene + backend_pixels + frames; }
 };
 
-/// The sizes that drive the estimate.
+/// The sizes that drive the estimate: sums over objects of vertices x keys, as the world holds
+/// them (a rigid object's vertices once) and as camera space does (the keys of the shot).
 struct SceneSize {
-  double triangles = 0, vertex_keys = 0;  ///< vertex_keys: sum over objects of vertices x keys
+  double triangles = 0, world_vertex_keys = 0, camera_vertex_keys = 0;
 };
 
-/// The sizes of a loaded scene.
-[[nodiscard]] SceneSize size_of(const Scene& scene);
+/// The sizes of a loaded scene whose camera space will hold the keys that `span` needs.
+[[nodiscard]] SceneSize size_of(const Scene& scene,
+                                std::optional<std::pair<double, double>> span = std::nullopt);
+/// The sizes of a scene whose camera space is built.
+[[nodiscard]] SceneSize size_of(const CameraSpaceScene& scene);
 
 /// The estimate for a scene of `size` rendered at width x height by `backend`.
 [[nodiscard]] MemoryEstimate estimate_render_memory(const SceneSize& size, int width, int height,
@@ -36,8 +41,10 @@ struct SceneSize {
 [[nodiscard]] std::optional<double> available_memory_bytes();
 
 /// Throws InputError when the render `params` asks for cannot fit in available memory: before
-/// loading (`scene` null) from a built-in scene's parameters, after loading from `scene` itself.
-/// The error names the scene spec or --size, whichever needs more, and gives the estimate.
-void check_render_memory(const RenderParams& params, const Scene* scene);
+/// loading (`scene` null) from a built-in scene's parameters, after loading from `scene` itself
+/// (its camera space holding the keys `span` needs). The error names the scene spec or --size,
+/// whichever needs more, and gives the estimate.
+void check_render_memory(const RenderParams& params, const Scene* scene,
+                         std::optional<std::pair<double, double>> span = std::nullopt);
 
 }  // namespace kinray

@@ -164,7 +164,6 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
     std::tie(m_params.width, m_params.height) = std::pair(m_scene.image_width, m_scene.image_height);
   if (!m_params.frames && !m_params.fps && !m_params.inbetweens && m_scene.frame_count > 0)
     m_params.frames = m_scene.frame_count;
-  check_render_memory(m_params, &m_scene);
   m_frame_times = kinray::frame_times(m_scene.key_times(), schedule_params(m_params));
   m_slice = frame_slice(m_params.chunk, m_params.frame_range, m_frame_times.size());
   for (size_t index = m_slice.begin; index < m_slice.end; ++index) m_to_render.push_back(index);
@@ -176,6 +175,7 @@ RenderJob::RenderJob(RenderParams params) : m_params(std::move(params)), m_start
       m_params.time.value_or(std::pair(m_scene.time_begin, m_scene.time_end));
   for (const ShutterWindow& window : m_windows)
     span = {std::min(span.first, window.open), std::max(span.second, window.close)};
+  check_render_memory(m_params, &m_scene, span);
   m_camera_space = CameraSpaceScene::build(m_scene, span);
   m_lights = CameraSpaceLights(m_scene);
   m_timings.load = now_s() - m_started;

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "renderer/backends/backend.h"
+#include "renderer/job/memory_estimate.h"
 #include "scenes/aff_scene.h"
 #include "scenes/camera_space.h"
 #include "tests/scenes/aff_file_facts.h"
@@ -85,6 +86,26 @@ TEST(BartScenes, Robots) {
       // Audited: at t = 1.4997 two nearly edge-on triangles sharing an edge have a depth
       // certificate whose products cancel below their rounding (kinetic/core/exact_certificate.h).
       true);
+}
+
+TEST(BartScenes, TheRobotsHoldTheirVerticesOnceAndAShortShotHoldsItsOwnKeys) {
+  const fs::path path = kBart / "robots/Robot.aff";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " is absent (../shared/data/bart)";
+  const ScopedWarningSink quiet([](const std::string&) {});
+  const Scene scene = load_aff(path);  // every key of the animation (800)
+  const double vertices = double(scene.vertex_count());
+  // Their parts move rigidly under BART's transforms: each vertex is held once, not per key.
+  const SceneSize whole = size_of(scene);
+  EXPECT_LT(whole.world_vertex_keys, 1.01 * vertices);
+  EXPECT_GT(whole.camera_vertex_keys, 500 * vertices);
+  // A shot of a tenth of a second holds the few keys around it in camera space, and the
+  // estimate of a small render of it is far below a gigabyte.
+  const std::pair<double, double> shot(1.0, 1.1);
+  const SceneSize part = size_of(scene, shot);
+  EXPECT_LT(part.camera_vertex_keys, whole.camera_vertex_keys / 50);
+  EXPECT_LT(estimate_render_memory(part, 64, 48, "kinetic").total(), 1e9);
+  const CameraSpaceScene cs = CameraSpaceScene::build(scene, shot);
+  EXPECT_EQ(size_of(cs).camera_vertex_keys, part.camera_vertex_keys);
 }
 
 }  // namespace
