@@ -111,20 +111,21 @@ bool WindowBvh::hits(uint32_t tri, const TreeRay& ray, double t, MeshAtTime& at)
   return s && *s > ray.s_min && *s < ray.s_max;
 }
 
-bool WindowBvh::occluded(const TreeRay& ray, double t) const {
+uint32_t WindowBvh::occluder(const TreeRay& ray, double t, uint32_t hint) const {
   KINRAY_CHECK_MSG(m_sweeps > 0 && t >= m_open && t <= m_close,
                    "window tree: a ray outside the swept window");
-  if (m_root_link == kNoNode) return false;
+  MeshAtTime at;
+  if (hint < m_meshes.triangle_count() && hits(hint, ray, t, at)) return hint;
+  if (m_root_link == kNoNode) return kNoNode;
   const WideRay wide_ray(ray.origin, ray.direction, ray.s_min, ray.s_max);
   uint32_t stack[256];
   int top = 0;
   stack[top++] = m_root_link;
   float entry[4];
-  MeshAtTime at;
   while (top > 0) {
     const uint32_t link = stack[--top];
     if (link & kLeaf) {
-      if (hits(link & ~kLeaf, ray, t, at)) return true;
+      if (hits(link & ~kLeaf, ray, t, at)) return link & ~kLeaf;
       continue;
     }
     const Node& n = m_nodes[link];
@@ -132,7 +133,7 @@ bool WindowBvh::occluded(const TreeRay& ray, double t) const {
     for (int enter = wide_ray.test(n.bound, entry); enter != 0; enter &= enter - 1)
       stack[top++] = n.link[size_t(std::countr_zero(unsigned(enter)))];
   }
-  return false;
+  return kNoNode;
 }
 
 bool WindowBvh::occluded_brute_force(const TreeRay& ray, double t) const {

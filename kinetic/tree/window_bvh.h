@@ -30,7 +30,13 @@ class WindowBvh {
   void sweep(double open, double close);
   /// Whether the ray meets a triangle present at time t (t in the last swept window), other
   /// than ray.skip, at s_min < s < s_max. Thread-safe between sweeps.
-  [[nodiscard]] bool occluded(const TreeRay& ray, double t) const;
+  [[nodiscard]] bool occluded(const TreeRay& ray, double t) const {
+    return occluder(ray, t) != kNoNode;
+  }
+  /// The same question answered by a triangle that meets the ray (kNoNode: none does), tried
+  /// first with `hint` (a triangle or kNoNode): a shadow ray of the next instant of a pixel is
+  /// mostly blocked by the triangle that blocked the last, and one test then spares the descent.
+  [[nodiscard]] uint32_t occluder(const TreeRay& ray, double t, uint32_t hint = kNoNode) const;
   /// The same answer from every triangle, without the tree (tests).
   [[nodiscard]] bool occluded_brute_force(const TreeRay& ray, double t) const;
 

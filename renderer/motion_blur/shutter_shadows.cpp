@@ -44,7 +44,8 @@ void ShutterShadows::begin_window(const ShutterWindow& window) {
 
 ShutterShadows::Probe ShutterShadows::probe(uint32_t object, uint32_t prim, const Vec3& d, double t,
                                             ShutterShadowCounts& counts,
-                                            std::vector<CameraSpaceLight>& scratch) const {
+                                            std::vector<CameraSpaceLight>& scratch,
+                                            OccluderHints& hints) const {
   Probe p;
   p.t = t;
   p.hit = lit_hit(m_scene, object, prim, d, t);
@@ -52,32 +53,39 @@ ShutterShadows::Probe ShutterShadows::probe(uint32_t object, uint32_t prim, cons
   // Only lights whose Lambert term is positive: their shadow rays, and the shading's kink where
   // the term turns, are the mask's changes.
   p.mask = light_mask(
-      p.hit, lights, object, prim, [&](const ShadowRay& ray) { return blocked(ray, t, counts); },
+      p.hit, lights, object, prim,
+      [&](const ShadowRay& ray, size_t l) { return blocked(ray, t, counts, hints[l]); },
       lit_side_mask(p.hit, lights));
   return p;
 }
 
-bool ShutterShadows::blocked(const ShadowRay& ray, double t, ShutterShadowCounts& counts) const {
+bool ShutterShadows::blocked(const ShadowRay& ray, double t, ShutterShadowCounts& counts,
+                             uint32_t& hint) const {
   ++counts.shadow_rays;
   const uint32_t skip = m_first_triangle.at(ray.object) + ray.prim;
-  return m_tree.occluded(TreeRay{ray.origin, ray.direction, 0.0, ray.s_max, skip}, t);
+  const uint32_t found =
+      m_tree.occluder(TreeRay{ray.origin, ray.direction, 0.0, ray.s_max, skip}, t, hint);
+  if (found == kNoNode) return false;
+  hint = found;
+  return true;
 }
 
 bool ShutterShadows::reaches(uint32_t object, uint32_t prim, const Vec3& d, double t, size_t l,
-                             ShutterShadowCounts& counts,
-                             std::vector<CameraSpaceLight>& scratch) const {
+                             ShutterShadowCounts& counts, std::vector<CameraSpaceLight>& scratch,
+                             OccluderHints& hints) const {
   const LitHit hit = lit_hit(m_scene, object, prim, d, t);
   const std::vector<CameraSpaceLight>& lights = lights_at(t, scratch);
   if ((lit_side_mask(hit, lights) >> l & 1u) == 0) return false;
   const auto ray = shadow_ray(hit, lights[l], object, prim);
-  return ray && !blocked(*ray, t, counts);
+  return ray && !blocked(*ray, t, counts, hints[l]);
 }
 
 uint32_t ShutterShadows::mask_at(uint32_t object, uint32_t prim, const Vec3& d, double t) const {
   ShutterShadowCounts counts;
   std::vector<CameraSpaceLight> scratch;
+  uint32_t hint = kNoNode;
   return light_mask(lit_hit(m_scene, object, prim, d, t), lights_at(t, scratch), object, prim,
-                    [&](const ShadowRay& ray) { return blocked(ray, t, counts); });
+                    [&](const ShadowRay& ray) { return blocked(ray, t, counts, hint); });
 }
 
 void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, double t0, double t1,
@@ -87,14 +95,16 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
   const double length = m_window.length();
   const std::vector<double>& keys = m_scene.objects[object].key_times;
   std::vector<CameraSpaceLight> scratch;
+  OccluderHints hints;
+  hints.fill(kNoNode);
 
   // 1. The masks at the ends and at every node (of each piece between keys).
   std::vector<Probe> probes;
-  probes.push_back(probe(object, prim, d, t0, counts, scratch));
+  probes.push_back(probe(object, prim, d, t0, counts, scratch, hints));
   for_each_quadrature_node(keys, m_rule, t0, t1, length, [&](double t, double w, size_t) {
-    probes.emplace_back(probe(object, prim, d, t, counts, scratch)).weight = w;
+    probes.emplace_back(probe(object, prim, d, t, counts, scratch, hints)).weight = w;
   });
-  probes.push_back(probe(object, prim, d, t1, counts, scratch));
+  probes.push_back(probe(object, prim, d, t1, counts, scratch, hints));
   // In time order (the rule's nodes need not be): adjacent probes bracket the changes.
   std::sort(probes.begin(), probes.end(), [](const Probe& a, const Probe& b) { return a.t < b.t; });
   const bool steady = std::all_of(probes.begin(), probes.end(),
@@ -121,7 +131,8 @@ void ShutterShadows::integrate(uint32_t object, uint32_t prim, const Vec3& d, do
       while (hi - lo > precision) {
         const double mid = lo + (hi - lo) / 2;
         if (!(mid > lo && mid < hi)) break;  // adjacent doubles
-        (reaches(object, prim, d, mid, size_t(l), counts, scratch) == before ? lo : hi) = mid;
+        (reaches(object, prim, d, mid, size_t(l), counts, scratch, hints) == before ? lo : hi) =
+            mid;
       }
       flips.emplace_back(lo + (hi - lo) / 2, 1u << l);
     }

@@ -17,12 +17,14 @@
 // the node spacing crossing the light's path) is missed; every other change is found, to the
 // precision stated. Shadow rays go through a tree whose boxes bound the window (WindowBvh), so
 // each is answered exactly at its own time.
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "kinetic/tree/window_bvh.h"
 #include "renderer/motion_blur/shutter.h"
 #include "renderer/shading.h"
+#include "renderer/shadows/shadow_rays.h"
 #include "renderer/shadows/shadow_tracer.h"
 #include "scenes/camera_space.h"
 #include "scenes/camera_space_lights.h"
@@ -61,16 +63,21 @@ class ShutterShadows {
  private:
   /// One instant of the front: its lit hit, the lights and its mask there.
   struct Probe;
+  /// Per light, the triangle that last blocked its shadow ray in one integration (kNoNode:
+  /// none yet), tried first at the next instant (WindowBvh::occluder).
+  using OccluderHints = std::array<uint32_t, kMaxLights>;
   /// (`scratch` holds the lights at t when they move.)
   [[nodiscard]] Probe probe(uint32_t object, uint32_t prim, const Vec3& d, double t,
-                            ShutterShadowCounts& counts,
-                            std::vector<CameraSpaceLight>& scratch) const;
-  /// Whether a triangle other than the one `ray` leaves from meets it at time t (counted).
-  [[nodiscard]] bool blocked(const ShadowRay& ray, double t, ShutterShadowCounts& counts) const;
+                            ShutterShadowCounts& counts, std::vector<CameraSpaceLight>& scratch,
+                            OccluderHints& hints) const;
+  /// Whether a triangle other than the one `ray` leaves from meets it at time t (counted); `hint`
+  /// is tried first and becomes the triangle found.
+  [[nodiscard]] bool blocked(const ShadowRay& ray, double t, ShutterShadowCounts& counts,
+                             uint32_t& hint) const;
   /// Whether light l reaches the hit of (object, prim) along d at t.
   [[nodiscard]] bool reaches(uint32_t object, uint32_t prim, const Vec3& d, double t, size_t l,
-                             ShutterShadowCounts& counts,
-                             std::vector<CameraSpaceLight>& scratch) const;
+                             ShutterShadowCounts& counts, std::vector<CameraSpaceLight>& scratch,
+                             OccluderHints& hints) const;
 
   /// The lights at t: m_still_lights when the camera has one key, else `scratch` filled.
   [[nodiscard]] const std::vector<CameraSpaceLight>& lights_at(

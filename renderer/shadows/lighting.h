@@ -8,6 +8,7 @@
 // camera space. Lights do not fall off with distance: a light's colour is its irradiance.
 #include <cstdint>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "renderer/frame.h"
@@ -45,7 +46,7 @@ struct LitHit {
 }
 
 /// Bit l set when light l (among `candidates`) faces `hit` and its shadow ray is not blocked:
-/// blocked(ray) answers.
+/// blocked(ray), or blocked(ray, l), answers.
 template <class Blocked>
 [[nodiscard]] uint32_t light_mask(const LitHit& hit, const std::vector<CameraSpaceLight>& lights,
                                   uint32_t object, uint32_t prim, Blocked&& blocked,
@@ -54,8 +55,14 @@ template <class Blocked>
   for (size_t l = 0; l < lights.size(); ++l)
     if (const auto ray =
             (candidates >> l & 1u) != 0 ? shadow_ray(hit, lights[l], object, prim) : std::nullopt;
-        ray && !blocked(*ray))
-      mask |= 1u << l;
+        ray) {
+      bool shadowed = false;
+      if constexpr (std::is_invocable_v<Blocked, const ShadowRay&, size_t>)
+        shadowed = blocked(*ray, l);
+      else
+        shadowed = blocked(*ray);
+      if (!shadowed) mask |= 1u << l;
+    }
   return mask;
 }
 

@@ -117,7 +117,8 @@ TEST(ShutterShadows, TheWindowTreeAnswersAsEveryTriangleTested) {
   WindowBvh tree(grid_meshes(cs));
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1, 1);
-  int blocked = 0, free = 0;
+  int blocked = 0, free = 0, hinted = 0;
+  uint32_t hint = kNoNode;  // the last ray's occluder: right for some rays, wrong for most
   for (const auto& [open, close] : std::vector<std::pair<double, double>>{{0.1, 0.3}, {0.9, 1.4}}) {
     tree.sweep(open, close);
     for (int r = 0; r < 2000; ++r) {
@@ -129,10 +130,25 @@ TEST(ShutterShadows, TheWindowTreeAnswersAsEveryTriangleTested) {
       const bool answer = tree.occluded(ray, t);
       ASSERT_EQ(answer, tree.occluded_brute_force(ray, t)) << "ray " << r << " at " << t;
       (answer ? blocked : free) += 1;
+      // With a hint, the same answer, and the triangle named meets the ray.
+      const uint32_t occluder = tree.occluder(ray, t, hint);
+      ASSERT_EQ(occluder != kNoNode, answer) << "ray " << r << " at " << t;
+      if (occluder != kNoNode) {
+        // The hint is answered first: only when it meets the ray, so the occluder does.
+        ASSERT_EQ(tree.occluder(ray, t, occluder), occluder);
+        // A ray of the next instant, barely turned, is mostly answered by the same triangle.
+        TreeRay next = ray;
+        next.direction = Vec3(ray.direction.x() * (1 + 1e-9), ray.direction.y(), ray.direction.z());
+        const uint32_t again = tree.occluder(next, std::min(t + 1e-9, close), occluder);
+        ASSERT_EQ(again != kNoNode, tree.occluded_brute_force(next, std::min(t + 1e-9, close)));
+        hinted += again == occluder;
+      }
+      hint = occluder;
     }
   }
   EXPECT_GT(blocked, 200);  // both answers occur
   EXPECT_GT(free, 200);
+  EXPECT_GT(hinted, blocked * 9 / 10);
 }
 
 /// wavy-sphere (2,000 triangles) lit by a point light and a directional one.
