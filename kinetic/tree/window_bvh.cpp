@@ -13,13 +13,10 @@ namespace kinray {
 
 WindowBvh::WindowBvh(std::vector<FlightplanMesh> meshes) : m_meshes(std::move(meshes), 0.0) {}
 
-void WindowBvh::sweep(double open, double close) {
-  KINRAY_CHECK(open <= close);
-  m_open = open;
-  m_close = close;
-  // Each vertex's path over the window: its positions at the window's ends and at its mesh's
-  // keys inside (linear in between), padded by the rounding between those blends and the blend at
-  // any time of the window, which the tree queries' pad bounds.
+void WindowBvh::sweep_vertices(double open, double close) {
+  // Each vertex's path over [open, close]: its positions at the ends and at its mesh's keys
+  // inside (linear in between), padded by the rounding between those blends and the blend at any
+  // time of the window, which the tree queries' pad bounds.
   const double pad = 1e-12 * m_meshes.scale();
   m_vertex_boxes.resize(m_meshes.vertex_count());
   std::vector<double> times;
@@ -41,21 +38,16 @@ void WindowBvh::sweep(double open, double close) {
       box.hi.array() += pad;
     }
   }
-  if (m_sweeps == 0) {
-    // The shape, once: the builder on the first window's triangle boxes, whatever the presence.
-    std::vector<Aabb> triangle_boxes(m_meshes.triangle_count());
-    for (uint32_t tri = 0; tri < m_meshes.triangle_count(); ++tri)
-      for (uint32_t v : m_meshes.triangle(tri)) triangle_boxes[tri].extend(m_vertex_boxes[v]);
-    m_topology = build_binned_sah(triangle_boxes);
-    m_boxes.resize(m_topology.nodes.size());
-  }
+}
+
+void WindowBvh::sweep_nodes(double open, double close, std::vector<Node>& nodes) {
   for (uint32_t i = uint32_t(m_topology.nodes.size()); i-- > 0;) {
     const BvhNode& n = m_topology.nodes[i];
     Aabb& b = m_boxes[i];
     b = Aabb{};
     if (n.leaf()) {
       const FlightplanMesh& mesh = m_meshes.mesh(m_meshes.mesh_of_triangle(n.triangle));
-      // Present at some time of the window: [appear, disappear) meets [open, close].
+      // Present at some time of [open, close]: [appear, disappear) meets it.
       if (mesh.appear <= close && mesh.disappear > open)
         for (uint32_t v : m_meshes.triangle(n.triangle)) b.extend(m_vertex_boxes[v]);
     } else {
@@ -64,24 +56,15 @@ void WindowBvh::sweep(double open, double close) {
     }
   }
   // The traversal's wide nodes: each child's box rounded outward to floats.
-  if (m_sweeps == 0) {
-    m_wide = collapse_four_wide(m_topology);
-    m_nodes.resize(m_wide.binary.size());
-    const auto& nodes = m_topology.nodes;
-    m_root_link = nodes.empty() ? kNoNode : nodes[0].leaf() ? kLeaf | nodes[0].triangle : 0;
-    for (size_t w = 0; w < m_nodes.size(); ++w)
-      for (size_t k = 0; k < 4; ++k) {
-        const uint32_t c = m_wide.children[w][k];
-        m_nodes[w].link[k] = c == kNoNode      ? kNoNode
-                             : nodes[c].leaf() ? kLeaf | nodes[c].triangle
-                                               : m_wide.wide[w][k];
-      }
-  }
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  for (size_t w = 0; w < m_nodes.size(); ++w) {
-    Node& out = m_nodes[w];
+  nodes.resize(m_wide.binary.size());
+  for (size_t w = 0; w < nodes.size(); ++w) {
+    Node& out = nodes[w];
     for (size_t k = 0; k < 4; ++k) {
       const uint32_t c = m_wide.children[w][k];
+      out.link[k] = c == kNoNode                 ? kNoNode
+                    : m_topology.nodes[c].leaf() ? kLeaf | m_topology.nodes[c].triangle
+                                                 : m_wide.wide[w][k];
       const Aabb* b = c == kNoNode ? nullptr : &m_boxes[c];
       for (int a = 0; a < 3; ++a) {
         const bool empty = b == nullptr || !(b->lo[a] <= b->hi[a]);
@@ -89,6 +72,33 @@ void WindowBvh::sweep(double open, double close) {
         out.bound[a + 3][k] = empty ? -kInf : float_up(b->hi[a]);
       }
     }
+  }
+}
+
+void WindowBvh::sweep(double open, double close) {
+  KINRAY_CHECK(open <= close);
+  m_open = open;
+  m_close = close;
+  if (m_sweeps == 0) {
+    // The shape, once: the builder on the first window's triangle boxes, whatever the presence.
+    sweep_vertices(open, close);
+    std::vector<Aabb> triangle_boxes(m_meshes.triangle_count());
+    for (uint32_t tri = 0; tri < m_meshes.triangle_count(); ++tri)
+      for (uint32_t v : m_meshes.triangle(tri)) triangle_boxes[tri].extend(m_vertex_boxes[v]);
+    m_topology = build_binned_sah(triangle_boxes);
+    m_boxes.resize(m_topology.nodes.size());
+    m_wide = collapse_four_wide(m_topology);
+    const auto& nodes = m_topology.nodes;
+    m_root_link = nodes.empty() ? kNoNode : nodes[0].leaf() ? kLeaf | nodes[0].triangle : 0;
+  }
+  // Boxes per stratum of the window: a ray descends through those of its own time's stratum,
+  // which its triangles' motion over a part of the window inflates less than over the whole (the
+  // camera moves every triangle of the scene).
+  for (size_t s = 0; s <= kStrata; ++s)
+    m_stratum_times[s] = s == kStrata ? close : open + (close - open) * double(s) / kStrata;
+  for (size_t s = 0; s < kStrata; ++s) {
+    sweep_vertices(m_stratum_times[s], m_stratum_times[s + 1]);
+    sweep_nodes(m_stratum_times[s], m_stratum_times[s + 1], m_strata[s]);
   }
   ++m_sweeps;
 }
@@ -117,6 +127,9 @@ uint32_t WindowBvh::occluder(const TreeRay& ray, double t, uint32_t hint) const 
   MeshAtTime at;
   if (hint < m_meshes.triangle_count() && hits(hint, ray, t, at)) return hint;
   if (m_root_link == kNoNode) return kNoNode;
+  // The stratum whose times [m_stratum_times[s], m_stratum_times[s + 1]] hold t.
+  const auto above = std::upper_bound(m_stratum_times.begin() + 1, m_stratum_times.end() - 1, t);
+  const std::vector<Node>& nodes = m_strata[size_t(above - m_stratum_times.begin()) - 1];
   const WideRay wide_ray(ray.origin, ray.direction, ray.s_min, ray.s_max);
   uint32_t stack[256];
   int top = 0;
@@ -128,7 +141,7 @@ uint32_t WindowBvh::occluder(const TreeRay& ray, double t, uint32_t hint) const 
       if (hits(link & ~kLeaf, ray, t, at)) return link & ~kLeaf;
       continue;
     }
-    const Node& n = m_nodes[link];
+    const Node& n = nodes[link];
     KINRAY_CHECK_MSG(top + 4 <= 256, "window tree: the tree is deeper than the traversal stack");
     for (int enter = wide_ray.test(n.bound, entry); enter != 0; enter &= enter - 1)
       stack[top++] = n.link[size_t(std::countr_zero(unsigned(enter)))];
