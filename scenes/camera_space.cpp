@@ -155,10 +155,12 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene,
     result.camera_key_times.push_back(key.time);
     result.camera_fov_y.push_back(key.fov_y_degrees);
   }
+  result.fixed_tan = result.fixed_tan_half_fov();
   return result;
 }
 
 double CameraSpaceScene::tan_half_fov(double t) const {
+  if (fixed_tan) return *fixed_tan;
   // Camera::at's interpolation of the fov, without building the whole key.
   if (camera_fov_y.empty()) return std::tan(scene->camera.at(t).fov_y_degrees * M_PI / 360.0);
   double fov_y = camera_fov_y.front();

@@ -63,6 +63,9 @@ struct CameraSpaceScene {
 
   std::vector<double> camera_key_times;  ///< the camera's key times, for tan_half_fov
   std::vector<double> camera_fov_y;      ///< the camera's fov_y_degrees at its keys
+  /// fixed_tan_half_fov(), kept by build: tan_half_fov's answer without a search and a tan, for
+  /// the shading's many calls.
+  std::optional<double> fixed_tan;
 
   /// Builds camera-space flightplans from `scene`, which must outlive the result. With a
   /// `span` [a, b], each object keeps only the keys that positions inside it need (from the last
