@@ -2,8 +2,6 @@
 // The scene model: triangle meshes whose vertices move along piecewise-linear flightplans,
 // objects that appear and disappear, a pinhole camera that may be animated, and materials.
 // Everything here is in world space; camera_space.h turns it into what the backends consume.
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -12,6 +10,9 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "scenes/camera_source.h"
 
