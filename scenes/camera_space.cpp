@@ -102,13 +102,11 @@ void keep_keys_of(std::vector<double>& key_times, const std::pair<double, double
                                   key_times.begin() + std::ptrdiff_t(end));
 }
 
-}  // namespace
-
-std::vector<double> camera_space_key_times(const Scene& scene, size_t o,
-                                           std::optional<std::pair<double, double>> span) {
-  const Object& object = scene.objects[o];
+/// camera_space_key_times of `object`, whose motion (`moves`: !is_static()) is known.
+std::vector<double> key_times_of(const Scene& scene, const Object& object, bool moves,
+                                 const std::optional<std::pair<double, double>>& span) {
   std::vector<double> key_times;
-  if (!object.is_static()) key_times = object.key_times;
+  if (moves) key_times = object.key_times;
   if (scene.camera.keys.size() > 1)
     for (const CameraKey& key : scene.camera.keys) key_times.push_back(key.time);
   if (key_times.empty()) key_times.push_back(object.key_times.front());
@@ -116,6 +114,14 @@ std::vector<double> camera_space_key_times(const Scene& scene, size_t o,
   key_times.erase(std::unique(key_times.begin(), key_times.end()), key_times.end());
   if (span) keep_keys_of(key_times, *span);
   return key_times;
+}
+
+}  // namespace
+
+std::vector<double> camera_space_key_times(const Scene& scene, size_t o,
+                                           std::optional<std::pair<double, double>> span) {
+  const Object& object = scene.objects[o];
+  return key_times_of(scene, object, !object.is_static(), span);
 }
 
 CameraSpaceScene CameraSpaceScene::build(const Scene& scene,
@@ -131,7 +137,7 @@ CameraSpaceScene CameraSpaceScene::build(const Scene& scene,
     cs.appear = object.appear;
     cs.disappear = object.disappear;
     const bool object_moves = !object.is_static();
-    cs.key_times = camera_space_key_times(scene, o, span);
+    cs.key_times = key_times_of(scene, object, object_moves, span);
 
     const size_t nk = cs.key_times.size(), nv = cs.vertex_count;
     cs.positions.resize(nk * nv);

@@ -46,24 +46,28 @@ std::optional<SceneSize> size_of_builtin(const std::string& spec) {
   return SceneSize{params->triangles, vertex_keys, vertex_keys};
 }
 
+/// Adds `object`'s triangles and world-space vertex keys (a rigid object's vertices once).
+void add_world_size(const Object& object, SceneSize& size) {
+  const double vertices = double(object.vertex_count());
+  size.triangles += double(object.triangles.size());
+  size.world_vertex_keys += object.rigid ? vertices : double(object.key_position_sets()) * vertices;
+}
+
 }  // namespace
 
 SceneSize size_of(const Scene& scene, std::optional<std::pair<double, double>> span) {
   SceneSize size;
   for (size_t o = 0; o < scene.objects.size(); ++o) {
-    const Object& object = scene.objects[o];
-    const double vertices = double(object.vertex_count());
-    size.triangles += double(object.triangles.size());
-    size.world_vertex_keys +=
-        object.rigid ? vertices : double(object.key_position_sets()) * vertices;
-    size.camera_vertex_keys += double(camera_space_key_times(scene, o, span).size()) * vertices;
+    add_world_size(scene.objects[o], size);
+    size.camera_vertex_keys += double(camera_space_key_times(scene, o, span).size()) *
+                               double(scene.objects[o].vertex_count());
   }
   return size;
 }
 
 SceneSize size_of(const CameraSpaceScene& scene) {
-  SceneSize size = size_of(*scene.scene);
-  size.camera_vertex_keys = 0;
+  SceneSize size;
+  for (const Object& object : scene.scene->objects) add_world_size(object, size);
   for (const CameraSpaceObject& object : scene.objects)
     size.camera_vertex_keys += double(object.key_times.size()) * double(object.vertex_count);
   return size;
